@@ -1,0 +1,29 @@
+# Test helpers shared by tests/ and validation/.
+set(MDPORE_TEST_ENV
+    OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+    OMPI_MCA_btl_vader_single_copy_mechanism=none OMP_NUM_THREADS=1)
+
+# mdpore_add_test(NAME name [NP ranks] [LABELS ...] [TIMEOUT s] COMMAND cmd args...)
+# NP > 0 runs the command under mpiexec with that many ranks.
+function(mdpore_add_test)
+  cmake_parse_arguments(T "" "NAME;NP;TIMEOUT;WORKING_DIRECTORY" "COMMAND;LABELS;ENVIRONMENT" ${ARGN})
+  set(cmd ${T_COMMAND})
+  if(T_NP)
+    set(cmd ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${T_NP} ${MPIEXEC_EXTRA_FLAGS} ${T_COMMAND})
+  endif()
+  if(NOT T_WORKING_DIRECTORY)
+    set(T_WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+  endif()
+  add_test(NAME ${T_NAME} COMMAND ${cmd} WORKING_DIRECTORY ${T_WORKING_DIRECTORY})
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  set_tests_properties(${T_NAME} PROPERTIES TIMEOUT ${T_TIMEOUT}
+                       ENVIRONMENT "${MDPORE_TEST_ENV};${T_ENVIRONMENT}" SKIP_RETURN_CODE 77)
+  if(T_NP)
+    set_tests_properties(${T_NAME} PROPERTIES PROCESSORS ${T_NP})
+  endif()
+  if(T_LABELS)
+    set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}")
+  endif()
+endfunction()

@@ -1,0 +1,60 @@
+/* The engine's public face: a simulation on one MPI communicator (one subdomain per rank).
+ * Used by the run driver, the initial-configuration builders, the outputs and the tests. */
+#ifndef MESO_ENGINE_SIM_H
+#define MESO_ENGINE_SIM_H
+
+#include "../io/scene.h"
+#include "particles.h"
+
+#include <mpi.h>
+#include <stdio.h>
+
+typedef struct sim sim_t; /* opaque; defined in sim_internal.h */
+
+/* Global thermodynamic state (collective; identical on every rank). */
+typedef struct {
+  long step;
+  double time;
+  long n_total;   /* all particles                          */
+  long n_mobile;  /* particles of non-frozen species         */
+  double ke;      /* kinetic energy of mobile particles      */
+  double temperature; /* 2 ke / (3 (n_mobile - 1)) in units of kB; momentum-conserving dof */
+  double momentum[3];
+  double pressure[6]; /* full virial pressure tensor xx yy zz xy xz yz: (kinetic + pair virial) / V */
+  double volume;
+} thermo_t;
+
+/* Build the decomposition and empty particle storage for a scene. NULL + message on failure. */
+sim_t *sim_create(const scene_t *scene, MPI_Comm comm);
+void sim_destroy(sim_t *sim);
+
+/* Offer one particle: it is stored when its position lies in this rank's subdomain (after periodic
+ * wrapping). Returns 1 if stored here, 0 if not, -1 on allocation failure. Any rank may offer any particle;
+ * callers generating a global configuration offer every particle on every rank. */
+int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], const double v[3]);
+
+/* After all particles were added (or a checkpoint was loaded): check global count and ids, exchange
+ * ghosts and evaluate densities and forces at the current step (unless forces were loaded). */
+int sim_setup(sim_t *sim);
+
+/* Advance one velocity-Verlet step. Returns 0, or non-zero with a message naming the cause
+ * (NaN, particle lost, particle inside a wall, ...). */
+int sim_step(sim_t *sim);
+
+/* Collective reduction of the thermodynamic state at the current step. */
+void sim_thermo(sim_t *sim, thermo_t *out);
+
+/* Accessors for outputs and analyses. */
+particles_t *sim_particles(sim_t *sim);
+const scene_t *sim_scene(const sim_t *sim);
+MPI_Comm sim_comm(const sim_t *sim);
+long sim_step_index(const sim_t *sim);
+void sim_set_step_index(sim_t *sim, long step); /* restart */
+void sim_subdomain(const sim_t *sim, double lo[3], double hi[3]);
+void sim_request_virial(sim_t *sim, int on); /* per-particle virial in the next force passes */
+void sim_forces_loaded(sim_t *sim);          /* restart: forces come from a checkpoint, not recomputed */
+
+/* Print the per-step pass plan for a scene without running it (mdpore run --explain). */
+void sim_explain(const scene_t *scene, int nranks, FILE *out);
+
+#endif

@@ -1,0 +1,118 @@
+/* The scene: everything a run is told by its scene file, after parsing and validation.
+ * Parsed by meso/io/scene_parse.c (YAML, libyaml); consumed by the engine, the initial-configuration
+ * builders and the outputs. Plain data, no pointers into parser memory. */
+#ifndef MESO_IO_SCENE_H
+#define MESO_IO_SCENE_H
+
+#include <stdint.h>
+
+#define SCENE_MAX_SPECIES 8
+#define SCENE_MAX_FILLS 16
+#define SCENE_NAME_LEN 64
+#define SCENE_PATH_LEN 1024
+
+/* Effects a scene may name. An effect not named costs nothing: no array, no pass, no kernel. */
+enum scene_effect {
+  EFFECT_MDPD_ATTRACTION = 0, /* "mdpd_attraction": A w_c(r), cutoff rc                     */
+  EFFECT_MDPD_REPULSION,      /* "mdpd_repulsion": B (rho_i + rho_j) w_d(r), needs density pass */
+  EFFECT_DPD_CONSERVATIVE,    /* "dpd_conservative": a w_c(r), a > 0 (standard DPD)          */
+  EFFECT_DPD_THERMOSTAT,      /* "dpd_thermostat": dissipative + random                      */
+  EFFECT_BODY_FORCE,          /* "body_force": constant force per particle of a species      */
+  EFFECT_BOX_WALLS,           /* "box_walls": reflecting walls on the non-periodic box faces  */
+  EFFECT_COUNT
+};
+extern const char *const scene_effect_names[EFFECT_COUNT];
+
+typedef struct {
+  char name[SCENE_NAME_LEN];
+  double mass;
+  int frozen; /* 1: takes part in density and forces, never integrated */
+} scene_species_t;
+
+/* Pair parameters of one species pair (symmetric: pair[a][b] == pair[b][a]). */
+typedef struct {
+  double A;     /* mDPD attraction amplitude (mdpd_attraction) or DPD a (dpd_conservative) */
+  double B;     /* many-body repulsion amplitude (mdpd_repulsion)                           */
+  double gamma; /* dissipation (dpd_thermostat)                                             */
+  double rc;    /* cutoff of the attraction / conservative force and of the thermostat    */
+  double rd;    /* cutoff of the many-body repulsion and of the density kernel (rd <= rc) */
+} scene_pair_t;
+
+enum scene_fill_mode { FILL_LATTICE = 0, FILL_RANDOM = 1 };
+
+/* Fill an axis-aligned region of the box with one species at a number density. */
+typedef struct {
+  int species;
+  int mode; /* enum scene_fill_mode */
+  double density;
+  double lo[3], hi[3];
+} scene_fill_t;
+
+enum scene_init_kind { INIT_FILL = 0, INIT_LAMMPS_DATA = 1, INIT_SNAPSHOT = 2 };
+
+typedef struct {
+  int kind; /* enum scene_init_kind */
+  int n_fill;
+  scene_fill_t fill[SCENE_MAX_FILLS];
+  char path[SCENE_PATH_LEN]; /* LAMMPS data file or HDF5 snapshot (relative paths: to the scene file) */
+  double temperature;        /* initial Maxwell-Boltzmann velocities at this kT (default: scene kT) */
+} scene_init_t;
+
+/* One periodic output; every == 0 means off. Paths are relative to the working directory. */
+typedef struct {
+  long every;
+  char path[SCENE_PATH_LEN];
+} scene_output_t;
+
+typedef struct {
+  long every; /* sample every this many steps */
+  long start; /* first step that is averaged */
+  int axis;   /* 0, 1, 2 = x, y, z */
+  int nbins;
+  char path[SCENE_PATH_LEN];
+} scene_profile_t;
+
+typedef struct {
+  char file[SCENE_PATH_LEN]; /* the scene file this came from (for messages) */
+  char name[SCENE_NAME_LEN];
+
+  double box_lo[3], box_hi[3];
+  int periodic[3];
+  int procs[3]; /* MPI Cartesian grid; 0 = let MPI_Dims_create choose */
+
+  int n_species;
+  scene_species_t species[SCENE_MAX_SPECIES];
+  scene_pair_t pair[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
+  int density_kernel;   /* enum meso_density_kernel (meso/physics/density_kernels.h) */
+  double kT;            /* thermal energy (default 1)                                */
+  double weight_exp;    /* thermostat weight exponent s of w_R = (1 - r/rc)^s (default 1) */
+  double vv_lambda;     /* Groot-Warren velocity-prediction factor (default 0.5)      */
+
+  int effect[EFFECT_COUNT]; /* 1 when named in the scene */
+  double body_force[SCENE_MAX_SPECIES][3];
+  int body_force_reverse_axis; /* -1: uniform. 0..2: the force flips sign in the upper half of the box
+                                  along this axis (reverse Poiseuille flow, Backer et al. 2005) */
+
+  scene_init_t init;
+
+  double dt;
+  long steps;
+  uint64_t seed;
+
+  scene_output_t thermo;     /* CSV (".csv") or HDF5 (".h5") time series        */
+  scene_profile_t profile;   /* time-averaged 1D profiles                       */
+  scene_output_t snapshot;   /* HDF5 snapshot + XDMF sidecar                     */
+  scene_output_t dump;       /* LAMMPS-style text dump                           */
+  scene_output_t checkpoint; /* atomic restart file                              */
+  char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
+  int progress;              /* progress + ETA on stderr (default 1)             */
+} scene_t;
+
+/* Parse and validate a scene file. On error prints "FILE:LINE: key 'K': expected ..." to stderr and
+ * returns non-zero. Every rank may call it (the file is small). */
+int scene_load(const char *path, scene_t *scene);
+
+/* Largest cutoff over all species pairs and named effects: the ghost-layer width. */
+double scene_max_cutoff(const scene_t *scene);
+
+#endif
