@@ -1,0 +1,183 @@
+/* JSON and text reports of the fits (see fit_report.h). */
+#include "fit_report.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "common/atomic_file.h"
+#include "common/json_out.h"
+
+void fit_param_unit(const flow_table *t, flow_law_kind kind, int i, char *buf, int len) {
+  const char *L = t->si ? "m" : t->length_unit;
+  const char *grad = t->si ? "Pa/m" : "reduced pressure/length";
+  switch (kind) {
+  case LAW_DARCY:
+  case LAW_THRESHOLD:
+  case LAW_FORCHHEIMER:
+    if (i == 0)
+      snprintf(buf, len, "%s^2", L);
+    else if (kind == LAW_THRESHOLD)
+      snprintf(buf, len, "%s", grad);
+    else
+      snprintf(buf, len, "1/%s", L);
+    break;
+  case LAW_POWER:
+    if (i == 0)
+      snprintf(buf, len, "%s / (%s)^n", t->si ? "m/s" : "reduced velocity", grad);
+    else
+      snprintf(buf, len, "1");
+    break;
+  default:
+    snprintf(buf, len, "?");
+  }
+}
+
+double fit_k_in_m2(const flow_table *t, double k) {
+  if (t->si) return k;
+  if (isfinite(t->length_unit_m)) return k * t->length_unit_m * t->length_unit_m;
+  return NAN;
+}
+
+static const char *criterion_name(fit_criterion c) {
+  return c == SELECT_AIC ? "aic" : "bic";
+}
+
+static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
+  char unit[96];
+  int np = flow_law_nparams(r->kind);
+  json_object(j, NULL);
+  json_string(j, "law", flow_law_name(r->kind));
+  json_bool(j, "ok", r->ok);
+  json_bool(j, "converged", r->converged);
+  if (!r->ok || !r->converged) json_string(j, "why", r->why);
+  if (!r->ok) {
+    json_object_end(j);
+    return;
+  }
+  json_int(j, "iterations", r->iterations);
+  json_object(j, "parameters");
+  for (int i = 0; i < np; i++) {
+    json_object(j, fit_param_name(r->kind, i));
+    json_number(j, "value", r->theta[i]);
+    json_number(j, "stderr", r->se[i]);
+    fit_param_unit(t, r->kind, i, unit, sizeof unit);
+    json_string(j, "unit", unit);
+    json_object_end(j);
+  }
+  json_object_end(j);
+  json_array(j, "covariance");
+  for (int a = 0; a < np; a++) json_numbers(j, NULL, r->cov[a], np);
+  json_array_end(j);
+  if (r->kind != LAW_POWER) {
+    double m2 = fit_k_in_m2(t, r->theta[0]), se = fit_k_in_m2(t, r->se[0]);
+    json_object(j, "permeability_physical");
+    json_number(j, "m2", m2);
+    json_number(j, "m2_stderr", se);
+    json_number(j, "mD", m2 * MD_PER_M2);
+    json_number(j, "mD_stderr", se * MD_PER_M2);
+    json_number(j, "nD", m2 * MD_PER_M2 * 1e6);
+    json_number(j, "nD_stderr", se * MD_PER_M2 * 1e6);
+    json_object_end(j);
+  }
+  if (r->kind == LAW_POWER) json_number(j, "g_ref", r->model.g_ref);
+  json_number(j, "chi2", r->chi2);
+  json_int(j, "dof", r->dof);
+  json_number(j, "chi2_dof", r->chi2_dof);
+  json_number(j, "aic", r->aic);
+  json_number(j, "bic", r->bic);
+  json_number(j, "bic_weight", r->weight);
+  /* a sampled curve so that plotting needs no copy of the law formulas */
+  double gmax = 0, cg[64], cq[64];
+  for (int i = 0; i < t->n; i++) gmax = fmax(gmax, fabs(t->G[i]));
+  fluid_props fl = {t->viscosity, t->density};
+  for (int i = 0; i < 64; i++) {
+    cg[i] = 1.1 * gmax * i / 63.0;
+    cq[i] = flow_law_q_exact(&r->law, &fl, cg[i]);
+  }
+  json_object(j, "curve");
+  json_numbers(j, "G", cg, 64);
+  json_numbers(j, "q", cq, 64);
+  json_object_end(j);
+  double res[t->n];
+  for (int i = 0; i < t->n; i++)
+    res[i] = (t->q[i] - flow_law_q_exact(&r->law, &fl, t->G[i])) / t->sigma[i];
+  json_numbers(j, "normalised_residuals", res, t->n);
+  json_object_end(j);
+}
+
+int fit_write_json(const char *path, const flow_table *t, const fit_result *r, int nr, int chosen,
+                   fit_criterion crit) {
+  atomic_file a;
+  if (atomic_open(&a, path)) return -1;
+  json_out j;
+  json_begin(&j, a.f);
+  json_string(&j, "format", "mdpore-fit");
+  json_int(&j, "version", 1);
+  json_string(&j, "table", t->path);
+  json_string(&j, "sample", t->sample);
+  json_string(&j, "axis", t->axis);
+  json_string(&j, "unit_system", t->si ? "SI" : "reduced");
+  json_string(&j, "length_unit", t->length_unit);
+  json_number(&j, "length_unit_m", t->length_unit_m);
+  json_number(&j, "voxel_size", t->voxel_size);
+  json_number(&j, "viscosity", t->viscosity);
+  json_number(&j, "density", t->density);
+  json_string(&j, "driving_column", t->driving_column);
+  json_string(
+      &j, "convention",
+      "G = -dp/dx (or body force per volume); q = superficial Darcy velocity Q/A with A the "
+      "whole cross-section (solid included); k = mu q / G; standard errors from the table's "
+      "stated errors (covariance not rescaled by chi2/dof)");
+  json_string(&j, "criterion", criterion_name(crit));
+  if (chosen >= 0)
+    json_string(&j, "chosen", flow_law_name(r[chosen].kind));
+  else
+    json_null(&j, "chosen");
+  json_object(&j, "data");
+  json_numbers(&j, "G", t->G, t->n);
+  json_numbers(&j, "q", t->q, t->n);
+  json_numbers(&j, "sigma", t->sigma, t->n);
+  json_numbers(&j, "run_length", t->run_length, t->n);
+  json_object_end(&j);
+  json_array(&j, "models");
+  for (int i = 0; i < nr; i++) write_model(&j, t, &r[i]);
+  json_array_end(&j);
+  json_end(&j);
+  return atomic_commit(&a);
+}
+
+void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr, int chosen,
+                     fit_criterion crit) {
+  char unit[96];
+  fprintf(out, "mdpore fit: %s  (sample '%s', axis %s, %s units, %d points, mu = %g, rho = %g)\n",
+          t->path, t->sample, t->axis, t->si ? "SI" : "reduced", t->n, t->viscosity, t->density);
+  fprintf(out, "%-12s %-58s %9s %10s %10s %7s\n", "law", "parameters (value +- standard error)",
+          "chi2/dof", "AIC", "BIC", "weight");
+  for (int i = 0; i < nr; i++) {
+    if (!r[i].ok) {
+      fprintf(out, "%-12s not fitted: %s\n", flow_law_name(r[i].kind), r[i].why);
+      continue;
+    }
+    char params[256] = "";
+    int np = flow_law_nparams(r[i].kind), len = 0;
+    for (int p = 0; p < np; p++) {
+      fit_param_unit(t, r[i].kind, p, unit, sizeof unit);
+      len += snprintf(params + len, sizeof params - len, "%s%s = %.4g +- %.2g %s", p ? "; " : "",
+                      fit_param_name(r[i].kind, p), r[i].theta[p], r[i].se[p], unit);
+    }
+    fprintf(out, "%-12s %-58s %9.3g %10.4g %10.4g %7.3f%s%s\n", flow_law_name(r[i].kind), params,
+            r[i].chi2_dof, r[i].aic, r[i].bic, r[i].weight, i == chosen ? "  <- chosen" : "",
+            r[i].converged ? "" : "  (not converged)");
+    double m2 = r[i].kind != LAW_POWER ? fit_k_in_m2(t, r[i].theta[0]) : NAN;
+    if (isfinite(m2))
+      fprintf(out, "%-12s   k = %.4g m^2 = %.4g mD = %.4g nD (+- %.2g nD)\n", "", m2,
+              m2 * MD_PER_M2, m2 * MD_PER_M2 * 1e6, fit_k_in_m2(t, r[i].se[0]) * MD_PER_M2 * 1e6);
+  }
+  fprintf(out, "chosen by %s: %s", crit == SELECT_AIC ? "AIC" : "BIC",
+          chosen >= 0 ? flow_law_name(r[chosen].kind) : "none (no fit converged)");
+  if (chosen >= 0 && r[chosen].kind == LAW_THRESHOLD && r[chosen].theta[1] <= 0)
+    fprintf(out, " (G0 <= 0: an intercept, not a threshold)");
+  fprintf(out,
+          "\nnote: a threshold or Forchheimer term fitted at strong pore-scale forcing may be a "
+          "forcing artefact (physics.md section 4).\n");
+}
