@@ -1,6 +1,6 @@
 /* The scene: everything a run is told by its scene file, after parsing and validation.
- * Parsed by meso/io/scene_parse.c (YAML, libyaml); consumed by the engine, the initial-configuration
- * builders and the outputs. Plain data, no pointers into parser memory. */
+ * Parsed by meso/io/scene_parse.c (YAML, libyaml); consumed by the engine, the
+ * initial-configuration builders and the outputs. Plain data, no pointers into parser memory. */
 #ifndef MESO_IO_SCENE_H
 #define MESO_IO_SCENE_H
 
@@ -54,8 +54,9 @@ typedef struct {
   int kind; /* enum scene_init_kind */
   int n_fill;
   scene_fill_t fill[SCENE_MAX_FILLS];
-  char path[SCENE_PATH_LEN]; /* LAMMPS data file or HDF5 snapshot (relative paths: to the scene file) */
-  double temperature;        /* initial Maxwell-Boltzmann velocities at this kT (default: scene kT) */
+  char path[SCENE_PATH_LEN]; /* LAMMPS data file or HDF5 snapshot (relative paths: to the scene
+                                file) */
+  double temperature; /* initial Maxwell-Boltzmann velocities at this kT (default: scene kT) */
 } scene_init_t;
 
 /* One periodic output; every == 0 means off. Paths are relative to the working directory. */
@@ -83,15 +84,16 @@ typedef struct {
   int n_species;
   scene_species_t species[SCENE_MAX_SPECIES];
   scene_pair_t pair[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
-  int density_kernel;   /* enum meso_density_kernel (meso/physics/density_kernels.h) */
-  double kT;            /* thermal energy (default 1)                                */
-  double weight_exp;    /* thermostat weight exponent s of w_R = (1 - r/rc)^s (default 1) */
-  double vv_lambda;     /* Groot-Warren velocity-prediction factor (default 0.5)      */
+  int density_kernel; /* enum meso_density_kernel (meso/physics/density_kernels.h) */
+  double kT;          /* thermal energy (default 1)                                */
+  double weight_exp;  /* thermostat weight exponent s of w_R = (1 - r/rc)^s (default 1) */
+  double vv_lambda;   /* Groot-Warren velocity-prediction factor (default 0.5)      */
 
   int effect[EFFECT_COUNT]; /* 1 when named in the scene */
   double body_force[SCENE_MAX_SPECIES][3];
-  int body_force_reverse_axis; /* -1: uniform. 0..2: the force flips sign in the upper half of the box
-                                  along this axis (reverse Poiseuille flow, Backer et al. 2005) */
+  int body_force_reverse_axis; /* -1: uniform. 0..2: the force flips sign in the upper half of the
+                                  box along this axis (reverse Poiseuille flow, Backer et al. 2005)
+                                */
 
   scene_init_t init;
 
@@ -99,13 +101,14 @@ typedef struct {
   long steps;
   uint64_t seed;
 
-  scene_output_t thermo;     /* CSV (".csv") or HDF5 (".h5") time series        */
-  scene_profile_t profile;   /* time-averaged 1D profiles                       */
-  scene_output_t snapshot;   /* HDF5 snapshot + XDMF sidecar                     */
-  scene_output_t dump;       /* LAMMPS-style text dump                           */
-  scene_output_t checkpoint; /* atomic restart file                              */
+  scene_output_t thermo;             /* CSV (".csv") or HDF5 (".h5") time series        */
+  scene_profile_t profile;           /* time-averaged 1D profiles                       */
+  scene_output_t snapshot;           /* HDF5 snapshot + XDMF sidecar                     */
+  scene_output_t dump;               /* LAMMPS-style text dump                           */
+  scene_output_t checkpoint;         /* atomic restart file                              */
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
-  int progress;              /* progress + ETA on stderr (default 1)             */
+  int progress;                      /* progress + ETA on stderr (default 1)             */
+  char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */
 } scene_t;
 
 /* Parse and validate a scene file. On error prints "FILE:LINE: key 'K': expected ..." to stderr and
@@ -114,5 +117,13 @@ int scene_load(const char *path, scene_t *scene);
 
 /* Largest cutoff over all species pairs and named effects: the ghost-layer width. */
 double scene_max_cutoff(const scene_t *scene);
+
+/* Species index of a name, or -1. */
+int scene_species_index(const scene_t *scene, const char *name);
+
+/* A 64-bit hash of everything that determines the trajectory (box, species, pairs, effects, kernel,
+ * kT, dt, seed, ...), not outputs, step counts or paths: a checkpoint only restarts the same
+ * physics. */
+uint64_t scene_physics_hash(const scene_t *scene);
 
 #endif

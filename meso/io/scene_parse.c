@@ -1,0 +1,639 @@
+/* Scene file parser: YAML (libyaml) -> scene_t, with validation. The format is documented in
+ * docs/scene-format.md. Every mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got
+ * ...)". */
+#include "io/scene.h"
+#include "io/yaml_tree.h"
+#include "physics/density_kernels.h"
+
+#include <ctype.h>
+#include <libgen.h>
+#include <math.h>
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TRY(x)                                                                                     \
+  do {                                                                                             \
+    if ((x) != 0) return -1;                                                                       \
+  } while (0)
+
+static const char *const axis_words[] = {"x", "y", "z", NULL};
+
+/* Parameters given for one pair, with which ones were set (defaults and overrides are merged). */
+enum { P_A, P_B, P_GAMMA, P_RC, P_RD, P_COUNT };
+static const char *const pair_keys[] = {"A", "B", "gamma", "rc", "rd", NULL};
+typedef struct {
+  double v[P_COUNT];
+  int set[P_COUNT];
+  yaml_node_t *where[P_COUNT];
+} pair_in_t;
+
+static void join(char *out, size_t len, const char *path, const char *key) {
+  snprintf(out, len, "%s%s%s", path, *path ? "." : "", key);
+}
+
+/* Resolve a path relative to the directory of the scene file. */
+static void relative_to_scene(const char *scene_file, const char *p, char *out, size_t len) {
+  if (p[0] == '/') {
+    snprintf(out, len, "%s", p);
+    return;
+  }
+  char tmp[SCENE_PATH_LEN];
+  snprintf(tmp, sizeof tmp, "%s", scene_file);
+  const char *dir = dirname(tmp);
+  if (!strcmp(dir, ".")) {
+    snprintf(out, len, "%s", p);
+  } else if (strlen(dir) + strlen(p) + 2 <= len) {
+    strcpy(out, dir);
+    strcat(out, "/");
+    strcat(out, p);
+  } else {
+    snprintf(out, len, "%s", p);
+  }
+}
+
+static int parse_box(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"lo", "hi", "periodic", "procs", NULL};
+  TRY(yt_check_keys(t, n, "box", keys));
+  yaml_node_t *v;
+  if ((v = yt_get(t, n, "lo"))) TRY(yt_vec3(t, v, "box.lo", s->box_lo));
+  if (!(v = yt_get(t, n, "hi")))
+    return yt_error(t, n, "box.hi", "expected the upper box corner [x, y, z] (got nothing)");
+  TRY(yt_vec3(t, v, "box.hi", s->box_hi));
+  for (int d = 0; d < 3; d++)
+    if (!(s->box_hi[d] > s->box_lo[d]))
+      return yt_error(t, v, "box.hi",
+                      "expected hi > lo on every axis (got hi[%d] = %g <= lo[%d] = %g)", d,
+                      s->box_hi[d], d, s->box_lo[d]);
+  if ((v = yt_get(t, n, "periodic"))) {
+    if (v->type == YAML_SCALAR_NODE) {
+      int p;
+      TRY(yt_bool(t, v, "box.periodic", &p));
+      s->periodic[0] = s->periodic[1] = s->periodic[2] = p;
+    } else {
+      TRY(yt_bool3(t, v, "box.periodic", s->periodic));
+    }
+  }
+  if ((v = yt_get(t, n, "procs"))) {
+    TRY(yt_int3(t, v, "box.procs", s->procs));
+    for (int d = 0; d < 3; d++)
+      if (s->procs[d] < 0)
+        return yt_error(t, v, "box.procs", "expected ranks per axis >= 0, 0 = automatic (got %d)",
+                        s->procs[d]);
+  }
+  return 0;
+}
+
+static int parse_species(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  TRY(yt_expect_seq(t, n, "species"));
+  const int count = yt_seq_size(n);
+  if (count < 1)
+    return yt_error(t, n, "species", "expected at least one species (got an empty list)");
+  if (count > SCENE_MAX_SPECIES)
+    return yt_error(t, n, "species", "expected at most %d species (got %d)", SCENE_MAX_SPECIES,
+                    count);
+  static const char *const keys[] = {"name", "mass", "frozen", NULL};
+  for (int i = 0; i < count; i++) {
+    char path[64], sub[96];
+    snprintf(path, sizeof path, "species[%d]", i);
+    yaml_node_t *item = yt_seq_item(t, n, i), *v;
+    TRY(yt_check_keys(t, item, path, keys));
+    scene_species_t *sp = &s->species[i];
+    sp->mass = 1.0;
+    join(sub, sizeof sub, path, "name");
+    if (!(v = yt_get(t, item, "name")))
+      return yt_error(t, item, sub, "expected a species name (got nothing)");
+    TRY(yt_string(t, v, sub, sp->name, SCENE_NAME_LEN));
+    for (const char *c = sp->name; *c; c++)
+      if (!isalnum((unsigned char)*c) && *c != '_')
+        return yt_error(t, v, sub, "expected letters, digits and '_' only (got '%s')", sp->name);
+    for (int j = 0; j < i; j++)
+      if (!strcmp(s->species[j].name, sp->name))
+        return yt_error(t, v, sub, "expected a unique species name (got '%s' twice)", sp->name);
+    if ((v = yt_get(t, item, "mass"))) {
+      join(sub, sizeof sub, path, "mass");
+      TRY(yt_double(t, v, sub, &sp->mass));
+      if (!(sp->mass > 0)) return yt_error(t, v, sub, "expected a mass > 0 (got %g)", sp->mass);
+    }
+    if ((v = yt_get(t, item, "frozen"))) {
+      join(sub, sizeof sub, path, "frozen");
+      TRY(yt_bool(t, v, sub, &sp->frozen));
+    }
+  }
+  s->n_species = count;
+  return 0;
+}
+
+static int parse_pair_params(ytree_t *t, yaml_node_t *n, const char *path, pair_in_t *p) {
+  TRY(yt_check_keys(t, n, path, pair_keys));
+  for (int k = 0; k < P_COUNT; k++) {
+    yaml_node_t *v = yt_get(t, n, pair_keys[k]);
+    if (!v) continue;
+    char sub[128];
+    join(sub, sizeof sub, path, pair_keys[k]);
+    TRY(yt_double(t, v, sub, &p->v[k]));
+    p->set[k] = 1;
+    p->where[k] = v;
+  }
+  return 0;
+}
+
+/* pairs: {default: {...}, a-b: {...}} -> merged per-pair parameters. */
+static int parse_pairs(ytree_t *t, yaml_node_t *n, const scene_t *s,
+                       pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES]) {
+  TRY(yt_expect_map(t, n, "pairs"));
+  const int np = yt_map_size(n);
+  yaml_node_t *def = yt_get(t, n, "default");
+  pair_in_t d;
+  memset(&d, 0, sizeof d);
+  if (def) TRY(parse_pair_params(t, def, "pairs.default", &d));
+  for (int a = 0; a < s->n_species; a++)
+    for (int b = 0; b < s->n_species; b++) pin[a][b] = d;
+  for (int i = 0; i < np; i++) {
+    yaml_node_t *kn;
+    const char *key = yt_map_key(t, n, i, &kn);
+    if (!key) return yt_error(t, kn, "pairs", "expected 'default' or 'speciesA-speciesB' keys");
+    if (!strcmp(key, "default")) continue;
+    char path[160], a_name[SCENE_NAME_LEN] = "", b_name[SCENE_NAME_LEN] = "";
+    snprintf(path, sizeof path, "pairs.%s", key);
+    const char *dash = strchr(key, '-');
+    if (dash && dash - key < SCENE_NAME_LEN && strlen(dash + 1) < SCENE_NAME_LEN) {
+      memcpy(a_name, key, (size_t)(dash - key));
+      a_name[dash - key] = 0;
+      strcpy(b_name, dash + 1);
+    }
+    const int a = scene_species_index(s, a_name), b = scene_species_index(s, b_name);
+    if (!dash || a < 0 || b < 0) {
+      char list[512] = "";
+      for (int k = 0; k < s->n_species; k++) {
+        strncat(list, k ? ", " : "", sizeof list - strlen(list) - 1);
+        strncat(list, s->species[k].name, sizeof list - strlen(list) - 1);
+      }
+      return yt_error(t, kn, path,
+                      "expected 'default' or 'A-B' with A and B among the species (%s) (got '%s')",
+                      list, key);
+    }
+    for (int j = 0; j < i; j++) {
+      const char *other = yt_map_key(t, n, j, NULL);
+      char rev[2 * SCENE_NAME_LEN + 2];
+      snprintf(rev, sizeof rev, "%s-%s", b_name, a_name);
+      if (other && (!strcmp(other, key) || !strcmp(other, rev)))
+        return yt_error(t, kn, path, "expected each species pair once (got it again as '%s')", key);
+    }
+    pair_in_t over;
+    memset(&over, 0, sizeof over);
+    TRY(parse_pair_params(t, yt_map_value(t, n, i), path, &over));
+    for (int k = 0; k < P_COUNT; k++)
+      if (over.set[k]) {
+        pin[a][b].v[k] = pin[b][a].v[k] = over.v[k];
+        pin[a][b].set[k] = pin[b][a].set[k] = 1;
+        pin[a][b].where[k] = pin[b][a].where[k] = over.where[k];
+      }
+  }
+  return 0;
+}
+
+static int parse_effects(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  TRY(yt_expect_map(t, n, "effects"));
+  const int count = yt_map_size(n);
+  for (int i = 0; i < count; i++) {
+    yaml_node_t *kn;
+    const char *key = yt_map_key(t, n, i, &kn);
+    int e = -1;
+    for (int k = 0; key && k < EFFECT_COUNT; k++)
+      if (!strcmp(key, scene_effect_names[k])) e = k;
+    char path[160];
+    snprintf(path, sizeof path, "effects.%s", key ? key : "?");
+    if (e < 0) {
+      char list[512] = "";
+      for (int k = 0; k < EFFECT_COUNT; k++) {
+        strncat(list, k ? ", " : "", sizeof list - strlen(list) - 1);
+        strncat(list, scene_effect_names[k], sizeof list - strlen(list) - 1);
+      }
+      return yt_error(t, kn, path, "unknown effect (expected one of: %s)", list);
+    }
+    if (s->effect[e]) return yt_error(t, kn, path, "expected each effect once (got a duplicate)");
+    s->effect[e] = 1;
+    yaml_node_t *opt = yt_map_value(t, n, i);
+    if (yt_is_null(opt)) continue;
+    if (e == EFFECT_DPD_THERMOSTAT) {
+      static const char *const keys[] = {"exponent", NULL};
+      TRY(yt_check_keys(t, opt, path, keys));
+      yaml_node_t *v = yt_get(t, opt, "exponent");
+      if (v) {
+        char sub[192];
+        join(sub, sizeof sub, path, "exponent");
+        TRY(yt_double(t, v, sub, &s->weight_exp));
+        if (!(s->weight_exp > 0))
+          return yt_error(t, v, sub, "expected an exponent s > 0 of w_R = (1 - r/rc)^s (got %g)",
+                          s->weight_exp);
+      }
+    } else if (e == EFFECT_BODY_FORCE) {
+      TRY(yt_expect_map(t, opt, path));
+      const int no = yt_map_size(opt);
+      for (int j = 0; j < no; j++) {
+        yaml_node_t *okn;
+        const char *ok = yt_map_key(t, opt, j, &okn);
+        char sub[192];
+        join(sub, sizeof sub, path, ok ? ok : "?");
+        for (int q = 0; q < j; q++) {
+          const char *other = yt_map_key(t, opt, q, NULL);
+          if (ok && other && !strcmp(ok, other))
+            return yt_error(t, okn, sub, "expected each key once (got a duplicate)");
+        }
+        yaml_node_t *v = yt_map_value(t, opt, j);
+        if (ok && !strcmp(ok, "reverse_along")) {
+          const int ax = yt_enum(t, v, sub, axis_words);
+          if (ax < 0) return -1;
+          s->body_force_reverse_axis = ax;
+          continue;
+        }
+        const int sp = ok ? scene_species_index(s, ok) : -1;
+        if (sp < 0)
+          return yt_error(t, okn, sub, "expected a species name or 'reverse_along' (got '%s')",
+                          ok ? ok : "?");
+        TRY(yt_vec3(t, v, sub, s->body_force[sp]));
+      }
+    } else {
+      static const char *const none[] = {NULL};
+      if (opt->type == YAML_MAPPING_NODE && yt_map_size(opt) == 0) continue;
+      TRY(yt_check_keys(t, opt, path, none));
+    }
+  }
+  return 0;
+}
+
+/* Check the merged pair parameters against the named effects and copy them into the scene. */
+static int finish_pairs(ytree_t *t, yaml_node_t *pairs_node, scene_t *s,
+                        pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES]) {
+  const int need_A = s->effect[EFFECT_MDPD_ATTRACTION] || s->effect[EFFECT_DPD_CONSERVATIVE];
+  const int need_B = s->effect[EFFECT_MDPD_REPULSION];
+  const int need_gamma = s->effect[EFFECT_DPD_THERMOSTAT];
+  const int need[P_COUNT] = {need_A, need_B, need_gamma, 0, need_B};
+  const char *why[P_COUNT] = {"mdpd_attraction/dpd_conservative", "mdpd_repulsion",
+                              "dpd_thermostat", "", "mdpd_repulsion"};
+  for (int a = 0; a < s->n_species; a++)
+    for (int b = a; b < s->n_species; b++) {
+      pair_in_t *p = &pin[a][b];
+      char path[160];
+      snprintf(path, sizeof path, "pairs.%s-%s", s->species[a].name, s->species[b].name);
+      for (int k = 0; k < P_COUNT; k++) {
+        char sub[192];
+        join(sub, sizeof sub, path, pair_keys[k]);
+        if (need[k] && !p->set[k])
+          return yt_error(t, pairs_node, sub,
+                          "expected a value: %s is named (got nothing; set it under "
+                          "pairs.default or this pair)",
+                          why[k]);
+      }
+      if (!p->set[P_RC]) p->v[P_RC] = 1.0;
+      if (!p->set[P_RD]) p->v[P_RD] = p->v[P_RC];
+      char sub[192];
+      if (!(p->v[P_RC] > 0)) {
+        join(sub, sizeof sub, path, "rc");
+        return yt_error(t, p->where[P_RC], sub, "expected rc > 0 (got %g)", p->v[P_RC]);
+      }
+      if (!(p->v[P_RD] > 0) || p->v[P_RD] > p->v[P_RC]) {
+        join(sub, sizeof sub, path, "rd");
+        return yt_error(t, p->where[P_RD] ? p->where[P_RD] : pairs_node, sub,
+                        "expected 0 < rd <= rc = %g (got %g)", p->v[P_RC], p->v[P_RD]);
+      }
+      if (p->set[P_GAMMA] && p->v[P_GAMMA] < 0) {
+        join(sub, sizeof sub, path, "gamma");
+        return yt_error(t, p->where[P_GAMMA], sub, "expected gamma >= 0 (got %g)", p->v[P_GAMMA]);
+      }
+      if (need_B && p->v[P_B] < 0) {
+        join(sub, sizeof sub, path, "B");
+        return yt_error(t, p->where[P_B], sub,
+                        "expected B >= 0: the many-body term repels (got %g)", p->v[P_B]);
+      }
+      scene_pair_t q = {p->v[P_A], p->v[P_B], p->v[P_GAMMA], p->v[P_RC], p->v[P_RD]};
+      s->pair[a][b] = s->pair[b][a] = q;
+    }
+  /* Warren 2013: species-dependent B or rd make the many-body force non-conservative. */
+  if (need_B)
+    for (int a = 0; a < s->n_species; a++)
+      for (int b = a; b < s->n_species; b++) {
+        const scene_pair_t *p = &s->pair[a][b], *r = &s->pair[0][0];
+        if (p->B != r->B || p->rd != r->rd) {
+          char path[160];
+          snprintf(path, sizeof path, "pairs.%s-%s", s->species[a].name, s->species[b].name);
+          yt_warn(t, pairs_node, path,
+                  "B or rd differs between species pairs (B %g vs %g, rd %g vs %g): the many-body "
+                  "force is then "
+                  "not conservative (Warren, PRE 87, 045303, 2013); keep B and rd common, set "
+                  "wetting via A",
+                  p->B, r->B, p->rd, r->rd);
+          return 0;
+        }
+      }
+  return 0;
+}
+
+static int parse_fill(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  TRY(yt_expect_seq(t, n, "initial.fill"));
+  const int count = yt_seq_size(n);
+  if (count < 1)
+    return yt_error(t, n, "initial.fill", "expected at least one region (got an empty list)");
+  if (count > SCENE_MAX_FILLS)
+    return yt_error(t, n, "initial.fill", "expected at most %d regions (got %d)", SCENE_MAX_FILLS,
+                    count);
+  static const char *const keys[] = {"species", "lo", "hi", "density", "mode", NULL};
+  static const char *const modes[] = {"lattice", "random", NULL};
+  for (int i = 0; i < count; i++) {
+    char path[64], sub[96], name[SCENE_NAME_LEN];
+    snprintf(path, sizeof path, "initial.fill[%d]", i);
+    yaml_node_t *item = yt_seq_item(t, n, i), *v;
+    TRY(yt_check_keys(t, item, path, keys));
+    scene_fill_t *f = &s->init.fill[i];
+    f->mode = FILL_RANDOM;
+    memcpy(f->lo, s->box_lo, sizeof f->lo);
+    memcpy(f->hi, s->box_hi, sizeof f->hi);
+    join(sub, sizeof sub, path, "species");
+    if (!(v = yt_get(t, item, "species")))
+      return yt_error(t, item, sub, "expected a species name (got nothing)");
+    TRY(yt_string(t, v, sub, name, sizeof name));
+    if ((f->species = scene_species_index(s, name)) < 0)
+      return yt_error(t, v, sub, "expected one of the species listed under 'species' (got '%s')",
+                      name);
+    join(sub, sizeof sub, path, "density");
+    if (!(v = yt_get(t, item, "density")))
+      return yt_error(t, item, sub, "expected a number density (got nothing)");
+    TRY(yt_double(t, v, sub, &f->density));
+    if (!(f->density > 0))
+      return yt_error(t, v, sub, "expected a number density > 0 (got %g)", f->density);
+    if ((v = yt_get(t, item, "mode"))) {
+      join(sub, sizeof sub, path, "mode");
+      if ((f->mode = yt_enum(t, v, sub, modes)) < 0) return -1;
+    }
+    for (int c = 0; c < 2; c++) {
+      const char *k = c ? "hi" : "lo";
+      double *x = c ? f->hi : f->lo;
+      if (!(v = yt_get(t, item, k))) continue;
+      join(sub, sizeof sub, path, k);
+      TRY(yt_vec3(t, v, sub, x));
+      for (int d = 0; d < 3; d++)
+        if (x[d] < s->box_lo[d] || x[d] > s->box_hi[d])
+          return yt_error(t, v, sub,
+                          "expected a corner inside the box [%g, %g] on axis %c (got %g)",
+                          s->box_lo[d], s->box_hi[d], "xyz"[d], x[d]);
+    }
+    for (int d = 0; d < 3; d++)
+      if (!(f->hi[d] > f->lo[d])) {
+        join(sub, sizeof sub, path, "hi");
+        return yt_error(t, item, sub,
+                        "expected hi > lo on every axis (got hi[%d] = %g <= lo[%d] = %g)", d,
+                        f->hi[d], d, f->lo[d]);
+      }
+  }
+  s->init.n_fill = count;
+  return 0;
+}
+
+static int parse_initial(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"fill", "lammps_data", "snapshot", "temperature", NULL};
+  TRY(yt_check_keys(t, n, "initial", keys));
+  yaml_node_t *fill = yt_get(t, n, "fill"), *data = yt_get(t, n, "lammps_data"),
+              *snap = yt_get(t, n, "snapshot");
+  if (!!fill + !!data + !!snap != 1)
+    return yt_error(t, n, "initial", "expected exactly one of fill, lammps_data, snapshot (got %d)",
+                    !!fill + !!data + !!snap);
+  char p[SCENE_PATH_LEN];
+  if (fill) {
+    s->init.kind = INIT_FILL;
+    TRY(parse_fill(t, fill, s));
+  } else if (data) {
+    s->init.kind = INIT_LAMMPS_DATA;
+    TRY(yt_string(t, data, "initial.lammps_data", p, sizeof p));
+    relative_to_scene(s->file, p, s->init.path, sizeof s->init.path);
+  } else {
+    s->init.kind = INIT_SNAPSHOT;
+    TRY(yt_string(t, snap, "initial.snapshot", p, sizeof p));
+    relative_to_scene(s->file, p, s->init.path, sizeof s->init.path);
+  }
+  yaml_node_t *v = yt_get(t, n, "temperature");
+  if (v) {
+    TRY(yt_double(t, v, "initial.temperature", &s->init.temperature));
+    if (s->init.temperature < 0)
+      return yt_error(t, v, "initial.temperature", "expected a temperature >= 0 (got %g)",
+                      s->init.temperature);
+  }
+  return 0;
+}
+
+static int parse_run(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"dt", "steps", "seed", "vv_lambda", NULL};
+  TRY(yt_check_keys(t, n, "run", keys));
+  yaml_node_t *v;
+  if (!(v = yt_get(t, n, "dt")))
+    return yt_error(t, n, "run.dt", "expected a time step > 0 (got nothing)");
+  TRY(yt_double(t, v, "run.dt", &s->dt));
+  if (!(s->dt > 0)) return yt_error(t, v, "run.dt", "expected a time step > 0 (got %g)", s->dt);
+  if (!(v = yt_get(t, n, "steps")))
+    return yt_error(t, n, "run.steps", "expected a number of steps (got nothing)");
+  TRY(yt_long(t, v, "run.steps", &s->steps));
+  if (s->steps < 0) return yt_error(t, v, "run.steps", "expected steps >= 0 (got %ld)", s->steps);
+  if ((v = yt_get(t, n, "seed"))) {
+    long seed;
+    TRY(yt_long(t, v, "run.seed", &seed));
+    if (seed < 0) return yt_error(t, v, "run.seed", "expected a seed >= 0 (got %ld)", seed);
+    s->seed = (uint64_t)seed;
+  }
+  if ((v = yt_get(t, n, "vv_lambda"))) {
+    TRY(yt_double(t, v, "run.vv_lambda", &s->vv_lambda));
+    if (s->vv_lambda < 0 || s->vv_lambda > 1)
+      return yt_error(t, v, "run.vv_lambda", "expected 0 <= lambda <= 1 (got %g)", s->vv_lambda);
+  }
+  return 0;
+}
+
+/* A periodic output {every, file}. */
+static int parse_periodic(ytree_t *t, yaml_node_t *n, const char *path, scene_output_t *o,
+                          const char *const *exts) {
+  static const char *const keys[] = {"every", "file", NULL};
+  TRY(yt_check_keys(t, n, path, keys));
+  char sub[96];
+  yaml_node_t *v;
+  join(sub, sizeof sub, path, "every");
+  if (!(v = yt_get(t, n, "every")))
+    return yt_error(t, n, sub, "expected an interval in steps (got nothing)");
+  TRY(yt_long(t, v, sub, &o->every));
+  if (o->every < 1)
+    return yt_error(t, v, sub, "expected an interval >= 1 step (got %ld)", o->every);
+  join(sub, sizeof sub, path, "file");
+  if (!(v = yt_get(t, n, "file"))) return yt_error(t, n, sub, "expected a file name (got nothing)");
+  TRY(yt_string(t, v, sub, o->path, SCENE_PATH_LEN));
+  if (exts) {
+    const size_t L = strlen(o->path);
+    int ok = 0;
+    for (int i = 0; exts[i]; i++) {
+      const size_t e = strlen(exts[i]);
+      ok |= L > e && !strcmp(o->path + L - e, exts[i]);
+    }
+    if (!ok)
+      return yt_error(t, v, sub, "expected a file name ending in %s%s%s (got '%s')", exts[0],
+                      exts[1] ? " or " : "", exts[1] ? exts[1] : "", o->path);
+  }
+  return 0;
+}
+
+static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"thermo",     "profile", "snapshot", "dump",
+                                     "checkpoint", "summary", "progress", NULL};
+  TRY(yt_check_keys(t, n, "output", keys));
+  static const char *const thermo_ext[] = {".csv", ".h5", NULL}, *const h5[] = {".h5", NULL};
+  yaml_node_t *v;
+  if ((v = yt_get(t, n, "thermo")))
+    TRY(parse_periodic(t, v, "output.thermo", &s->thermo, thermo_ext));
+  if ((v = yt_get(t, n, "snapshot")))
+    TRY(parse_periodic(t, v, "output.snapshot", &s->snapshot, NULL));
+  if ((v = yt_get(t, n, "dump"))) TRY(parse_periodic(t, v, "output.dump", &s->dump, NULL));
+  if ((v = yt_get(t, n, "checkpoint")))
+    TRY(parse_periodic(t, v, "output.checkpoint", &s->checkpoint, h5));
+  if ((v = yt_get(t, n, "summary")))
+    TRY(yt_string(t, v, "output.summary", s->summary_path, SCENE_PATH_LEN));
+  if ((v = yt_get(t, n, "progress"))) TRY(yt_bool(t, v, "output.progress", &s->progress));
+  if ((v = yt_get(t, n, "profile"))) {
+    static const char *const pk[] = {"axis", "bins", "every", "start", "file", NULL};
+    scene_profile_t *p = &s->profile;
+    TRY(yt_check_keys(t, v, "output.profile", pk));
+    yaml_node_t *w;
+    if (!(w = yt_get(t, v, "axis")))
+      return yt_error(t, v, "output.profile.axis", "expected x, y or z (got nothing)");
+    if ((p->axis = yt_enum(t, w, "output.profile.axis", axis_words)) < 0) return -1;
+    long bins = 0;
+    if (!(w = yt_get(t, v, "bins")))
+      return yt_error(t, v, "output.profile.bins", "expected a number of bins (got nothing)");
+    TRY(yt_long(t, w, "output.profile.bins", &bins));
+    if (bins < 1 || bins > 100000)
+      return yt_error(t, w, "output.profile.bins", "expected 1 to 100000 bins (got %ld)", bins);
+    p->nbins = (int)bins;
+    p->every = 10;
+    if ((w = yt_get(t, v, "every"))) {
+      TRY(yt_long(t, w, "output.profile.every", &p->every));
+      if (p->every < 1)
+        return yt_error(t, w, "output.profile.every", "expected an interval >= 1 (got %ld)",
+                        p->every);
+    }
+    if ((w = yt_get(t, v, "start"))) {
+      TRY(yt_long(t, w, "output.profile.start", &p->start));
+      if (p->start < 0)
+        return yt_error(t, w, "output.profile.start", "expected a step >= 0 (got %ld)", p->start);
+    }
+    if (!(w = yt_get(t, v, "file")))
+      return yt_error(t, v, "output.profile.file", "expected a file name (got nothing)");
+    TRY(yt_string(t, w, "output.profile.file", p->path, SCENE_PATH_LEN));
+  }
+  return 0;
+}
+
+static void set_defaults(scene_t *s) {
+  s->kT = 1.0;
+  s->weight_exp = 1.0;
+  s->vv_lambda = 0.5;
+  s->density_kernel = MESO_KERNEL_WARREN;
+  s->periodic[0] = s->periodic[1] = s->periodic[2] = 1;
+  s->body_force_reverse_axis = -1;
+  s->seed = 12345;
+  s->progress = 1;
+  s->init.temperature = -1; /* -> kT after parsing */
+  strcpy(s->summary_path, "summary.json");
+}
+
+static int parse_document(ytree_t *t, scene_t *s) {
+  yaml_node_t *root = yt_root(t), *v;
+  static const char *const keys[] = {"name",    "box",     "species", "pairs", "density_kernel",
+                                     "kT",      "effects", "initial", "run",   "output",
+                                     "restart", NULL};
+  TRY(yt_check_keys(t, root, "", keys));
+  if ((v = yt_get(t, root, "name")))
+    TRY(yt_string(t, v, "name", s->name, SCENE_NAME_LEN));
+  else {
+    char tmp[SCENE_PATH_LEN];
+    snprintf(tmp, sizeof tmp, "%s", s->file);
+    snprintf(s->name, sizeof s->name, "%s", basename(tmp));
+    char *dot = strrchr(s->name, '.');
+    if (dot) *dot = 0;
+  }
+  if (!(v = yt_get(t, root, "box")))
+    return yt_error(t, root, "box", "expected a box {lo, hi, periodic} (got nothing)");
+  TRY(parse_box(t, v, s));
+  if (!(v = yt_get(t, root, "species")))
+    return yt_error(t, root, "species",
+                    "expected a list of species {name, mass, frozen} (got nothing)");
+  TRY(parse_species(t, v, s));
+  if ((v = yt_get(t, root, "density_kernel"))) {
+    static const char *const kernels[] = {"warren", "lucy", NULL};
+    if ((s->density_kernel = yt_enum(t, v, "density_kernel", kernels)) < 0) return -1;
+    s->density_kernel = s->density_kernel == 1 ? MESO_KERNEL_LUCY : MESO_KERNEL_WARREN;
+  }
+  if ((v = yt_get(t, root, "kT"))) {
+    TRY(yt_double(t, v, "kT", &s->kT));
+    if (!(s->kT > 0)) return yt_error(t, v, "kT", "expected kT > 0 (got %g)", s->kT);
+  }
+  if (!(v = yt_get(t, root, "effects")))
+    return yt_error(t, root, "effects", "expected a mapping of effect names (got nothing)");
+  yaml_node_t *effects = v;
+  TRY(parse_effects(t, v, s));
+  if (s->effect[EFFECT_MDPD_ATTRACTION] && s->effect[EFFECT_DPD_CONSERVATIVE])
+    return yt_error(
+        t, effects, "effects.dpd_conservative",
+        "expected either mdpd_attraction or dpd_conservative (got both; both use the pair's A)");
+  int walls_needed = 0;
+  for (int d = 0; d < 3; d++) walls_needed |= !s->periodic[d];
+  if (walls_needed && !s->effect[EFFECT_BOX_WALLS])
+    return yt_error(
+        t, yt_get(t, root, "box"), "box.periodic",
+        "expected every axis periodic, or the box_walls effect for the non-periodic ones (got a "
+        "non-periodic axis without box_walls)");
+  if (s->effect[EFFECT_BOX_WALLS] && !walls_needed)
+    yt_warn(t, effects, "effects.box_walls",
+            "every box axis is periodic: box_walls has nothing to do");
+  if (s->body_force_reverse_axis >= 0 && !s->periodic[s->body_force_reverse_axis])
+    return yt_error(
+        t, effects, "effects.body_force.reverse_along",
+        "expected a periodic axis for reverse Poiseuille flow (got a non-periodic one)");
+
+  pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
+  memset(pin, 0, sizeof pin);
+  yaml_node_t *pairs = yt_get(t, root, "pairs");
+  if (pairs) TRY(parse_pairs(t, pairs, s, pin));
+  TRY(finish_pairs(t, pairs ? pairs : root, s, pin));
+
+  if ((v = yt_get(t, root, "run")))
+    TRY(parse_run(t, v, s));
+  else
+    return yt_error(t, root, "run", "expected run settings {dt, steps, seed} (got nothing)");
+
+  if ((v = yt_get(t, root, "restart")))
+    TRY(yt_string(t, v, "restart", s->restart_from, SCENE_PATH_LEN));
+  if ((v = yt_get(t, root, "initial")))
+    TRY(parse_initial(t, v, s));
+  else if (!s->restart_from[0])
+    return yt_error(t, root, "initial",
+                    "expected an initial configuration (fill, lammps_data or snapshot) or a "
+                    "'restart' checkpoint (got neither)");
+  if (s->init.temperature < 0) s->init.temperature = s->kT;
+
+  if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));
+  return 0;
+}
+
+int scene_load(const char *path, scene_t *scene) {
+  int rank = 0, inited = 0;
+  MPI_Initialized(&inited);
+  if (inited) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  memset(scene, 0, sizeof *scene);
+  if (strlen(path) >= SCENE_PATH_LEN) {
+    if (rank == 0) fprintf(stderr, "%s: scene path too long\n", path);
+    return -1;
+  }
+  strcpy(scene->file, path);
+  set_defaults(scene);
+  ytree_t t;
+  if (yt_load(&t, path, rank != 0)) return -1;
+  const int rc = parse_document(&t, scene);
+  yt_free(&t);
+  return rc;
+}

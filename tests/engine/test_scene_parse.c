@@ -1,0 +1,86 @@
+/* The scene parser turns a full scene into the right numbers: defaults, pair overrides applied
+ * symmetrically, effect options, fill regions, outputs, paths relative to the scene file. */
+#include "io/scene.h"
+#include "physics/density_kernels.h"
+
+#include <math.h>
+#include <mpi.h>
+#include <stdio.h>
+#include <string.h>
+
+static int failures = 0;
+#define CHECK(c)                                                                                   \
+  do {                                                                                             \
+    if (!(c)) {                                                                                    \
+      fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #c);                        \
+      failures++;                                                                                  \
+    }                                                                                              \
+  } while (0)
+
+static const char *text =
+    "name: t\n"
+    "box: {lo: [0, 0, 0], hi: [20, 10, 8], periodic: [true, true, false]}\n"
+    "species:\n"
+    "  - {name: liquid, mass: 1.5}\n"
+    "  - {name: wall, frozen: true}\n"
+    "pairs:\n"
+    "  default: {A: -40, B: 25, gamma: 4.5, rc: 1.0, rd: 0.75}\n"
+    "  wall-liquid: {A: -30}\n"
+    "density_kernel: lucy\n"
+    "kT: 0.9\n"
+    "effects:\n"
+    "  mdpd_attraction: {}\n"
+    "  mdpd_repulsion:\n"
+    "  dpd_thermostat: {exponent: 0.5}\n"
+    "  body_force: {liquid: [0.02, 0, 0], reverse_along: y}\n"
+    "  box_walls: {}\n"
+    "initial:\n"
+    "  fill:\n"
+    "    - {species: liquid, lo: [5, 0, 0], hi: [15, 10, 8], density: 6.2, mode: lattice}\n"
+    "    - {species: wall, density: 8}\n"
+    "run: {dt: 0.005, steps: 1e4, seed: 7}\n"
+    "output:\n"
+    "  thermo: {every: 100, file: thermo.h5}\n"
+    "  profile: {axis: z, bins: 40, every: 10, start: 1000, file: profile.csv}\n"
+    "  progress: false\n";
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  const char *path = "scene_parse_test.yaml";
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+  scene_t s;
+  CHECK(scene_load(path, &s) == 0);
+  CHECK(!strcmp(s.name, "t"));
+  CHECK(s.box_hi[2] == 8 && s.periodic[2] == 0 && s.periodic[0] == 1);
+  CHECK(s.n_species == 2 && s.species[0].mass == 1.5 && s.species[1].mass == 1.0 &&
+        s.species[1].frozen);
+  CHECK(s.pair[0][0].A == -40 && s.pair[0][1].A == -30 && s.pair[1][0].A == -30 &&
+        s.pair[1][1].A == -40);
+  CHECK(s.pair[0][1].B == 25 && s.pair[0][1].rd == 0.75 && s.pair[1][0].gamma == 4.5);
+  CHECK(s.density_kernel == MESO_KERNEL_LUCY && s.kT == 0.9 && s.weight_exp == 0.5);
+  CHECK(s.effect[EFFECT_MDPD_ATTRACTION] && s.effect[EFFECT_MDPD_REPULSION] &&
+        s.effect[EFFECT_BOX_WALLS]);
+  CHECK(!s.effect[EFFECT_DPD_CONSERVATIVE]);
+  CHECK(s.body_force[0][0] == 0.02 && s.body_force[1][0] == 0 && s.body_force_reverse_axis == 1);
+  CHECK(s.init.kind == INIT_FILL && s.init.n_fill == 2 && s.init.fill[0].mode == FILL_LATTICE);
+  CHECK(s.init.fill[1].species == 1 && s.init.fill[1].hi[0] == 20 &&
+        s.init.fill[1].mode == FILL_RANDOM);
+  CHECK(s.init.temperature == 0.9); /* defaults to kT */
+  CHECK(s.dt == 0.005 && s.steps == 10000 && s.seed == 7 && s.vv_lambda == 0.5);
+  CHECK(s.thermo.every == 100 && !strcmp(s.thermo.path, "thermo.h5") && s.snapshot.every == 0);
+  CHECK(s.profile.axis == 2 && s.profile.nbins == 40 && s.profile.start == 1000);
+  CHECK(!s.progress && !strcmp(s.summary_path, "summary.json"));
+  CHECK(fabs(scene_max_cutoff(&s) - 1.0) < 1e-15);
+  /* The physics hash sees physics, not outputs. */
+  scene_t t = s;
+  t.thermo.every = 7;
+  CHECK(scene_physics_hash(&t) == scene_physics_hash(&s));
+  t.pair[0][1].A = -31;
+  CHECK(scene_physics_hash(&t) != scene_physics_hash(&s));
+  remove(path);
+  MPI_Finalize();
+  if (failures) fprintf(stderr, "%d checks failed\n", failures);
+  return failures ? 1 : 0;
+}
