@@ -15,12 +15,13 @@ typedef struct sim sim_t; /* opaque; defined in sim_internal.h */
 typedef struct {
   long step;
   double time;
-  long n_total;   /* all particles                          */
-  long n_mobile;  /* particles of non-frozen species         */
-  double ke;      /* kinetic energy of mobile particles      */
+  long n_total;       /* all particles                          */
+  long n_mobile;      /* particles of non-frozen species         */
+  double ke;          /* kinetic energy of mobile particles      */
   double temperature; /* 2 ke / (3 (n_mobile - 1)) in units of kB; momentum-conserving dof */
   double momentum[3];
-  double pressure[6]; /* full virial pressure tensor xx yy zz xy xz yz: (kinetic + pair virial) / V */
+  double
+      pressure[6]; /* full virial pressure tensor xx yy zz xy xz yz: (kinetic + pair virial) / V */
   double volume;
 } thermo_t;
 
@@ -29,8 +30,8 @@ sim_t *sim_create(const scene_t *scene, MPI_Comm comm);
 void sim_destroy(sim_t *sim);
 
 /* Offer one particle: it is stored when its position lies in this rank's subdomain (after periodic
- * wrapping). Returns 1 if stored here, 0 if not, -1 on allocation failure. Any rank may offer any particle;
- * callers generating a global configuration offer every particle on every rank. */
+ * wrapping). Returns 1 if stored here, 0 if not, -1 on allocation failure. Any rank may offer any
+ * particle; callers generating a global configuration offer every particle on every rank. */
 int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], const double v[3]);
 
 /* After all particles were added (or a checkpoint was loaded): check global count and ids, exchange
@@ -52,7 +53,13 @@ long sim_step_index(const sim_t *sim);
 void sim_set_step_index(sim_t *sim, long step); /* restart */
 void sim_subdomain(const sim_t *sim, double lo[3], double hi[3]);
 void sim_request_virial(sim_t *sim, int on); /* per-particle virial in the next force passes */
-void sim_forces_loaded(sim_t *sim);          /* restart: forces come from a checkpoint, not recomputed */
+void sim_forces_loaded(sim_t *sim); /* restart: forces come from a checkpoint, not recomputed */
+
+/* Collective check that the global particle count still equals the one at sim_setup. 0, or non-zero
+ * after printing "particle lost: ..." (rank 0). sim_step also checks it every step. */
+int sim_check_count(sim_t *sim);
+/* The last error message of this rank ("" when none). */
+const char *sim_last_error(const sim_t *sim);
 
 /* Print the per-step pass plan for a scene without running it (mdpore run --explain). */
 void sim_explain(const scene_t *scene, int nranks, FILE *out);

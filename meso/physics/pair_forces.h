@@ -1,32 +1,53 @@
 /* Pair force magnitudes of (many-body) DPD along e = r_ij / r (physics.md section 1, paper eq. 1):
- *   F_ij = [ A w_c(r) + B (rho_i + rho_j) w_d(r) ] e - gamma w_D(r) (e . v_ij) e + sigma w_R(r) xi / sqrt(dt) e
- * Each function returns the scalar that multiplies e; positive pushes i away from j. */
+ *   F_ij = [ A w_c(r) + B (rho_i + rho_j) w_d(r) ] e - gamma w_D(r) (e . v_ij) e + sigma w_R(r) xi
+ * / sqrt(dt) e Each function returns the scalar that multiplies e; positive pushes i away from j.
+ */
 #ifndef MESO_PHYSICS_PAIR_FORCES_H
 #define MESO_PHYSICS_PAIR_FORCES_H
 
 #include "hd.h"
 #include <math.h>
 
-/* Conservative term A w_c(r), w_c = 1 - r/rc: mDPD attraction (A < 0) or standard DPD repulsion (a > 0). */
+/* Conservative term A w_c(r), w_c = 1 - r/rc: mDPD attraction (A < 0) or standard DPD repulsion (a
+ * > 0). */
 MESO_HD meso_real pair_conservative(meso_real A, meso_real r, meso_real rc) {
   return A * (MESO_R(1.0) - r / rc);
 }
 
 /* Many-body repulsion B (rho_i + rho_j) w_d(r), w_d = 1 - r/rd (Warren 2003). */
-MESO_HD meso_real pair_manybody(meso_real B, meso_real rho_i, meso_real rho_j, meso_real r, meso_real rd) {
+MESO_HD meso_real pair_manybody(meso_real B, meso_real rho_i, meso_real rho_j, meso_real r,
+                                meso_real rd) {
   return B * (rho_i + rho_j) * (MESO_R(1.0) - r / rd);
 }
 
-/* Thermostat weight w_R = (1 - r/rc)^s; w_D = w_R^2 (fluctuation-dissipation, Espanol & Warren 1995). */
+/* Thermostat weight w_R = (1 - r/rc)^s; w_D = w_R^2 (fluctuation-dissipation, Espanol & Warren
+ * 1995). */
 MESO_HD meso_real pair_weight_random(meso_real r, meso_real rc, meso_real s) {
   const meso_real q = MESO_R(1.0) - r / rc;
   return s == MESO_R(1.0) ? q : (meso_real)pow(q, s);
 }
 
-/* Dissipative + random term: -gamma w_R^2 (e . v_ij) + sigma w_R xi / sqrt(dt), sigma^2 = 2 gamma kT. */
+/* Dissipative + random term: -gamma w_R^2 (e . v_ij) + sigma w_R xi / sqrt(dt), sigma^2 = 2 gamma
+ * kT. */
 MESO_HD meso_real pair_thermostat(meso_real gamma, meso_real sigma, meso_real wR, meso_real e_dot_v,
                                   meso_real xi, meso_real inv_sqrt_dt) {
   return -gamma * wR * wR * e_dot_v + sigma * wR * xi * inv_sqrt_dt;
+}
+
+/* Forms with precomputed reciprocal cutoffs for the hot loops (no division per pair). They evaluate
+ * the same expressions as above with r/rc replaced by r * inv_rc. */
+MESO_HD meso_real pair_conservative_inv(meso_real A, meso_real r, meso_real inv_rc) {
+  return A * (MESO_R(1.0) - r * inv_rc);
+}
+
+MESO_HD meso_real pair_manybody_inv(meso_real B, meso_real rho_sum, meso_real r, meso_real inv_rd) {
+  return B * rho_sum * (MESO_R(1.0) - r * inv_rd);
+}
+
+/* w_R = (1 - r/rc)^s; s_is_one skips pow for the standard s = 1. */
+MESO_HD meso_real pair_weight_random_inv(meso_real r, meso_real inv_rc, meso_real s, int s_is_one) {
+  const meso_real q = MESO_R(1.0) - r * inv_rc;
+  return s_is_one ? q : (meso_real)pow(q, s);
 }
 
 #endif

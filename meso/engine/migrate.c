@@ -1,0 +1,128 @@
+/* Migration of owned particles between subdomains (see migrate.h). */
+#include "migrate.h"
+#include "particle_store.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+  int64_t id;
+  int32_t species, pad;
+  double x[3], v[3], f[3];
+} migrant_t;
+
+static void note_lost(migrate_report_t *rep, int64_t id, const double x[3]) {
+  if (rep->n_lost++ == 0) {
+    rep->lost_id = id;
+    memcpy(rep->lost_x, x, sizeof rep->lost_x);
+  }
+}
+
+/* Put x back into [box_lo, box_hi) after a periodic shift, against rounding (x - L + L may land on
+ * hi). */
+static double clamp_into_box(const decomp_t *dc, int d, double x) {
+  if (x >= dc->box_hi[d]) return nextafter(dc->box_hi[d], dc->box_lo[d]);
+  if (x < dc->box_lo[d]) return dc->box_lo[d];
+  return x;
+}
+
+/* Along an axis with a single subdomain: periodic wrap in place, or a loss on a non-periodic axis.
+ */
+static void wrap_axis_in_place(const decomp_t *dc, particles_t *p, int d, migrate_report_t *rep) {
+  double *x = p->x[d];
+  for (int i = 0; i < p->n_local; i++) {
+    if (x[i] >= dc->box_lo[d] && x[i] < dc->box_hi[d]) continue;
+    if (!dc->periodic[d] || !isfinite(x[i]) || fabs(x[i] - dc->box_lo[d]) > 2.0 * dc->L[d]) {
+      double pos[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
+      note_lost(rep, p->id[i], pos);
+      continue;
+    }
+    x[i] = clamp_into_box(dc, d, x[i] < dc->box_lo[d] ? x[i] + dc->L[d] : x[i] - dc->L[d]);
+  }
+}
+
+static void pack(const particles_t *p, int i, migrant_t *m) {
+  m->id = p->id[i];
+  m->species = p->species[i];
+  m->pad = 0;
+  for (int c = 0; c < 3; c++) {
+    m->x[c] = p->x[c][i];
+    m->v[c] = p->v[c][i];
+    m->f[c] = p->f[c][i];
+  }
+}
+
+static void unpack(particles_t *p, int j, const migrant_t *m) {
+  p->id[j] = m->id;
+  p->species[j] = m->species;
+  for (int c = 0; c < 3; c++) {
+    p->x[c][j] = m->x[c];
+    p->v[c][j] = m->v[c];
+    p->f[c][j] = m->f[c];
+  }
+}
+
+void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t *rbuf,
+                       migrate_report_t *rep) {
+  p->n_ghost = 0;
+  for (int d = 0; d < 3; d++) {
+    if (dc->dims[d] == 1) {
+      wrap_axis_in_place(dc, p, d, rep);
+      continue;
+    }
+    /* Pack leavers: down first, then up, in local order; compact the stayers in place. */
+    int n_out[2] = {0, 0}, keep = 0;
+    const double lo = dc->lo[d], hi = dc->hi[d];
+    for (int i = 0; i < p->n_local; i++) {
+      const double xi = p->x[d][i];
+      const int dir = xi < lo ? 0 : (xi >= hi ? 1 : -1);
+      if (dir >= 0 && dc->nbr[d][dir] == MPI_PROC_NULL) {
+        double pos[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
+        note_lost(rep, p->id[i],
+                  pos); /* through a non-periodic face: box_walls should prevent it */
+        continue;
+      }
+      if (dir < 0) {
+        if (keep != i) pstore_copy(p, keep, i);
+        keep++;
+        continue;
+      }
+      /* Two lists in one buffer: leavers down grow from the front of a scratch area of size
+       * n_local. */
+      if (xbuf_reserve(sbuf, (size_t)2 * (size_t)p->n_local * sizeof(migrant_t))) {
+        rep->out_of_memory = 1;
+        keep++;
+        continue;
+      }
+      migrant_t *m =
+          (migrant_t *)sbuf->data + (size_t)dir * (size_t)p->n_local + (size_t)n_out[dir]++;
+      pack(p, i, m);
+      /* Crossing a periodic face: wrap to the image on the other side. */
+      if (dir == 0 && dc->coords[d] == 0) m->x[d] = clamp_into_box(dc, d, m->x[d] + dc->L[d]);
+      if (dir == 1 && dc->coords[d] == dc->dims[d] - 1)
+        m->x[d] = clamp_into_box(dc, d, m->x[d] - dc->L[d]);
+    }
+    const int n_before = p->n_local;
+    p->n_local = keep;
+    for (int k = 0; k < 2; k++) {
+      const migrant_t *out =
+          n_out[k] ? (const migrant_t *)sbuf->data + (size_t)k * (size_t)n_before : NULL;
+      if (exchange_bytes(dc->cart, dc->rank, dc->nbr[d][k], dc->nbr[d][1 - k], out,
+                         (size_t)n_out[k] * sizeof(migrant_t), rbuf, 300 + 4 * d + 2 * k)) {
+        rep->out_of_memory = 1;
+        continue;
+      }
+      const int m = (int)(rbuf->size / sizeof(migrant_t));
+      if (pstore_reserve(p, p->n_local + m)) {
+        rep->out_of_memory = 1;
+        continue;
+      }
+      const migrant_t *in = (const migrant_t *)rbuf->data;
+      for (int s = 0; s < m; s++) {
+        /* A particle that moved farther than one subdomain cannot be placed correctly. */
+        if (!(in[s].x[d] >= lo && in[s].x[d] < hi)) note_lost(rep, in[s].id, in[s].x);
+        unpack(p, p->n_local++, &in[s]);
+      }
+    }
+  }
+}

@@ -1,0 +1,27 @@
+/* Migration: owned particles that left this subdomain go to the neighbour that now owns them, in
+ * three stages (x, y, z; a particle crossing a corner hops twice or three times). Positions are
+ * wrapped across periodic faces on the way. Local order stays deterministic: leavers are removed in
+ * place keeping the order of the others, arrivals are appended in the order received (those from
+ * the neighbour above, then those from below; along x, then y, then z). */
+#ifndef MESO_ENGINE_MIGRATE_H
+#define MESO_ENGINE_MIGRATE_H
+
+#include "decomp.h"
+#include "exchange.h"
+#include "particles.h"
+
+#include <stdint.h>
+
+typedef struct {
+  long n_lost;     /* particles that left through a non-periodic face or jumped past a neighbour */
+  int64_t lost_id; /* the first of them */
+  double lost_x[3];
+  int out_of_memory;
+} migrate_report_t;
+
+/* Move owned particles to their owners (ghosts are dropped). Collective. Problems are reported in
+ * *rep (local; the caller reduces them). */
+void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t *rbuf,
+                       migrate_report_t *rep);
+
+#endif

@@ -1,0 +1,32 @@
+/* The simulation object behind sim.h (engine-internal). */
+#ifndef MESO_ENGINE_SIM_INTERNAL_H
+#define MESO_ENGINE_SIM_INTERNAL_H
+
+#include "cell_list.h"
+#include "decomp.h"
+#include "exchange.h"
+#include "ghosts.h"
+#include "particles.h"
+#include "plan.h"
+#include "sim.h"
+#include "step_check.h"
+
+struct sim {
+  scene_t scene;
+  plan_t plan;
+  decomp_t dc;
+  particles_t p;
+  cell_list_t cells;
+  ghost_plan_t ghosts;
+  xbuf_t sbuf, rbuf; /* migration buffers */
+  long step;
+  long n_total; /* global particle count fixed at sim_setup; checked every step */
+  int forces_loaded, want_virial, is_setup;
+  double virial[6]; /* local pair virial of the last force pass: 1/2 sum r_ij (x) F_ij */
+  char err[2048];   /* last error message on this rank */
+};
+
+/* Ghosts, densities, pair and particle forces at the current positions for step index sim->step. */
+int sim_compute_forces(sim_t *sim);
+
+#endif

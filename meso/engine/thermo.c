@@ -1,0 +1,49 @@
+/* Global thermodynamic state (sim_thermo): kinetic energy and temperature of the mobile particles,
+ * momentum, and the full virial pressure tensor
+ *   P_ab = ( sum_i m v_a v_b + 1/2 sum_{i != j} r_ij,a F_ij,b ) / V
+ * with all pair force parts (conservative, dissipative, random; physics.md section 2). Temperature
+ * counts 3 (N_mobile - 1) degrees of freedom (total momentum is conserved without body force). */
+#include "sim_internal.h"
+
+#include <string.h>
+
+void sim_thermo(sim_t *sim, thermo_t *out) {
+  const particles_t *p = &sim->p;
+  const plan_t *plan = &sim->plan;
+  enum { N_MOBILE, KE, PX, PY, PZ, K0, NV = K0 + 6, NVAL = NV + 6 };
+  double v[NVAL] = {0}, g[NVAL];
+  for (int i = 0; i < p->n_local; i++) {
+    const int s = p->species[i];
+    const double m = plan->mass[s];
+    const double vx = p->v[0][i], vy = p->v[1][i], vz = p->v[2][i];
+    v[K0 + 0] += m * vx * vx;
+    v[K0 + 1] += m * vy * vy;
+    v[K0 + 2] += m * vz * vz;
+    v[K0 + 3] += m * vx * vy;
+    v[K0 + 4] += m * vx * vz;
+    v[K0 + 5] += m * vy * vz;
+    if (!plan->mobile[s]) continue;
+    v[N_MOBILE] += 1.0;
+    v[KE] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
+    v[PX] += m * vx;
+    v[PY] += m * vy;
+    v[PZ] += m * vz;
+  }
+  for (int k = 0; k < 6; k++) v[NV + k] = sim->virial[k];
+  /* Reduce on rank 0 and broadcast: bitwise identical values on every rank. */
+  MPI_Reduce(v, g, NVAL, MPI_DOUBLE, MPI_SUM, 0, sim->dc.cart);
+  MPI_Bcast(g, NVAL, MPI_DOUBLE, 0, sim->dc.cart);
+  long n_local = p->n_local, n_total = 0;
+  MPI_Allreduce(&n_local, &n_total, 1, MPI_LONG, MPI_SUM, sim->dc.cart);
+  memset(out, 0, sizeof *out);
+  out->step = sim->step;
+  out->time = sim->step * sim->scene.dt;
+  out->n_total = n_total;
+  out->n_mobile = (long)g[N_MOBILE];
+  out->ke = g[KE];
+  out->temperature = out->n_mobile > 1 ? 2.0 * g[KE] / (3.0 * (double)(out->n_mobile - 1)) : 0.0;
+  for (int d = 0; d < 3; d++) out->momentum[d] = g[PX + d];
+  out->volume = 1.0;
+  for (int d = 0; d < 3; d++) out->volume *= sim->scene.box_hi[d] - sim->scene.box_lo[d];
+  for (int k = 0; k < 6; k++) out->pressure[k] = (g[K0 + k] + g[NV + k]) / out->volume;
+}
