@@ -1,0 +1,20 @@
+/* `mdpore darcy` configuration file (YAML, documented in docs/darcy-config.md) -> darcy_problem. */
+#ifndef MDPORE_UPSCALE_DARCY_CONFIG_H
+#define MDPORE_UPSCALE_DARCY_CONFIG_H
+
+#include "darcy_problem.h"
+
+typedef struct {
+  darcy_problem problem;
+  int si;                /* unit system: 1 SI, 0 reduced */
+  double g_lin_fraction; /* power laws linear below this fraction of the characteristic gradient */
+  char hdf5_path[4096];  /* output files (empty: not written) */
+  char json_path[4096];
+  int json_blocks; /* write per-block results into the JSON (default: when <= 10000 blocks) */
+} darcy_config;
+
+/* Reads and validates the file; laws that reference fit JSON or HDF5 files are resolved relative to
+ * the config file's folder. Returns 0, or -1 with "FILE:LINE: key ...: expected ..." in err. */
+int darcy_config_read(const char *path, darcy_config *c, char *err, int errlen);
+
+#endif

@@ -1,0 +1,13 @@
+/* Reads one fitted law from a `mdpore fit` JSON file (read with libyaml: the JSON is YAML flow
+ * style). */
+#ifndef MDPORE_UPSCALE_FIT_JSON_LAW_H
+#define MDPORE_UPSCALE_FIT_JSON_LAW_H
+
+#include "law/flow_law.h"
+
+/* model: "chosen" or a law name. Fills law, the fit's unit system (1 SI, 0 reduced) and fluid.
+ * Returns 0, or -1 with "FILE:LINE: ..." in err. */
+int fit_json_law(const char *path, const char *model, flow_law *law, int *si,
+                 fluid_props *fit_fluid, char *err, int errlen);
+
+#endif
