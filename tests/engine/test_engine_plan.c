@@ -1,0 +1,73 @@
+/* The step plan follows the named effects (sim_explain, mdpore run --explain):
+ *  - standard DPD (dpd_conservative + dpd_thermostat): no density pass, no rho sync, no rho array;
+ *  - mDPD (+ mdpd_repulsion): a density pass and a rho ghost sync, in that order, before the
+ * forces;
+ *  - box_walls printed with its faces; body_force as a particle-force pass;
+ * and scenes the engine cannot run are refused at sim_create with a message: a non-periodic axis
+ * without box_walls, a subdomain thinner than the cutoff, both users of the pair amplitude A. */
+#include "test_engine_common.h"
+
+static char *explain(const scene_t *s, int nranks) {
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  sim_explain(s, nranks, f);
+  fclose(f);
+  return buf;
+}
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  scene_t s;
+  test_scene_mdpd(&s, 10, 10, 10);
+  s.effect[EFFECT_DPD_CONSERVATIVE] = 1;
+  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  s.pair[0][0].A = 25; /* standard DPD a */
+  char *t = explain(&s, 2);
+  printf("--- standard DPD ---\n%s", t);
+  CHECK(!strstr(t, "density pass"), "DPD plan has a density pass");
+  CHECK(!strstr(t, "rho"), "DPD plan mentions rho");
+  CHECK(strstr(t, "force pass: dpd_conservative, dpd_thermostat"), "force pass line missing");
+  CHECK(strstr(t, "2 x 1 x 1") || strstr(t, "1 x 2 x 1") || strstr(t, "1 x 1 x 2"),
+        "decomposition");
+  free(t);
+  sim_t *sim = sim_create(&s, MPI_COMM_SELF);
+  CHECK(sim && sim_particles(sim)->rho == NULL, "DPD scene allocated a rho array");
+  sim_destroy(sim);
+
+  test_scene_mdpd(&s, 10, 10, 10);
+  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
+  s.effect[EFFECT_MDPD_REPULSION] = 1;
+  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  s.effect[EFFECT_BODY_FORCE] = 1;
+  s.effect[EFFECT_BOX_WALLS] = 1;
+  s.periodic[2] = 0;
+  s.body_force[0][0] = 0.02;
+  t = explain(&s, 1);
+  printf("--- mDPD with walls and body force ---\n%s", t);
+  const char *dens = strstr(t, "density pass (Warren kernel, rd = 0.75");
+  const char *sync = strstr(t, "ghost sync: rho");
+  const char *force = strstr(t, "force pass: mdpd_attraction, mdpd_repulsion, dpd_thermostat");
+  const char *part = strstr(t, "particle forces: body_force");
+  CHECK(dens && sync && force && part, "mDPD plan lacks a pass");
+  CHECK(dens < sync && sync < force && force < part, "passes out of order");
+  CHECK(strstr(t, "box_walls: reflect on faces z = 0 and z = 10"), "box walls line");
+  free(t);
+  sim = sim_create(&s, MPI_COMM_SELF);
+  CHECK(sim && sim_particles(sim)->rho != NULL, "mDPD scene has no rho array");
+  sim_destroy(sim);
+
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) fprintf(stderr, "(three expected error messages follow)\n");
+  s.effect[EFFECT_BOX_WALLS] = 0; /* z not periodic, no walls */
+  CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "non-periodic axis without box_walls accepted");
+  s.effect[EFFECT_BOX_WALLS] = 1;
+  s.box_hi[0] = 0.9; /* thinner than rc = 1 */
+  CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "subdomain thinner than the cutoff accepted");
+  s.box_hi[0] = 10;
+  s.effect[EFFECT_DPD_CONSERVATIVE] = 1;
+  CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "mdpd_attraction + dpd_conservative accepted");
+  MPI_Finalize();
+  return 0;
+}

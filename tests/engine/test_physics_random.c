@@ -1,0 +1,51 @@
+/* The DPD random numbers and the thermostat's pair forces (physics.md section 1):
+ *  - xi(seed, step, i, j) == xi(seed, step, j, i) for every pair (one number per pair per step);
+ *  - mean ~ 0 and variance ~ 1 over many draws (uniform sqrt(3) U(-1, 1); 5-sigma bounds);
+ *  - different steps give uncorrelated numbers;
+ *  - with only dpd_thermostat, the total force on a random periodic configuration is zero to
+ * rounding (F_ij = -F_ji, random and dissipative parts included). */
+#include "physics/pair_random.h"
+#include "test_engine_common.h"
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  const long n = 2000000;
+  double sum = 0, sum2 = 0, corr = 0;
+  uint64_t st = 99;
+  for (long k = 0; k < n; k++) {
+    const int64_t i = (int64_t)(test_rng_next(&st) >> 20), j = (int64_t)(test_rng_next(&st) >> 20);
+    const uint64_t step = k % 1000;
+    const double a = pair_random_xi(42, step, i, j), b = pair_random_xi(42, step, j, i);
+    CHECK(a == b, "xi(%lld, %lld) = %.17g != xi(%lld, %lld) = %.17g", (long long)i, (long long)j, a,
+          (long long)j, (long long)i, b);
+    sum += a;
+    sum2 += a * a;
+    corr += a * pair_random_xi(42, step + 1, i, j);
+  }
+  const double mean = sum / n, var = sum2 / n - mean * mean, c = corr / n;
+  /* sd of the mean 1/sqrt(n); of the variance sqrt((9/5 - 1)/n) for sqrt(3) U(-1, 1) */
+  printf("xi: mean %.2e (bound %.1e), variance %.5f, lag-1-step correlation %.2e\n", mean,
+         5 / sqrt((double)n), var, c);
+  CHECK(fabs(mean) < 5 / sqrt((double)n), "mean %.3e", mean);
+  CHECK(fabs(var - 1) < 5 * sqrt(0.8 / n), "variance %.5f", var);
+  CHECK(fabs(c) < 5 / sqrt((double)n), "correlation between steps %.3e", c);
+
+  scene_t s;
+  test_scene_mdpd(&s, 5.0, 5.0, 5.0);
+  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  sim_t *sim = sim_create(&s, MPI_COMM_SELF);
+  CHECK(sim, "sim_create");
+  CHECK(test_fill_random(sim, &s, 500, 0.0, 5) == 0, "fill");
+  CHECK(sim_setup(sim) == 0, "setup");
+  particles_t *p = sim_particles(sim);
+  double total[3] = {0, 0, 0}, abs_sum = 0;
+  for (int i = 0; i < p->n_local; i++)
+    for (int d = 0; d < 3; d++) total[d] += p->f[d][i], abs_sum += fabs(p->f[d][i]);
+  const double tmax = fmax(fabs(total[0]), fmax(fabs(total[1]), fabs(total[2])));
+  printf("thermostat only: |sum F| = %.3e, sum |F| = %.3e\n", tmax, abs_sum);
+  CHECK(abs_sum > 100, "forces suspiciously small: %.3e", abs_sum);
+  CHECK(tmax < 1e-12 * abs_sum, "total force %.3e not zero", tmax);
+  sim_destroy(sim);
+  MPI_Finalize();
+  return 0;
+}
