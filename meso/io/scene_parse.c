@@ -606,8 +606,11 @@ static int parse_document(ytree_t *t, scene_t *s) {
   else
     return yt_error(t, root, "run", "expected run settings {dt, steps, seed} (got nothing)");
 
-  if ((v = yt_get(t, root, "restart")))
-    TRY(yt_string(t, v, "restart", s->restart_from, SCENE_PATH_LEN));
+  if ((v = yt_get(t, root, "restart"))) {
+    char p[SCENE_PATH_LEN];
+    TRY(yt_string(t, v, "restart", p, sizeof p));
+    relative_to_scene(s->file, p, s->restart_from, sizeof s->restart_from);
+  }
   if ((v = yt_get(t, root, "initial")))
     TRY(parse_initial(t, v, s));
   else if (!s->restart_from[0])

@@ -1,0 +1,223 @@
+/* Checkpoint/restart files (see checkpoint.h). */
+#include "io/checkpoint.h"
+#include "io/atomic_file.h"
+#include "io/gather.h"
+#include "io/h5_util.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int checkpoint_write(const char *path, sim_t *sim) {
+  MPI_Comm comm = sim_comm(sim);
+  int rank, size, rc = 0;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  double box[6];
+  sim_subdomain(sim, box, box + 3);
+  double *boxes = rank == 0 ? malloc((size_t)size * 6 * sizeof *boxes) : NULL;
+  MPI_Gather(box, 6, MPI_DOUBLE, boxes, 6, MPI_DOUBLE, 0, comm);
+  long *counts = rank == 0 ? malloc((size_t)size * sizeof *counts) : NULL;
+  particle_set_t set;
+  if (gather_particles(sim, 0, 1, &set, counts)) {
+    free(boxes);
+    free(counts);
+    return -1;
+  }
+  if (rank == 0) {
+    const scene_t *s = sim_scene(sim);
+    double *lo = malloc((size_t)size * 3 * sizeof *lo), *hi = malloc((size_t)size * 3 * sizeof *hi);
+    int64_t *c64 = malloc((size_t)size * sizeof *c64);
+    for (int r = 0; r < size; r++) {
+      memcpy(lo + 3 * r, boxes + 6 * r, 3 * sizeof *lo);
+      memcpy(hi + 3 * r, boxes + 6 * r + 3, 3 * sizeof *hi);
+      c64[r] = counts[r];
+    }
+    char tmp[SCENE_PATH_LEN + 32];
+    atomic_tmp_name(path, tmp, sizeof tmp);
+    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (f < 0) {
+      fprintf(stderr, "%s: cannot create checkpoint file\n", tmp);
+      rc = -1;
+    } else {
+      const double time = sim_step_index(sim) * s->dt;
+      h5_attr_long(f, "step", sim_step_index(sim));
+      h5_attr_double(f, "time", &time, 1);
+      h5_attr_long(f, "nranks", size);
+      h5_attr_u64(f, "seed", (unsigned long long)s->seed);
+      h5_attr_u64(f, "scene_hash", (unsigned long long)scene_physics_hash(s));
+      h5_attr_string(f, "scene", s->name);
+      const hsize_t n = (hsize_t)set.n;
+      rc |= h5_write_dataset(f, "rank_counts", H5T_NATIVE_INT64, c64, (hsize_t)size, 1);
+      rc |= h5_write_dataset(f, "subdomain_lo", H5T_NATIVE_DOUBLE, lo, (hsize_t)size, 3);
+      rc |= h5_write_dataset(f, "subdomain_hi", H5T_NATIVE_DOUBLE, hi, (hsize_t)size, 3);
+      rc |= h5_write_dataset(f, "id", H5T_NATIVE_INT64, set.id, n, 1);
+      rc |= h5_write_dataset(f, "species", H5T_NATIVE_INT32, set.species, n, 1);
+      rc |= h5_write_dataset(f, "position", H5T_NATIVE_DOUBLE, set.x, n, 3);
+      rc |= h5_write_dataset(f, "velocity", H5T_NATIVE_DOUBLE, set.v, n, 3);
+      rc |= h5_write_dataset(f, "force", H5T_NATIVE_DOUBLE, set.f, n, 3);
+      rc |= H5Fclose(f) < 0;
+      if (rc) {
+        fprintf(stderr, "%s: checkpoint write failed\n", tmp);
+        remove(tmp);
+      } else {
+        rc = atomic_rename(tmp, path);
+      }
+    }
+    free(lo);
+    free(hi);
+    free(c64);
+  }
+  free(boxes);
+  free(counts);
+  particle_set_free(&set);
+  MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
+  return rc;
+}
+
+/* Rank 0: open and check the file against this run; on success fills the set and per-rank counts.
+ */
+static int read_on_root(const char *path, sim_t *sim, int size, const double *boxes,
+                        particle_set_t *set, long *counts, long *step) {
+  const scene_t *s = sim_scene(sim);
+  H5E_auto2_t fn;
+  void *cd;
+  H5Eget_auto2(H5E_DEFAULT, &fn, &cd);
+  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+  int rc = -1;
+  hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  long nranks = -1;
+  unsigned long long hash = 0;
+  if (f < 0) {
+    fprintf(stderr, "%s: cannot open checkpoint (restart)\n", path);
+    goto out;
+  }
+  if (h5_read_attr_long(f, "nranks", &nranks) || h5_read_attr_long(f, "step", step) ||
+      h5_read_attr_u64(f, "scene_hash", &hash)) {
+    fprintf(stderr,
+            "%s: expected an mdpore checkpoint (attributes nranks, step, scene_hash missing)\n",
+            path);
+    goto out;
+  }
+  if (nranks != size) {
+    fprintf(stderr,
+            "%s: decomposition mismatch: checkpoint written by %ld ranks, this run has %d (restart "
+            "on the "
+            "same number of ranks and box.procs)\n",
+            path, nranks, size);
+    goto out;
+  }
+  if (hash != (unsigned long long)scene_physics_hash(s)) {
+    fprintf(stderr,
+            "%s: scene mismatch: the checkpoint was written for different physics than %s (box, "
+            "species, "
+            "pairs, effects, dt or seed changed)\n",
+            path, s->file);
+    goto out;
+  }
+  double *lo = malloc((size_t)size * 3 * sizeof *lo), *hi = malloc((size_t)size * 3 * sizeof *hi);
+  int64_t *c64 = malloc((size_t)size * sizeof *c64);
+  int bad = h5_read_dataset(f, "subdomain_lo", H5T_NATIVE_DOUBLE, lo, (hsize_t)size, 3, path) ||
+            h5_read_dataset(f, "subdomain_hi", H5T_NATIVE_DOUBLE, hi, (hsize_t)size, 3, path) ||
+            h5_read_dataset(f, "rank_counts", H5T_NATIVE_INT64, c64, (hsize_t)size, 1, path);
+  for (int r = 0; r < size && !bad; r++)
+    for (int d = 0; d < 3; d++)
+      if (lo[3 * r + d] != boxes[6 * r + d] || hi[3 * r + d] != boxes[6 * r + 3 + d]) {
+        fprintf(stderr,
+                "%s: decomposition mismatch: rank %d's subdomain differs from the checkpoint's "
+                "(restart "
+                "with the same box.procs)\n",
+                path, r);
+        bad = 1;
+        break;
+      }
+  long total = 0;
+  for (int r = 0; r < size; r++) total += (counts[r] = c64[r]);
+  free(lo);
+  free(hi);
+  free(c64);
+  if (bad || particle_set_alloc(set, total, 1, 0)) goto out;
+  const hsize_t n = (hsize_t)total;
+  if (h5_read_dataset(f, "id", H5T_NATIVE_INT64, set->id, n, 1, path) ||
+      h5_read_dataset(f, "species", H5T_NATIVE_INT32, set->species, n, 1, path) ||
+      h5_read_dataset(f, "position", H5T_NATIVE_DOUBLE, set->x, n, 3, path) ||
+      h5_read_dataset(f, "velocity", H5T_NATIVE_DOUBLE, set->v, n, 3, path) ||
+      h5_read_dataset(f, "force", H5T_NATIVE_DOUBLE, set->f, n, 3, path)) {
+    particle_set_free(set);
+    goto out;
+  }
+  rc = 0;
+out:
+  if (f >= 0) H5Fclose(f);
+  H5Eset_auto2(H5E_DEFAULT, fn, cd);
+  return rc;
+}
+
+int checkpoint_read(const char *path, sim_t *sim) {
+  MPI_Comm comm = sim_comm(sim);
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  double box[6];
+  sim_subdomain(sim, box, box + 3);
+  double *boxes = rank == 0 ? malloc((size_t)size * 6 * sizeof *boxes) : NULL;
+  MPI_Gather(box, 6, MPI_DOUBLE, boxes, 6, MPI_DOUBLE, 0, comm);
+  long *counts = calloc((size_t)size, sizeof *counts), step = 0;
+  particle_set_t set;
+  memset(&set, 0, sizeof set);
+  int rc = rank == 0 ? read_on_root(path, sim, size, boxes, &set, counts, &step) : 0;
+  MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
+  if (rc) {
+    free(boxes);
+    free(counts);
+    return -1;
+  }
+  MPI_Bcast(&step, 1, MPI_LONG, 0, comm);
+  MPI_Bcast(counts, size, MPI_LONG, 0, comm);
+  /* Scatter each rank's block, field by field. */
+  int *cnt = malloc((size_t)size * sizeof *cnt), *dsp = malloc((size_t)size * sizeof *dsp);
+  int *cnt3 = malloc((size_t)size * sizeof *cnt3), *dsp3 = malloc((size_t)size * sizeof *dsp3);
+  long off = 0;
+  for (int r = 0; r < size; r++) {
+    cnt[r] = (int)counts[r];
+    dsp[r] = (int)off;
+    cnt3[r] = 3 * cnt[r];
+    dsp3[r] = 3 * dsp[r];
+    off += counts[r];
+  }
+  const int n = cnt[rank];
+  particle_set_t mine;
+  particle_set_alloc(&mine, n, 1, 0);
+  MPI_Scatterv(set.id, cnt, dsp, MPI_INT64_T, mine.id, n, MPI_INT64_T, 0, comm);
+  MPI_Scatterv(set.species, cnt, dsp, MPI_INT32_T, mine.species, n, MPI_INT32_T, 0, comm);
+  MPI_Scatterv(set.x, cnt3, dsp3, MPI_DOUBLE, mine.x, 3 * n, MPI_DOUBLE, 0, comm);
+  MPI_Scatterv(set.v, cnt3, dsp3, MPI_DOUBLE, mine.v, 3 * n, MPI_DOUBLE, 0, comm);
+  MPI_Scatterv(set.f, cnt3, dsp3, MPI_DOUBLE, mine.f, 3 * n, MPI_DOUBLE, 0, comm);
+  particle_set_free(&set);
+  /* Re-add in local order; every particle must land here (it was owned here). */
+  int bad = 0;
+  for (int i = 0; i < n && !bad; i++)
+    bad = sim_add_particle(sim, mine.id[i], mine.species[i], mine.x + 3 * i, mine.v + 3 * i) != 1;
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
+  if (bad) {
+    if (rank == 0)
+      fprintf(
+          stderr,
+          "%s: a particle of the checkpoint does not belong to its rank's subdomain (decomposition "
+          "mismatch)\n",
+          path);
+  } else {
+    particles_t *p = sim_particles(sim);
+    for (int i = 0; i < n; i++)
+      for (int d = 0; d < 3; d++) p->f[d][i] = mine.f[3 * i + d];
+    sim_set_step_index(sim, step);
+    sim_forces_loaded(sim);
+  }
+  particle_set_free(&mine);
+  free(cnt);
+  free(dsp);
+  free(cnt3);
+  free(dsp3);
+  free(boxes);
+  free(counts);
+  return bad ? -1 : 0;
+}

@@ -1,0 +1,115 @@
+/* Initial configuration: offer a global particle source to the engine, generating Maxwell-Boltzmann
+ * velocities (momentum-free) where the source has none. */
+#include "io/init_config.h"
+#include "io/lammps_data.h"
+#include "io/snapshot.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+/* A global particle source: particle i of n (same on every rank). */
+typedef void (*source_get_fn)(const void *ctx, long i, int64_t *id, int *species, double x[3],
+                              double v[3]);
+
+static int offer_source(sim_t *sim, const scene_t *s, long n, source_get_fn get, const void *ctx,
+                        int has_v, const char *source) {
+  MPI_Comm comm = sim_comm(sim);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  const double kT = s->init.temperature;
+  /* Pass 1: centre-of-mass velocity of the generated mobile velocities, summed in global order on
+   * every rank (bitwise the same everywhere, whatever the decomposition). */
+  double vcm[3] = {0, 0, 0};
+  if (!has_v) {
+    double p[3] = {0, 0, 0}, mass = 0;
+    for (long i = 0; i < n; i++) {
+      int64_t id;
+      int sp;
+      double x[3], v[3];
+      get(ctx, i, &id, &sp, x, v);
+      if (s->species[sp].frozen) continue;
+      init_mb_velocity(s, id, sp, kT, v);
+      for (int d = 0; d < 3; d++) p[d] += s->species[sp].mass * v[d];
+      mass += s->species[sp].mass;
+    }
+    for (int d = 0; d < 3; d++) vcm[d] = mass > 0 ? p[d] / mass : 0;
+  }
+  long stored = 0;
+  int fail = 0;
+  for (long i = 0; i < n && !fail; i++) {
+    int64_t id;
+    int sp;
+    double x[3], v[3];
+    get(ctx, i, &id, &sp, x, v);
+    if (s->species[sp].frozen) {
+      v[0] = v[1] = v[2] = 0;
+    } else if (!has_v) {
+      init_mb_velocity(s, id, sp, kT, v);
+      for (int d = 0; d < 3; d++) v[d] -= vcm[d];
+    }
+    const int r = sim_add_particle(sim, id, sp, x, v);
+    if (r < 0) fail = 1;
+    stored += r > 0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, comm);
+  if (fail) {
+    if (rank == 0) fprintf(stderr, "%s: out of memory while adding %ld particles\n", source, n);
+    return -1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &stored, 1, MPI_LONG, MPI_SUM, comm);
+  if (stored != n) {
+    if (rank == 0)
+      fprintf(
+          stderr,
+          "%s: %ld particles generated but %ld stored (positions outside a non-periodic box?)\n",
+          source, n, stored);
+    return -1;
+  }
+  return 0;
+}
+
+/* Fill regions: global index -> (region, index in region); ids are 1 + global index. */
+typedef struct {
+  const scene_t *s;
+  long start[SCENE_MAX_FILLS + 1];
+} fill_ctx_t;
+
+static void fill_get(const void *vctx, long i, int64_t *id, int *sp, double x[3], double v[3]) {
+  const fill_ctx_t *c = vctx;
+  int k = 0;
+  while (i >= c->start[k + 1]) k++;
+  *id = (int64_t)i + 1;
+  *sp = c->s->init.fill[k].species;
+  init_fill_position(c->s, k, i - c->start[k], x);
+  v[0] = v[1] = v[2] = 0;
+}
+
+static void set_get(const void *vctx, long i, int64_t *id, int *sp, double x[3], double v[3]) {
+  const particle_set_t *set = vctx;
+  *id = set->id[i];
+  *sp = set->species[i];
+  for (int d = 0; d < 3; d++) {
+    x[d] = set->x[3 * i + d];
+    v[d] = set->v[3 * i + d];
+  }
+}
+
+int init_offer_set(sim_t *sim, const scene_t *s, const particle_set_t *set, const char *source) {
+  return offer_source(sim, s, set->n, set_get, set, set->has_v, source);
+}
+
+int init_configuration(sim_t *sim, const scene_t *s) {
+  MPI_Comm comm = sim_comm(sim);
+  if (s->init.kind == INIT_FILL) {
+    fill_ctx_t c = {.s = s};
+    for (int k = 0; k < s->init.n_fill; k++) c.start[k + 1] = c.start[k] + init_fill_count(s, k);
+    return offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
+  }
+  particle_set_t set;
+  int rc = s->init.kind == INIT_LAMMPS_DATA ? lammps_data_read_bcast(s->init.path, s, comm, &set)
+                                            : snapshot_read_bcast(s->init.path, s, comm, &set);
+  if (rc) return -1;
+  rc = init_offer_set(sim, s, &set, s->init.path);
+  particle_set_free(&set);
+  return rc;
+}

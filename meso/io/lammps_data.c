@@ -1,0 +1,241 @@
+/* LAMMPS data files (atomic style): reader and writer. */
+#include "io/lammps_data.h"
+#include "io/atomic_file.h"
+#include "io/gather.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define LINE_LEN 4096
+
+typedef struct {
+  const char *path;
+  FILE *fp;
+  long line;
+  char buf[LINE_LEN];
+} reader_t;
+
+/* Next line with comments stripped; returns NULL at end of file. */
+static char *next_line(reader_t *r) {
+  if (!fgets(r->buf, sizeof r->buf, r->fp)) return NULL;
+  r->line++;
+  char *h = strchr(r->buf, '#');
+  if (h) *h = 0;
+  return r->buf;
+}
+
+static int blank(const char *s) {
+  for (; *s; s++)
+    if (*s != ' ' && *s != '\t' && *s != '\r' && *s != '\n') return 0;
+  return 1;
+}
+
+static int fail(reader_t *r, const char *fmt, const char *what) {
+  fprintf(stderr, "%s:%ld: ", r->path, r->line);
+  fprintf(stderr, fmt, what);
+  fputc('\n', stderr);
+  return -1;
+}
+
+/* Skip blank lines up to the first line of a section body. */
+static char *section_body(reader_t *r) {
+  char *l;
+  while ((l = next_line(r)) && blank(l)) {
+  }
+  return l;
+}
+
+static long find_id(const int64_t *sorted_ids, const long *order, long n, int64_t id) {
+  long lo = 0, hi = n - 1;
+  while (lo <= hi) {
+    const long mid = (lo + hi) / 2;
+    if (sorted_ids[mid] == id) return order[mid];
+    if (sorted_ids[mid] < id)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
+  }
+  return -1;
+}
+
+static const int64_t *cmp_ids;
+static int cmp_order(const void *a, const void *b) {
+  const int64_t x = cmp_ids[*(const long *)a], y = cmp_ids[*(const long *)b];
+  return (x > y) - (x < y);
+}
+
+int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
+  reader_t r = {.path = path};
+  memset(out, 0, sizeof *out);
+  if (!(r.fp = fopen(path, "r"))) {
+    fprintf(stderr, "%s: cannot open LAMMPS data file: %s\n", path, strerror(errno));
+    return -1;
+  }
+  long natoms = -1, ntypes = -1;
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  int have_box[3] = {0, 0, 0}, have_atoms = 0, rc = -1;
+  char *l = next_line(&r); /* the first line is a title */
+  while ((l = next_line(&r))) {
+    if (blank(l)) continue;
+    char w1[64] = "", w2[64] = "", w3[64] = "", w4[64] = "";
+    const int nw = sscanf(l, "%63s %63s %63s %63s", w1, w2, w3, w4);
+    if (nw >= 2 && !strcmp(w2, "atoms")) {
+      natoms = atol(w1);
+    } else if (nw >= 3 && !strcmp(w2, "atom") && !strcmp(w3, "types")) {
+      ntypes = atol(w1);
+      if (ntypes < 1 || ntypes > s->n_species) {
+        fprintf(stderr,
+                "%s:%ld: expected at most %d atom types, the scene's species in order (got %ld)\n",
+                path, r.line, s->n_species, ntypes);
+        goto done;
+      }
+    } else if (nw >= 4 && w3[1] == 'l' && w3[2] == 'o' && w4[1] == 'h' && w4[2] == 'i' &&
+               w3[0] == w4[0] && w3[0] >= 'x' && w3[0] <= 'z') {
+      const int d = w3[0] - 'x';
+      lo[d] = atof(w1);
+      hi[d] = atof(w2);
+      have_box[d] = 1;
+    } else if (nw >= 3 && !strcmp(w3, "xz")) {
+      fail(&r, "expected an orthogonal box (got a triclinic tilt line%s)", "");
+      goto done;
+    } else if (!strcmp(w1, "Masses")) {
+      l = section_body(&r);
+      for (long k = 0; k < ntypes && l; k++, l = next_line(&r)) {
+        int type;
+        double m;
+        if (sscanf(l, "%d %lf", &type, &m) != 2 || type < 1 || type > ntypes) {
+          fail(&r, "Masses: expected 'type mass' with type in 1..ntypes (got '%s')", l);
+          goto done;
+        }
+        if (fabs(m - s->species[type - 1].mass) > 1e-12 * m)
+          fprintf(stderr,
+                  "%s:%ld: warning: mass of type %d is %g but scene species '%s' has %g (using the "
+                  "scene's)\n",
+                  path, r.line, type, m, s->species[type - 1].name, s->species[type - 1].mass);
+      }
+    } else if (!strcmp(w1, "Atoms")) {
+      if (nw >= 2 && strcmp(w2, "atomic") && strcmp(w2, "#")) {
+        fail(&r, "expected atom style 'atomic' (got '%s')", w2);
+        goto done;
+      }
+      if (natoms < 0 || ntypes < 0 || !have_box[0] || !have_box[1] || !have_box[2]) {
+        fail(
+            &r,
+            "expected the header lines 'N atoms', 'M atom types' and the box bounds before Atoms%s",
+            "");
+        goto done;
+      }
+      for (int d = 0; d < 3; d++)
+        if (fabs(lo[d] - s->box_lo[d]) > 1e-9 * (1 + fabs(lo[d])) ||
+            fabs(hi[d] - s->box_hi[d]) > 1e-9 * (1 + fabs(hi[d]))) {
+          fprintf(stderr, "%s: box bounds %c: expected the scene's box %g %g (got %g %g)\n", path,
+                  'x' + d, s->box_lo[d], s->box_hi[d], lo[d], hi[d]);
+          goto done;
+        }
+      if (particle_set_alloc(out, natoms, 0, 0)) {
+        fprintf(stderr, "%s: out of memory for %ld atoms\n", path, natoms);
+        goto done;
+      }
+      l = section_body(&r);
+      for (long i = 0; i < natoms; i++, l = next_line(&r)) {
+        long id;
+        int type, im[3];
+        double x[3];
+        const int got = l ? sscanf(l, "%ld %d %lf %lf %lf %d %d %d", &id, &type, &x[0], &x[1],
+                                   &x[2], &im[0], &im[1], &im[2])
+                          : 0;
+        if (got != 5 && got != 8) {
+          fail(&r, "Atoms: expected 'id type x y z [ix iy iz]' (got '%s')", l ? l : "end of file");
+          goto done;
+        }
+        if (type < 1 || type > ntypes) {
+          fprintf(stderr, "%s:%ld: Atoms: expected an atom type in 1..%ld (got %d)\n", path, r.line,
+                  ntypes, type);
+          goto done;
+        }
+        out->id[i] = id;
+        out->species[i] = type - 1;
+        for (int d = 0; d < 3; d++) out->x[3 * i + d] = x[d];
+      }
+      have_atoms = 1;
+    } else if (!strcmp(w1, "Velocities")) {
+      if (!have_atoms) {
+        fail(&r, "expected the Atoms section before Velocities%s", "");
+        goto done;
+      }
+      long *order = malloc((size_t)(natoms > 0 ? natoms : 1) * sizeof *order);
+      int64_t *sorted = malloc((size_t)(natoms > 0 ? natoms : 1) * sizeof *sorted);
+      for (long i = 0; i < natoms; i++) order[i] = i;
+      cmp_ids = out->id;
+      qsort(order, (size_t)natoms, sizeof *order, cmp_order);
+      for (long i = 0; i < natoms; i++) sorted[i] = out->id[order[i]];
+      l = section_body(&r);
+      int bad = 0;
+      for (long i = 0; i < natoms && !bad; i++, l = next_line(&r)) {
+        long id;
+        double v[3];
+        long k = -1;
+        if (!l || sscanf(l, "%ld %lf %lf %lf", &id, &v[0], &v[1], &v[2]) != 4 ||
+            (k = find_id(sorted, order, natoms, id)) < 0) {
+          fail(&r, "Velocities: expected 'id vx vy vz' with an id from Atoms (got '%s')",
+               l ? l : "end of file");
+          bad = 1;
+          break;
+        }
+        for (int d = 0; d < 3; d++) out->v[3 * k + d] = v[d];
+      }
+      free(order);
+      free(sorted);
+      if (bad) goto done;
+      out->has_v = 1;
+    } else if (w1[0] >= 'A' && w1[0] <= 'Z') {
+      fail(&r, "expected a section of an atomic-style file: Masses, Atoms, Velocities (got '%s')",
+           w1);
+      goto done;
+    }
+  }
+  if (!have_atoms) {
+    fprintf(stderr, "%s: expected an Atoms section (got none)\n", path);
+    goto done;
+  }
+  rc = 0;
+done:
+  fclose(r.fp);
+  if (rc) particle_set_free(out);
+  return rc;
+}
+
+int lammps_data_read_bcast(const char *path, const scene_t *s, MPI_Comm comm, particle_set_t *out) {
+  int rank, rc = 0;
+  MPI_Comm_rank(comm, &rank);
+  memset(out, 0, sizeof *out);
+  if (rank == 0) rc = lammps_data_read(path, s, out);
+  MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
+  if (rc) return -1;
+  return particle_set_bcast(out, 0, comm);
+}
+
+int lammps_data_write(const char *path, const scene_t *s, const particle_set_t *set, long step) {
+  char tmp[SCENE_PATH_LEN + 32];
+  FILE *fp = atomic_open(path, tmp, sizeof tmp);
+  if (!fp) return -1;
+  fprintf(fp, "LAMMPS data file written by mdpore (scene %s, step %ld)\n\n", s->name, step);
+  fprintf(fp, "%ld atoms\n%d atom types\n\n", set->n, s->n_species);
+  for (int d = 0; d < 3; d++)
+    fprintf(fp, "%.17g %.17g %clo %chi\n", s->box_lo[d], s->box_hi[d], 'x' + d, 'x' + d);
+  fprintf(fp, "\nMasses\n\n");
+  for (int k = 0; k < s->n_species; k++)
+    fprintf(fp, "%d %.17g # %s\n", k + 1, s->species[k].mass, s->species[k].name);
+  fprintf(fp, "\nAtoms # atomic\n\n");
+  for (long i = 0; i < set->n; i++)
+    fprintf(fp, "%lld %d %.17g %.17g %.17g\n", (long long)set->id[i], set->species[i] + 1,
+            set->x[3 * i], set->x[3 * i + 1], set->x[3 * i + 2]);
+  fprintf(fp, "\nVelocities\n\n");
+  for (long i = 0; i < set->n; i++)
+    fprintf(fp, "%lld %.17g %.17g %.17g\n", (long long)set->id[i], set->v[3 * i], set->v[3 * i + 1],
+            set->v[3 * i + 2]);
+  return atomic_commit(fp, tmp, path);
+}

@@ -1,0 +1,112 @@
+/* Thermo time series in CSV or HDF5 (see thermo_log.h). */
+#include "io/thermo_log.h"
+#include "io/h5_util.h"
+#include "physics/density_kernels.h"
+
+#include <errno.h>
+#include <string.h>
+#include <unistd.h>
+
+#define NCOL 15
+static const char *const columns = "step,time,T,KE,Pxx,Pyy,Pzz,Pxy,Pxz,Pyz,p,N,px,py,pz";
+
+int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, int append, int rank) {
+  memset(log, 0, sizeof *log);
+  log->file = log->dset = -1;
+  if (rank != 0 || !path[0]) return 0;
+  const size_t L = strlen(path);
+  log->hdf5 = L > 3 && !strcmp(path + L - 3, ".h5");
+  const int exists = access(path, F_OK) == 0;
+  if (!log->hdf5) {
+    log->fp = fopen(path, append && exists ? "a" : "w");
+    if (!log->fp) {
+      fprintf(stderr, "%s: cannot write thermo log: %s\n", path, strerror(errno));
+      return -1;
+    }
+    if (!(append && exists))
+      fprintf(log->fp,
+              "# mdpore thermo: scene %s, kernel %s, dt %g, seed %llu; P = full virial pressure "
+              "tensor\n%s\n",
+              s->name, s->density_kernel == MESO_KERNEL_LUCY ? "lucy" : "warren", s->dt,
+              (unsigned long long)s->seed, columns);
+    fflush(log->fp);
+  } else {
+    if (append && exists) {
+      log->file = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+      if (log->file >= 0) {
+        log->dset = H5Dopen2(log->file, "thermo", H5P_DEFAULT);
+        log->rows = h5_dataset_rows(log->file, "thermo");
+      }
+    } else {
+      log->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+      if (log->file >= 0) {
+        hsize_t dims[2] = {0, NCOL}, maxd[2] = {H5S_UNLIMITED, NCOL}, chunk[2] = {256, NCOL};
+        hid_t sp = H5Screate_simple(2, dims, maxd), pl = H5Pcreate(H5P_DATASET_CREATE);
+        H5Pset_chunk(pl, 2, chunk);
+        log->dset =
+            H5Dcreate2(log->file, "thermo", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
+        H5Pclose(pl);
+        H5Sclose(sp);
+        if (log->dset >= 0) h5_attr_string(log->dset, "columns", columns);
+        h5_attr_string(log->file, "scene", s->name);
+      }
+    }
+    if (log->file < 0 || log->dset < 0) {
+      fprintf(stderr, "%s: cannot write HDF5 thermo log\n", path);
+      thermo_log_close(log);
+      return -1;
+    }
+  }
+  log->active = 1;
+  return 0;
+}
+
+void thermo_log_row(thermo_log_t *log, const thermo_t *t) {
+  if (!log->active) return;
+  const double *P = t->pressure;
+  const double row[NCOL] = {(double)t->step,
+                            t->time,
+                            t->temperature,
+                            t->ke,
+                            P[0],
+                            P[1],
+                            P[2],
+                            P[3],
+                            P[4],
+                            P[5],
+                            (P[0] + P[1] + P[2]) / 3.0,
+                            (double)t->n_total,
+                            t->momentum[0],
+                            t->momentum[1],
+                            t->momentum[2]};
+  if (!log->hdf5) {
+    fprintf(log->fp, "%ld,%.10g", t->step, t->time);
+    for (int k = 2; k < NCOL; k++) {
+      if (k == 11)
+        fprintf(log->fp, ",%ld", t->n_total);
+      else
+        fprintf(log->fp, ",%.10g", row[k]);
+    }
+    fputc('\n', log->fp);
+    fflush(log->fp);
+    return;
+  }
+  hsize_t dims[2] = {(hsize_t)log->rows + 1, NCOL}, start[2] = {(hsize_t)log->rows, 0},
+          count[2] = {1, NCOL};
+  H5Dset_extent(log->dset, dims);
+  hid_t fs = H5Dget_space(log->dset), ms = H5Screate_simple(2, count, NULL);
+  H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+  H5Dwrite(log->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, row);
+  H5Sclose(ms);
+  H5Sclose(fs);
+  H5Fflush(log->file, H5F_SCOPE_LOCAL);
+  log->rows++;
+}
+
+void thermo_log_close(thermo_log_t *log) {
+  if (log->fp) fclose(log->fp);
+  if (log->dset >= 0) H5Dclose(log->dset);
+  if (log->file >= 0) H5Fclose(log->file);
+  memset(log, 0, sizeof *log);
+  log->file = log->dset = -1;
+}

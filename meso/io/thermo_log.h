@@ -1,0 +1,26 @@
+/* Thermo time series, written by rank 0: CSV (".csv", metadata lines start with '#') or HDF5
+ * (".h5", dataset /thermo of rows x 15 with a "columns" attribute). Columns: step, time, T, KE,
+ * Pxx, Pyy, Pzz, Pxy, Pxz, Pyz, p, N, px, py, pz      (p = trace / 3) Rows are appended and flushed
+ * as the run goes; a restart appends to an existing log. */
+#ifndef MESO_IO_THERMO_LOG_H
+#define MESO_IO_THERMO_LOG_H
+
+#include "engine/sim.h"
+
+#include <hdf5.h>
+
+typedef struct {
+  int active; /* rank 0 and a thermo file is set */
+  int hdf5;
+  FILE *fp;
+  hid_t file, dset;
+  long rows;
+} thermo_log_t;
+
+/* Rank 0 opens (append = continue a restarted run). 0 or -1 + message. */
+int thermo_log_open(thermo_log_t *log, const scene_t *scene, const char *path, int append,
+                    int rank);
+void thermo_log_row(thermo_log_t *log, const thermo_t *t);
+void thermo_log_close(thermo_log_t *log);
+
+#endif

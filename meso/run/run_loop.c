@@ -1,0 +1,145 @@
+/* The run loop (see run_loop.h): configuration, sim_setup, sim_step + outputs, summary. */
+#include "run/run_loop.h"
+#include "analysis/profile.h"
+#include "engine/sim.h"
+#include "io/checkpoint.h"
+#include "io/dump_lammps.h"
+#include "io/init_config.h"
+#include "io/snapshot.h"
+#include "io/thermo_log.h"
+#include "run/progress.h"
+#include "run/run_stats.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static void prefix(char *path, const char *dir) {
+  if (!path[0] || path[0] == '/') return;
+  char tmp[SCENE_PATH_LEN];
+  if (strlen(dir) + strlen(path) + 2 > sizeof tmp) return;
+  snprintf(tmp, sizeof tmp, "%s/%s", dir, path);
+  strcpy(path, tmp);
+}
+
+void run_apply_output_dir(scene_t *s, const char *dir) {
+  prefix(s->thermo.path, dir);
+  prefix(s->profile.path, dir);
+  prefix(s->snapshot.path, dir);
+  prefix(s->dump.path, dir);
+  prefix(s->checkpoint.path, dir);
+  prefix(s->summary_path, dir);
+}
+
+static int due(const scene_output_t *o, long step) {
+  return o->every > 0 && step % o->every == 0;
+}
+
+/* Outputs of one step; `first` marks the initial state of a fresh run. Collective. 0 or -1. */
+static int write_outputs(sim_t *sim, long step, int fresh_start, int last, snapshot_series_t *snaps,
+                         int *dump_started) {
+  const scene_t *s = sim_scene(sim);
+  int rc = 0;
+  if (due(&s->snapshot, step)) rc |= snapshot_series_write(snaps, sim);
+  if (due(&s->dump, step)) {
+    rc |= dump_lammps_frame(s->dump.path, sim, fresh_start && !*dump_started);
+    *dump_started = 1;
+  }
+  if (s->checkpoint.every > 0 && (due(&s->checkpoint, step) || last) && !(fresh_start && step == 0))
+    rc |= checkpoint_write(s->checkpoint.path, sim);
+  return rc;
+}
+
+int run_scene(const scene_t *scene, MPI_Comm comm) {
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const double t_start = MPI_Wtime();
+  sim_t *sim = sim_create(scene, comm);
+  if (!sim) return 1;
+  const scene_t *s = sim_scene(sim);
+  const int restart = s->restart_from[0] != 0;
+  int rc = restart ? checkpoint_read(s->restart_from, sim) : init_configuration(sim, s);
+  if (rc || sim_setup(sim)) {
+    sim_destroy(sim);
+    return 1;
+  }
+  const long first = sim_step_index(sim), last = first + s->steps;
+  comm = sim_comm(sim);
+
+  thermo_log_t log;
+  profile_t prof;
+  memset(&prof, 0, sizeof prof);
+  run_stats_t st;
+  snapshot_series_t snaps;
+  progress_t pr;
+  int dump_started = 0, err = thermo_log_open(&log, s, s->thermo.path, restart, rank);
+  MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm);
+  if (err) {
+    sim_destroy(sim);
+    return 1;
+  }
+  if (s->profile.nbins > 0 && profile_init(&prof, s, first, last, comm)) {
+    fprintf(stderr, "mdpore: out of memory for the profile\n");
+    sim_destroy(sim);
+    return 1;
+  }
+  run_stats_init(&st, s, first, last, size);
+  snapshot_series_init(&snaps, s->snapshot.path);
+  progress_start(&pr, s->progress, rank, first, last);
+
+  thermo_t th;
+  sim_thermo(sim, &th);
+  st.n_total = th.n_total;
+  if (!restart) {
+    if (due(&s->thermo, first)) thermo_log_row(&log, &th);
+    err = write_outputs(sim, first, 1, first == last, &snaps, &dump_started);
+  }
+  double loop = 0;
+  for (long step = first + 1; step <= last && !err; step++) {
+    const int sample = s->profile.nbins > 0 && profile_wants(&prof, step);
+    if (sample) sim_request_virial(sim, 1);
+    MPI_Barrier(comm);
+    const double t0 = MPI_Wtime();
+    if (sim_step(sim)) {
+      /* The engine printed its message (NaN, particle lost, ...). */
+      if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
+      err = 1;
+      break;
+    }
+    loop += MPI_Wtime() - t0;
+    if (sample) {
+      profile_sample(&prof, sim);
+      if (!profile_wants(&prof, step + 1)) sim_request_virial(sim, 0);
+    }
+    const int log_row = due(&s->thermo, step), stat = run_stats_wants(&st, step);
+    if (log_row || stat || pr.on) {
+      sim_thermo(sim, &th);
+      if (log_row) thermo_log_row(&log, &th);
+      if (stat && rank == 0) run_stats_add(&st, &th);
+      progress_update(&pr, step, th.temperature,
+                      (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3);
+    }
+    err = write_outputs(sim, step, !restart, step == last, &snaps, &dump_started);
+    if (!err && s->profile.nbins > 0 && s->checkpoint.every > 0 && due(&s->checkpoint, step) &&
+        rank == 0)
+      profile_write(&prof, s->profile.path);
+  }
+  progress_end(&pr);
+  thermo_log_close(&log);
+  if (!err) {
+    st.steps_done = sim_step_index(sim) - first;
+    st.loop_seconds = loop;
+    st.total_seconds = MPI_Wtime() - t_start;
+    if (rank == 0) {
+      if (s->profile.nbins > 0 && profile_write(&prof, s->profile.path)) err = 1;
+      if (run_summary_write(&st, s, s->profile.nbins > 0 ? &prof : NULL, stdout, s->summary_path))
+        err = 1;
+    }
+    MPI_Bcast(&err, 1, MPI_INT, 0, comm);
+  }
+  run_stats_free(&st);
+  snapshot_series_free(&snaps);
+  if (s->profile.nbins > 0) profile_free(&prof);
+  sim_destroy(sim);
+  return err ? 1 : 0;
+}

@@ -1,0 +1,45 @@
+/* What the run driver averages for its final summary (rank 0): thermo samples in the sampling
+ * window (steps >= output.profile.start, or the second half of the run without a profile), the
+ * surface tension series when a profile axis is set, and the loop timing. */
+#ifndef MESO_RUN_RUN_STATS_H
+#define MESO_RUN_RUN_STATS_H
+
+#include "analysis/block_average.h"
+#include "analysis/profile.h"
+#include "engine/sim.h"
+
+enum {
+  STAT_T,
+  STAT_KE,
+  STAT_PXX,
+  STAT_PYY,
+  STAT_PZZ,
+  STAT_PXY,
+  STAT_PXZ,
+  STAT_PYZ,
+  STAT_P,
+  STAT_GAMMA,
+  STAT_COUNT
+};
+extern const char *const run_stat_names[STAT_COUNT];
+
+typedef struct {
+  long window_start, sample_every, first_step, last_step;
+  int gamma_axis; /* -1: no surface tension (no profile axis) */
+  double gamma_len;
+  series_t s[STAT_COUNT];
+  double loop_seconds, total_seconds;
+  long n_total, steps_done;
+  int nranks;
+} run_stats_t;
+
+void run_stats_init(run_stats_t *st, const scene_t *scene, long first, long last, int nranks);
+int run_stats_wants(const run_stats_t *st, long step);
+void run_stats_add(run_stats_t *st, const thermo_t *t);
+void run_stats_free(run_stats_t *st);
+
+/* Rank 0: print the human summary to `out` and write the summary JSON atomically. 0 or -1. */
+int run_summary_write(const run_stats_t *st, const scene_t *scene, const profile_t *profile,
+                      FILE *out, const char *json_path);
+
+#endif

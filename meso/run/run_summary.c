@@ -1,0 +1,106 @@
+/* Final summary of a run: human-readable lines on stdout and summary.json (atomic), with
+ * block-averaged standard errors (Flyvbjerg-Petersen, analysis/block_average.c). */
+#include "io/atomic_file.h"
+#include "physics/density_kernels.h"
+#include "run/run_stats.h"
+
+#include <math.h>
+#include <string.h>
+
+static void json_num(FILE *fp, double v) {
+  if (isfinite(v))
+    fprintf(fp, "%.10g", v);
+  else
+    fprintf(fp, "null");
+}
+
+static void json_stat(FILE *fp, const char *name, double mean, double err, int last) {
+  fprintf(fp, "    \"%s\": {\"mean\": ", name);
+  json_num(fp, mean);
+  fprintf(fp, ", \"err\": ");
+  json_num(fp, err);
+  fprintf(fp, "}%s\n", last ? "" : ",");
+}
+
+int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *prof, FILE *out,
+                      const char *json_path) {
+  block_average_t b[STAT_COUNT];
+  for (int k = 0; k < STAT_COUNT; k++) b[k] = block_average(st->s[k].x, st->s[k].n);
+  const long samples = st->s[STAT_T].n;
+  double rho = NAN, rho_err = NAN;
+  int plateau = 0;
+  if (prof && prof->samples > 0) plateau = profile_plateau_density(prof, &rho, &rho_err);
+  const double pss =
+      st->loop_seconds > 0 ? (double)st->n_total * st->steps_done / st->loop_seconds : 0;
+
+  fprintf(out, "\n== %s: %ld steps (to step %ld), %ld particles, %d ranks, kernel %s ==\n", s->name,
+          st->steps_done, st->last_step, st->n_total, st->nranks,
+          s->density_kernel == MESO_KERNEL_LUCY ? "lucy" : "warren");
+  if (samples > 0) {
+    fprintf(out, "averages over steps %ld..%ld (%ld samples, block-averaged standard errors):\n",
+            st->window_start, st->last_step, samples);
+    fprintf(out, "  T = %.4f +- %.4f   p = %.4f +- %.4f\n", b[STAT_T].mean, b[STAT_T].err,
+            b[STAT_P].mean, b[STAT_P].err);
+    fprintf(out, "  Pxx = %.4f +- %.4f   Pyy = %.4f +- %.4f   Pzz = %.4f +- %.4f\n",
+            b[STAT_PXX].mean, b[STAT_PXX].err, b[STAT_PYY].mean, b[STAT_PYY].err, b[STAT_PZZ].mean,
+            b[STAT_PZZ].err);
+    fprintf(out, "  Pxy = %.4f +- %.4f   Pxz = %.4f +- %.4f   Pyz = %.4f +- %.4f\n",
+            b[STAT_PXY].mean, b[STAT_PXY].err, b[STAT_PXZ].mean, b[STAT_PXZ].err, b[STAT_PYZ].mean,
+            b[STAT_PYZ].err);
+    if (st->gamma_axis >= 0)
+      fprintf(
+          out,
+          "  liquid density = %.4g +- %.2g   surface tension = %.4g +- %.2g (kT/rc^2, normal %c, "
+          "two interfaces)\n",
+          rho, rho_err, b[STAT_GAMMA].mean, b[STAT_GAMMA].err, 'x' + st->gamma_axis);
+  } else {
+    fprintf(out, "no samples in the averaging window (steps >= %ld every %ld)\n", st->window_start,
+            st->sample_every);
+  }
+  fprintf(out, "performance: %.2f M particle-steps/s (%.2f s in the step loop, %.2f s total)\n",
+          pss / 1e6, st->loop_seconds, st->total_seconds);
+  fflush(out);
+
+  if (!json_path || !json_path[0]) return 0;
+  char tmp[SCENE_PATH_LEN + 32];
+  FILE *fp = atomic_open(json_path, tmp, sizeof tmp);
+  if (!fp) return -1;
+  fprintf(fp,
+          "{\n  \"scene\": \"%s\",\n  \"scene_file\": \"%s\",\n  \"kernel\": \"%s\",\n  \"ranks\": "
+          "%d,\n",
+          s->name, s->file, s->density_kernel == MESO_KERNEL_LUCY ? "lucy" : "warren", st->nranks);
+  fprintf(
+      fp,
+      "  \"particles\": %ld,\n  \"first_step\": %ld,\n  \"last_step\": %ld,\n  \"dt\": %.10g,\n",
+      st->n_total, st->first_step, st->last_step, s->dt);
+  fprintf(fp,
+          "  \"window\": {\"start_step\": %ld, \"end_step\": %ld, \"sample_every\": %ld, "
+          "\"samples\": %ld},\n",
+          st->window_start, st->last_step, st->sample_every, samples);
+  fprintf(fp, "  \"thermo\": {\n");
+  for (int k = 0; k < STAT_GAMMA; k++)
+    json_stat(fp, run_stat_names[k], b[k].mean, b[k].err, k == STAT_GAMMA - 1);
+  fprintf(fp, "  },\n");
+  if (st->gamma_axis >= 0) {
+    fprintf(
+        fp,
+        "  \"profile\": {\"axis\": \"%c\", \"bins\": %d, \"samples\": %ld, \"file\": \"%s\"},\n",
+        'x' + st->gamma_axis, prof ? prof->nbins : 0, prof ? prof->samples : 0, s->profile.path);
+    fprintf(fp, "  \"liquid_density\": {\"mean\": ");
+    json_num(fp, rho);
+    fprintf(fp, ", \"err\": ");
+    json_num(fp, rho_err);
+    fprintf(fp, ", \"plateau_bins\": %d},\n", plateau);
+    fprintf(fp, "  \"surface_tension\": {\"mean\": ");
+    json_num(fp, b[STAT_GAMMA].mean);
+    fprintf(fp, ", \"err\": ");
+    json_num(fp, b[STAT_GAMMA].err);
+    fprintf(fp, ", \"formula\": \"(L_n / 2) <P_nn - (P_t1 + P_t2) / 2>\"},\n");
+  }
+  fprintf(fp,
+          "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "
+          "\"particles\": %ld, "
+          "\"particle_steps_per_second\": %.6g}\n}\n",
+          st->loop_seconds, st->total_seconds, st->steps_done, st->n_total, pss);
+  return atomic_commit(fp, tmp, json_path);
+}
