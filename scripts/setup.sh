@@ -6,7 +6,7 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config clang-format
       libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
       libyaml-dev librandom123-dev libtiff-dev petsc-dev
-      python3 python3-numpy python3-matplotlib python3-yaml
+      python3 python3-numpy python3-matplotlib python3-yaml python3-h5py
       openfoam)
 missing=()
 for p in "${pkgs[@]}"; do
