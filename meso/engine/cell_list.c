@@ -70,7 +70,11 @@ int cell_list_build(cell_list_t *cl, const particles_t *p, const double lo[3], c
     cl->cell_of[i] = c;
     cl->start[c + 1]++;
   }
-  for (int c = 0; c < cl->ncell; c++) cl->start[c + 1] += cl->start[c];
+  cl->max_per_cell = 0;
+  for (int c = 0; c < cl->ncell; c++) {
+    if (cl->start[c + 1] > cl->max_per_cell) cl->max_per_cell = cl->start[c + 1];
+    cl->start[c + 1] += cl->start[c];
+  }
   /* Fill using start[] as running cursors, then shift back. */
   for (int i = 0; i < n; i++) {
     const int slot = cl->start[cl->cell_of[i]]++;

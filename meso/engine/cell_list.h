@@ -16,6 +16,7 @@ typedef struct {
   int *idx;     /* [n]: particle index of each bin-ordered slot */
   int *cell_of; /* [n]: bin of each particle (by particle index) */
   double *px, *py, *pz; /* [n]: positions in bin order */
+  int max_per_cell; /* largest bin population (sizes the candidate buffers of the pair passes) */
   int cap_cells, cap_part;
 } cell_list_t;
 

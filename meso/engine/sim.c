@@ -44,6 +44,7 @@ void sim_destroy(sim_t *sim) {
   if (!sim) return;
   pstore_free(&sim->p);
   cell_list_free(&sim->cells);
+  cpu_neighbours_free(&sim->neighbours);
   ghosts_free(&sim->ghosts);
   xbuf_free(&sim->sbuf);
   xbuf_free(&sim->rbuf);
@@ -82,15 +83,16 @@ int sim_compute_forces(sim_t *sim) {
   if (plan->pair_terms) {
     if (ghosts_build(&sim->ghosts, &sim->dc, p, plan->rcut, plan->ghost_v)) return -1;
     if (cell_list_build(&sim->cells, p, sim->dc.lo, sim->dc.hi, plan->rcut)) return -1;
+    if (cpu_neighbours_build(&sim->neighbours, plan, p, &sim->cells)) return -1;
     if (plan->density) {
-      cpu_density_pass(plan, p, &sim->cells);
+      cpu_density_pass(plan, p, &sim->cells, &sim->neighbours);
       if (ghosts_sync_scalar(&sim->ghosts, &sim->dc, p->rho)) return -1;
     }
     force_pass_args_t args = {.seed = sim->scene.seed,
                               .step = (uint64_t)sim->step,
                               .dt = sim->scene.dt,
                               .per_particle_virial = sim->want_virial};
-    cpu_force_pass(plan, p, &sim->cells, &args);
+    cpu_force_pass(plan, p, &sim->cells, &sim->neighbours, &args);
     memcpy(sim->virial, args.virial, sizeof sim->virial);
   } else {
     for (int d = 0; d < 3; d++) memset(p->f[d], 0, (size_t)p->n_local * sizeof(double));

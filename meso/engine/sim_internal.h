@@ -2,6 +2,7 @@
 #ifndef MESO_ENGINE_SIM_INTERNAL_H
 #define MESO_ENGINE_SIM_INTERNAL_H
 
+#include "backend/cpu/cpu_passes.h"
 #include "cell_list.h"
 #include "decomp.h"
 #include "exchange.h"
@@ -17,6 +18,7 @@ struct sim {
   decomp_t dc;
   particles_t p;
   cell_list_t cells;
+  nlist_t neighbours;
   ghost_plan_t ghosts;
   xbuf_t sbuf, rbuf; /* migration buffers */
   long step;

@@ -10,8 +10,24 @@
 
 #include <stdint.h>
 
+/* Neighbour lists of the owned particles for one step: the bin slots within the largest cutoff of
+ * the particle's species row, in bin order, built once and used by the density and the force pass.
+ */
+typedef struct {
+  int stride; /* room per particle; grown when a particle has more neighbours */
+  int *count; /* [n_local] */
+  int *slot;  /* [n_local * stride] */
+  size_t cap; /* allocated slots */
+  int cap_n;  /* allocated counts */
+} nlist_t;
+
+/* Build the lists of all owned particles of p. 0 or -1 (out of memory). */
+int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
+                         const cell_list_t *cl);
+void cpu_neighbours_free(nlist_t *nl);
+
 /* rho_i = sum_{j != i, r < rd} w_rho(r) for owned i (physics.md section 1; self term excluded). */
-void cpu_density_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl);
+void cpu_density_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, const nlist_t *nl);
 
 typedef struct {
   uint64_t seed;
@@ -24,7 +40,7 @@ typedef struct {
 
 /* f_i = sum_j F_ij for owned i, F_ij from the pair terms of the plan (meso/physics/pair_forces.h).
  * Overwrites p->f of owned particles. */
-void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl,
+void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, const nlist_t *nl,
                     force_pass_args_t *args);
 
 #endif

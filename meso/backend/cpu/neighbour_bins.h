@@ -22,4 +22,21 @@ static inline int neighbour_rows(const cell_list_t *cl, int cell, int lo[9], int
   return n;
 }
 
+/* Slots of all particles in the 27 bins around a position (its bin: cell) with r^2 < cut2, in bin
+ * order, written to cand (room for 27 * max_per_cell). The filter is branch-free: the slot is
+ * always stored and the count advances only for a hit. Returns the number of candidates. */
+static inline int gather_candidates(const cell_list_t *cl, int cell, double xi, double yi,
+                                    double zi, double cut2, int *cand) {
+  int lo[9], hi[9];
+  const int nrows = neighbour_rows(cl, cell, lo, hi);
+  int m = 0;
+  for (int r = 0; r < nrows; r++)
+    for (int t = lo[r]; t < hi[r]; t++) {
+      const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
+      cand[m] = t;
+      m += (dx * dx + dy * dy + dz * dz) < cut2;
+    }
+  return m;
+}
+
 #endif

@@ -1,0 +1,71 @@
+/* Per-step neighbour lists (cpu_passes.h): one scan of the 27 bins around each owned particle,
+ * shared by the density and the force pass. Lists are in bin order, so the summation order of each
+ * particle is fixed by the configuration, not by the thread count. */
+#include "cpu_passes.h"
+#include "neighbour_bins.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+void cpu_neighbours_free(nlist_t *nl) {
+  free(nl->count);
+  free(nl->slot);
+  nl->count = NULL;
+  nl->slot = NULL;
+  nl->cap = 0;
+  nl->cap_n = 0;
+}
+
+static int reserve(nlist_t *nl, int n, int stride) {
+  if (n > nl->cap_n) {
+    int *c = realloc(nl->count, (size_t)n * sizeof(int));
+    if (!c) return -1;
+    nl->count = c;
+    nl->cap_n = n;
+  }
+  const size_t need = (size_t)n * (size_t)stride;
+  if (need > nl->cap) {
+    int *s = realloc(nl->slot, need * sizeof(int));
+    if (!s) return -1;
+    nl->slot = s;
+    nl->cap = need;
+  }
+  nl->stride = stride;
+  return 0;
+}
+
+int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
+                         const cell_list_t *cl) {
+  double cut2[SCENE_MAX_SPECIES] = {0};
+  for (int a = 0; a < plan->n_species; a++)
+    for (int b = 0; b < plan->n_species; b++)
+      if (plan->coef[a][b].cut2 > cut2[a]) cut2[a] = plan->coef[a][b].cut2;
+  const int nslots = p->n_local + p->n_ghost, n_local = p->n_local;
+  int stride = nl->stride > 0 ? nl->stride : 64;
+  const size_t scratch = (size_t)27 * (size_t)cl->max_per_cell + 1;
+  for (;;) {
+    if (reserve(nl, n_local > 0 ? n_local : 1, stride)) return -1;
+    int most = 0, fail = 0;
+#pragma omp parallel reduction(max : most) reduction(| : fail)
+    {
+      int *cand = malloc(scratch * sizeof(int));
+      if (!cand) fail = 1;
+#pragma omp for schedule(static)
+      for (int q = 0; q < nslots; q++) {
+        const int i = cl->idx[q];
+        if (i >= n_local || !cand) continue;
+        const int m = gather_candidates(cl, cl->cell_of[i], cl->px[q], cl->py[q], cl->pz[q],
+                                        cut2[p->species[i]], cand);
+        if (m > most) most = m;
+        if (m > stride) continue; /* list too short: redone with a larger stride */
+        int *out = nl->slot + (size_t)i * (size_t)stride;
+        for (int k = 0; k < m; k++) out[k] = cand[k];
+        nl->count[i] = m;
+      }
+      free(cand);
+    }
+    if (fail) return -1;
+    if (most <= stride) return 0;
+    stride = most + most / 4 + 8;
+  }
+}
