@@ -69,6 +69,8 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
           "{\n  \"scene\": \"%s\",\n  \"scene_file\": \"%s\",\n  \"kernel\": \"%s\",\n  \"ranks\": "
           "%d,\n",
           s->name, s->file, s->density_kernel == MESO_KERNEL_LUCY ? "lucy" : "warren", st->nranks);
+  fprintf(fp, "  \"box\": [%.10g, %.10g, %.10g],\n", s->box_hi[0] - s->box_lo[0],
+          s->box_hi[1] - s->box_lo[1], s->box_hi[2] - s->box_lo[2]);
   fprintf(
       fp,
       "  \"particles\": %ld,\n  \"first_step\": %ld,\n  \"last_step\": %ld,\n  \"dt\": %.10g,\n",
