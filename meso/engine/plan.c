@@ -109,6 +109,7 @@ int plan_build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
       c->rd = sp->rd;
       c->inv_rd = sp->rd > 0 ? 1.0 / sp->rd : 0.0;
       c->rd2 = plan->density ? sp->rd * sp->rd : 0.0;
+      c->wnorm = sp->rd > 0 ? w_rho_norm(s->density_kernel, sp->rd) : 0.0;
       c->cut2 = c->rc2 > c->rd2 ? c->rc2 : c->rd2;
       for (int e = 0; e < EFFECT_COUNT; e++) {
         const effect_t *eff = effect_get(e);

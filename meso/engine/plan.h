@@ -22,7 +22,8 @@ typedef struct {
   double gamma, sigma; /* sigma^2 = 2 gamma kT (fluctuation-dissipation)                 */
   double rc, inv_rc, rc2;
   double rd, inv_rd, rd2;
-  double cut2; /* square of the largest cutoff any named pair term uses for this pair */
+  double wnorm; /* density-kernel normalisation for this rd (w_rho_norm) */
+  double cut2;  /* square of the largest cutoff any named pair term uses for this pair */
 } pair_coef_t;
 
 typedef struct {

@@ -10,15 +10,18 @@
 
 #include <stdint.h>
 
-/* Neighbour lists of the owned particles for one step: the bin slots within the largest cutoff of
- * the particle's species row, in bin order, built once and used by the density and the force pass.
- */
+/* Neighbour lists of the owned particles for one step: the bin slots (other than the particle's
+ * own) within the largest cutoff of the particle's species row, built once and used by the density
+ * and the force pass. Each list holds first the neighbours within the row's largest rd (count_near
+ * of them), then the others, each part in bin order, so the density pass and the many-body term
+ * loop without unpredictable branches. */
 typedef struct {
-  int stride; /* room per particle; grown when a particle has more neighbours */
-  int *count; /* [n_local] */
-  int *slot;  /* [n_local * stride] */
-  size_t cap; /* allocated slots */
-  int cap_n;  /* allocated counts */
+  int stride;      /* room per particle; grown when a particle has more neighbours */
+  int *count;      /* [n_local] */
+  int *count_near; /* [n_local] */
+  int *slot;       /* [n_local * stride] */
+  size_t cap;      /* allocated slots */
+  int cap_n;       /* allocated counts */
 } nlist_t;
 
 /* Build the lists of all owned particles of p. 0 or -1 (out of memory). */

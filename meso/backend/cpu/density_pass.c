@@ -8,12 +8,14 @@
 
 /* rho of owned particle i (slot q in bin order); kernel is a compile-time constant after inlining.
  */
+/* rho of owned particle i (slot q in bin order); kernel is a compile-time constant after inlining.
+ * Only the near part of the neighbour list (within the row's largest rd) is visited. */
 static inline __attribute__((always_inline)) double
 density_of(const plan_t *plan, const particles_t *p, const cell_list_t *cl, int q, int i,
            const nlist_t *nl, const int kernel) {
   const double xi = cl->px[q], yi = cl->py[q], zi = cl->pz[q];
   const pair_coef_t *row = plan->coef[p->species[i]];
-  const int m = nl->count[i];
+  const int m = nl->count_near[i];
   const int *cand = nl->slot + (size_t)i * (size_t)nl->stride;
   double sum = 0.0;
   for (int k = 0; k < m; k++) {
@@ -21,9 +23,10 @@ density_of(const plan_t *plan, const particles_t *p, const cell_list_t *cl, int 
     const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
     const double r2 = dx * dx + dy * dy + dz * dz;
     const pair_coef_t *c = &row[p->species[j]];
-    if (r2 >= c->rd2 || j == i) continue;
+    if (r2 >= c->rd2) continue; /* species-dependent rd only */
     const double r = sqrt(r2);
-    sum += kernel == MESO_KERNEL_LUCY ? w_rho_lucy(r, c->rd) : w_rho_warren(r, c->rd);
+    sum += kernel == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c->inv_rd, c->wnorm)
+                                      : w_rho_warren_inv(r, c->inv_rd, c->wnorm);
   }
   return sum;
 }

@@ -30,23 +30,24 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
   const double rho_i = (terms & PAIR_TERM_MANYBODY) ? p->rho[i] : 0.0;
   const double vxi = k->vx[i], vyi = k->vy[i], vzi = k->vz[i];
   const int64_t id_i = p->id[i];
-  const int m = nl->count[i];
+  const int m = nl->count[i], m_near = nl->count_near[i];
   const int *cand = nl->slot + (size_t)i * (size_t)nl->stride;
   double sfx = 0, sfy = 0, sfz = 0;
   double vxx = 0, vyy = 0, vzz = 0, vxy = 0, vxz = 0, vyz = 0;
+  /* Near part (within rd: all terms), then far part (no many-body term). */
   for (int n = 0; n < m; n++) {
+    const int near = (terms & PAIR_TERM_MANYBODY) && n < m_near;
     const int t = cand[n];
     const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
     const double r2 = dx * dx + dy * dy + dz * dz;
     const int j = cl->idx[t];
     const pair_coef_t *c = &row[p->species[j]];
-    if (r2 >= c->cut2 || r2 == 0.0) continue; /* r2 == 0: i itself (no direction, no force) */
+    if (r2 >= c->cut2 || r2 == 0.0) continue; /* r2 == 0: coincident particles (no direction) */
     const double dist = sqrt(r2), inv_r = 1.0 / dist;
     double fp = 0.0; /* magnitude along e = r_ij / r */
     if ((terms & PAIR_TERM_CONSERVATIVE) && r2 < c->rc2)
       fp += pair_conservative_inv(c->A, dist, c->inv_rc);
-    if ((terms & PAIR_TERM_MANYBODY) && r2 < c->rd2)
-      fp += pair_manybody_inv(c->B, rho_i + p->rho[j], dist, c->inv_rd);
+    if (near && r2 < c->rd2) fp += pair_manybody_inv(c->B, rho_i + p->rho[j], dist, c->inv_rd);
     if ((terms & PAIR_TERM_THERMOSTAT) && r2 < c->rc2) {
       const double wR = pair_weight_random_inv(dist, c->inv_rc, k->s_exp, k->s_one);
       const double e_dot_v =

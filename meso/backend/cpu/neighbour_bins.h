@@ -22,10 +22,11 @@ static inline int neighbour_rows(const cell_list_t *cl, int cell, int lo[9], int
   return n;
 }
 
-/* Slots of all particles in the 27 bins around a position (its bin: cell) with r^2 < cut2, in bin
- * order, written to cand (room for 27 * max_per_cell). The filter is branch-free: the slot is
- * always stored and the count advances only for a hit. Returns the number of candidates. */
-static inline int gather_candidates(const cell_list_t *cl, int cell, double xi, double yi,
+/* Slots of all particles in the 27 bins around the particle at slot self (its bin: cell) with
+ * r^2 < cut2, the particle itself excluded, in bin order, written to cand (room for 27 *
+ * max_per_cell). The filter is branch-free: the slot is always stored and the count advances only
+ * for a hit. Returns the number of candidates. */
+static inline int gather_candidates(const cell_list_t *cl, int cell, int self, double xi, double yi,
                                     double zi, double cut2, int *cand) {
   int lo[9], hi[9];
   const int nrows = neighbour_rows(cl, cell, lo, hi);
@@ -34,7 +35,7 @@ static inline int gather_candidates(const cell_list_t *cl, int cell, double xi, 
     for (int t = lo[r]; t < hi[r]; t++) {
       const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
       cand[m] = t;
-      m += (dx * dx + dy * dy + dz * dz) < cut2;
+      m += ((dx * dx + dy * dy + dz * dz) < cut2) & (t != self);
     }
   return m;
 }

@@ -9,8 +9,10 @@
 
 void cpu_neighbours_free(nlist_t *nl) {
   free(nl->count);
+  free(nl->count_near);
   free(nl->slot);
   nl->count = NULL;
+  nl->count_near = NULL;
   nl->slot = NULL;
   nl->cap = 0;
   nl->cap_n = 0;
@@ -21,6 +23,9 @@ static int reserve(nlist_t *nl, int n, int stride) {
     int *c = realloc(nl->count, (size_t)n * sizeof(int));
     if (!c) return -1;
     nl->count = c;
+    c = realloc(nl->count_near, (size_t)n * sizeof(int));
+    if (!c) return -1;
+    nl->count_near = c;
     nl->cap_n = n;
   }
   const size_t need = (size_t)n * (size_t)stride;
@@ -36,10 +41,12 @@ static int reserve(nlist_t *nl, int n, int stride) {
 
 int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
                          const cell_list_t *cl) {
-  double cut2[SCENE_MAX_SPECIES] = {0};
+  double cut2[SCENE_MAX_SPECIES] = {0}, near2[SCENE_MAX_SPECIES] = {0};
   for (int a = 0; a < plan->n_species; a++)
-    for (int b = 0; b < plan->n_species; b++)
+    for (int b = 0; b < plan->n_species; b++) {
       if (plan->coef[a][b].cut2 > cut2[a]) cut2[a] = plan->coef[a][b].cut2;
+      if (plan->coef[a][b].rd2 > near2[a]) near2[a] = plan->coef[a][b].rd2;
+    }
   const int nslots = p->n_local + p->n_ghost, n_local = p->n_local;
   int stride = nl->stride > 0 ? nl->stride : 64;
   const size_t scratch = (size_t)27 * (size_t)cl->max_per_cell + 1;
@@ -48,19 +55,33 @@ int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
     int most = 0, fail = 0;
 #pragma omp parallel reduction(max : most) reduction(| : fail)
     {
-      int *cand = malloc(scratch * sizeof(int));
+      int *cand = malloc(2 * scratch * sizeof(int));
       if (!cand) fail = 1;
 #pragma omp for schedule(static)
       for (int q = 0; q < nslots; q++) {
         const int i = cl->idx[q];
         if (i >= n_local || !cand) continue;
-        const int m = gather_candidates(cl, cl->cell_of[i], cl->px[q], cl->py[q], cl->pz[q],
-                                        cut2[p->species[i]], cand);
+        const double xi = cl->px[q], yi = cl->py[q], zi = cl->pz[q];
+        const int m =
+            gather_candidates(cl, cl->cell_of[i], q, xi, yi, zi, cut2[p->species[i]], cand);
         if (m > most) most = m;
         if (m > stride) continue; /* list too short: redone with a larger stride */
+        /* Partition (stable): neighbours within rd first, then the rest. */
         int *out = nl->slot + (size_t)i * (size_t)stride;
-        for (int k = 0; k < m; k++) out[k] = cand[k];
+        const double n2 = near2[p->species[i]];
+        int *far = cand + scratch; /* second half of the scratch buffer */
+        int nn = 0, nf = 0;
+        for (int k = 0; k < m; k++) {
+          const int t = cand[k];
+          const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
+          if (dx * dx + dy * dy + dz * dz < n2)
+            out[nn++] = t;
+          else
+            far[nf++] = t;
+        }
+        for (int k = 0; k < nf; k++) out[nn + k] = far[k];
         nl->count[i] = m;
+        nl->count_near[i] = nn;
       }
       free(cand);
     }
