@@ -9,18 +9,6 @@
 
 static const char axis_name[3] = {'x', 'y', 'z'};
 
-double plan_ghost_cutoff(const scene_t *s) {
-  double cut = 0.0;
-  const int uses_rc = s->effect[EFFECT_MDPD_ATTRACTION] || s->effect[EFFECT_DPD_CONSERVATIVE] ||
-                      s->effect[EFFECT_DPD_THERMOSTAT];
-  for (int a = 0; a < s->n_species; a++)
-    for (int b = 0; b < s->n_species; b++) {
-      if (uses_rc && s->pair[a][b].rc > cut) cut = s->pair[a][b].rc;
-      if (s->effect[EFFECT_MDPD_REPULSION] && s->pair[a][b].rd > cut) cut = s->pair[a][b].rd;
-    }
-  return cut;
-}
-
 static int check_scene_basics(const scene_t *s, char *err, size_t errlen) {
   if (s->n_species < 1 || s->n_species > SCENE_MAX_SPECIES) {
     snprintf(err, errlen, "%s: %d species: expected 1 to %d", s->file, s->n_species,
@@ -75,7 +63,7 @@ int plan_build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
   plan->walls = (needs & NEED_AFTER_DRIFT) != 0;
   plan->weight_exp = s->weight_exp > 0 ? s->weight_exp : 1.0;
   plan->weight_exp_is_one = plan->weight_exp == 1.0;
-  plan->rcut = plan_ghost_cutoff(s);
+  plan->rcut = scene_max_cutoff(s); /* meso/io/scene_util.c */
   plan->max_disp = 0.5 * (plan->rcut > 0 ? plan->rcut : 1.0);
   plan->n_species = s->n_species;
   for (int a = 0; a < s->n_species; a++) {

@@ -48,8 +48,4 @@ typedef struct {
 /* Build and validate the plan. Returns 0, or -1 with a message in err (names the scene file). */
 int plan_build(plan_t *plan, const scene_t *scene, char *err, size_t errlen);
 
-/* Ghost cutoff of a scene: the largest cutoff any named pair effect uses (rc of conservative and
- * thermostat terms, rd of the density pass and many-body term). 0 when no pair effect is named. */
-double plan_ghost_cutoff(const scene_t *scene);
-
 #endif
