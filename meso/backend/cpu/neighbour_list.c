@@ -74,10 +74,11 @@ int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
         for (int k = 0; k < m; k++) {
           const int t = cand[k];
           const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
-          if (dx * dx + dy * dy + dz * dz < n2)
-            out[nn++] = t;
-          else
-            far[nf++] = t;
+          const int is_near = dx * dx + dy * dy + dz * dz < n2;
+          out[nn] = t; /* branch-free: store in both, advance one */
+          far[nf] = t;
+          nn += is_near;
+          nf += !is_near;
         }
         for (int k = 0; k < nf; k++) out[nn + k] = far[k];
         nl->count[i] = m;
