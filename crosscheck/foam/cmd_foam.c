@@ -1,0 +1,306 @@
+/* mdpore foam IMAGE --axis x|y|z: continuum (OpenFOAM simpleFoam, Stokes) permeability of a voxel
+ * image, the cross-check for the mDPD pore solver. Prints one JSON object. */
+#define _GNU_SOURCE /* nftw */
+#include "foam_case.h"
+#include "mdpore_image_cli.h"
+
+#include <errno.h>
+#include <ftw.h>
+#include <math.h>
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define EXIT_NOT_CONVERGED 3
+#define EXIT_NO_OPENFOAM 4
+
+static void usage(FILE *to) {
+  fprintf(
+      to,
+      "usage: mdpore foam IMAGE --axis x|y|z [options]\n"
+      "Stokes flow through the pore voxels with OpenFOAM (simpleFoam, laminar, nu = 1 in voxel\n"
+      "units) and the permeability k = mu q L / dp, q = Q / A_total (superficial velocity over "
+      "the\n"
+      "whole cross-section, solid included). Prints JSON.\n"
+      "  --axis x|y|z          flow direction (required)\n"
+      "  --refine R            R^3 hex cells per voxel (default 1)\n"
+      "  --drive pressure|periodic  pressure drop between inlet and outlet faces (default), or\n"
+      "                        cyclic inlet/outlet with a body force (needs matching end slices)\n"
+      "  --sides symmetry|wall the four box faces parallel to the flow (default symmetry)\n"
+      "  --np N                run OpenFOAM on N ranks (decomposePar, mpirun)\n"
+      "  --tol-residual T      initial residuals of p and U along the axis (default 1e-6)\n"
+      "  --tol-flux T          relative flow-rate change between checks and its estimated "
+      "distance\n"
+      "                        from convergence (geometric extrapolation) (default 1e-5)\n"
+      "  --check-every N       iterations between flow-rate checks (default 10)\n"
+      "  --max-iter N          give up after N iterations (default 20000; exit 3)\n"
+      "  --gradient G          kinematic pressure gradient, voxel units (default 1e-5)\n"
+      "  --case DIR            build the case in DIR (new or empty) and keep it\n"
+      "  --keep                keep the temporary case folder\n"
+      "  --output FILE         also write the JSON to FILE\n"
+      "  --verbose             report each tool and convergence check on stderr\n"
+      "exit: 0 converged, 1 error, 2 usage, 3 not converged, 4 OpenFOAM not installed\n");
+  mdp_image_cli_help(to);
+}
+
+static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
+  (void)sb, (void)flag, (void)ftw;
+  return remove(path);
+}
+
+/* Pore clusters that do not join the inlet face to the outlet face carry no flow; they become solid
+ * so that OpenFOAM never sees a closed region with an undetermined pressure. */
+static int drop_nonspanning(mdp_image_t *img, int axis, long long *dropped, char *err) {
+  size_t n = mdp_image_count(img);
+  int32_t *cl = malloc(n * sizeof *cl);
+  int nc = 0;
+  if (!cl || mdp_image_label_clusters(img, cl, &nc, err)) {
+    free(cl);
+    return 1;
+  }
+  unsigned char *faces = calloc((size_t)nc + 1, 1);
+  int solid = -1;
+  const int dim[3] = {img->nx, img->ny, img->nz};
+  for (int k = 0; k < img->nz; k++)
+    for (int j = 0; j < img->ny; j++)
+      for (int i = 0; i < img->nx; i++) {
+        size_t idx = mdp_image_index(img, i, j, k);
+        const int ijk[3] = {i, j, k};
+        if (cl[idx] < 0) {
+          solid = img->label[idx];
+          continue;
+        }
+        if (ijk[axis] == 0) faces[cl[idx]] |= 1;
+        if (ijk[axis] == dim[axis] - 1) faces[cl[idx]] |= 2;
+      }
+  *dropped = 0;
+  for (size_t idx = 0; idx < n; idx++)
+    if (cl[idx] >= 0 && faces[cl[idx]] != 3) {
+      img->label[idx] = (uint8_t)solid;
+      (*dropped)++;
+    }
+  free(cl);
+  free(faces);
+  return 0;
+}
+
+static int axis_of(const char *s) {
+  return !strcmp(s, "x") ? 0 : !strcmp(s, "y") ? 1 : !strcmp(s, "z") ? 2 : -1;
+}
+
+/* For --drive periodic the pore masks of the first and last slices must agree (cyclic faces). */
+static long long end_slice_mismatch(const mdp_image_t *img, int axis) {
+  const int n[3] = {img->nx, img->ny, img->nz};
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  long long bad = 0;
+  for (int b = 0; b < n[v]; b++)
+    for (int a = 0; a < n[u]; a++) {
+      int p[3], q[3];
+      p[axis] = 0, q[axis] = n[axis] - 1, p[u] = q[u] = a, p[v] = q[v] = b;
+      bad += mdp_image_is_pore(img, mdp_image_index(img, p[0], p[1], p[2])) !=
+             mdp_image_is_pore(img, mdp_image_index(img, q[0], q[1], q[2]));
+    }
+  return bad;
+}
+
+int cmd_foam(int argc, char **argv) {
+  int nranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+  if (nranks > 1) {
+    fprintf(stderr, "mdpore foam: run as one process; --np N runs OpenFOAM itself in parallel\n");
+    return 2;
+  }
+  char err[MDP_FOAM_ERR_LEN];
+  mdp_image_cli_t cli;
+  mdp_image_cli_init(&cli);
+  mdp_foam_opts_t o = {.axis = -1,
+                       .refine = 1,
+                       .np = 1,
+                       .gradient = 1e-5,
+                       .tol_residual = 1e-6,
+                       .tol_flux = 1e-5,
+                       .check_every = 10,
+                       .max_iter = 20000,
+                       .chunk = 2000};
+  const char *path = NULL, *case_dir = NULL, *output = NULL;
+  int keep = 0;
+  for (int i = 1; i < argc;) {
+    int r = mdp_image_cli_parse(argc, argv, &i, &cli, err);
+    if (r < 0) {
+      fprintf(stderr, "mdpore foam: %s\n", err);
+      return 2;
+    }
+    if (r) continue;
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    int bad = 0, takes = 1;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(a, "--keep"))
+      keep = 1, takes = 0;
+    else if (!strcmp(a, "--verbose"))
+      o.verbose = 1, takes = 0;
+    else if (a[0] != '-') {
+      if (path) {
+        fprintf(stderr, "mdpore foam: unexpected argument '%s'\n", a);
+        return 2;
+      }
+      path = a, takes = 0;
+    } else if (!v)
+      bad = 1;
+    else if (!strcmp(a, "--axis"))
+      bad = (o.axis = axis_of(v)) < 0;
+    else if (!strcmp(a, "--refine"))
+      bad = (o.refine = atoi(v)) < 1;
+    else if (!strcmp(a, "--drive")) {
+      o.periodic = !strcmp(v, "periodic");
+      bad = !o.periodic && strcmp(v, "pressure");
+    } else if (!strcmp(a, "--sides")) {
+      o.side_walls = !strcmp(v, "wall");
+      bad = !o.side_walls && strcmp(v, "symmetry");
+    } else if (!strcmp(a, "--np"))
+      bad = (o.np = atoi(v)) < 1;
+    else if (!strcmp(a, "--tol-residual"))
+      bad = !((o.tol_residual = atof(v)) > 0);
+    else if (!strcmp(a, "--tol-flux"))
+      bad = !((o.tol_flux = atof(v)) > 0);
+    else if (!strcmp(a, "--check-every"))
+      bad = (o.check_every = atoi(v)) < 1;
+    else if (!strcmp(a, "--max-iter"))
+      bad = (o.max_iter = atoi(v)) < 1;
+    else if (!strcmp(a, "--gradient"))
+      bad = !((o.gradient = atof(v)) > 0);
+    else if (!strcmp(a, "--case"))
+      case_dir = v;
+    else if (!strcmp(a, "--output"))
+      output = v;
+    else {
+      fprintf(stderr, "mdpore foam: unknown option '%s' (see mdpore foam --help)\n", a);
+      return 2;
+    }
+    if (bad) {
+      fprintf(stderr, "mdpore foam: option %s: bad or missing value '%s'\n", a, v ? v : "");
+      return 2;
+    }
+    i += 1 + takes;
+  }
+  if (!path || o.axis < 0) {
+    usage(stderr);
+    return 2;
+  }
+  if (!mdp_foam_bashrc()) {
+    fprintf(stderr,
+            "mdpore foam: OpenFOAM not found (no /usr/share/openfoam/etc/bashrc; install the "
+            "Debian package openfoam, see scripts/setup.sh, or set MDPORE_OPENFOAM_BASHRC)\n");
+    return EXIT_NO_OPENFOAM;
+  }
+  mdp_image_t img;
+  if (mdp_image_cli_load(path, &cli, &img, err)) {
+    fprintf(stderr, "mdpore foam: %s\n", err);
+    return 1;
+  }
+  mdp_image_stats_t st;
+  long long dropped = 0;
+  int rc = 1;
+  char dir[4096] = "";
+  if (mdp_image_stats(&img, &st, err) ||
+      mdp_image_require_percolation(&img, &st, o.axis, path, err))
+    goto out;
+  if (drop_nonspanning(&img, o.axis, &dropped, err)) goto out;
+  if (o.periodic) {
+    long long bad = end_slice_mismatch(&img, o.axis);
+    if (bad) {
+      snprintf(err, sizeof err,
+               "%s: --drive periodic needs the same pore voxels on the first and last slices along "
+               "%c (they differ at %lld voxels); use --drive pressure",
+               path, 'x' + o.axis, bad);
+      goto out;
+    }
+  }
+  const int dim[3] = {img.nx, img.ny, img.nz};
+  o.length_voxels = dim[o.axis];
+  if (case_dir) {
+    snprintf(dir, sizeof dir, "%s", case_dir);
+    if (mkdir(dir, 0755) != 0 && errno != EEXIST) {
+      snprintf(err, sizeof err, "--case %s: cannot create: %s", dir, strerror(errno));
+      goto out;
+    }
+    char probe[4200];
+    snprintf(probe, sizeof probe, "%s/system", dir);
+    if (access(probe, F_OK) == 0) {
+      snprintf(err, sizeof err, "--case %s: folder already holds a case; give a new or empty one",
+               dir);
+      dir[0] = 0;
+      goto out;
+    }
+    keep = 1;
+  } else {
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dir, sizeof dir, "%s/mdpore-foam-XXXXXX", tmp && tmp[0] ? tmp : "/tmp");
+    if (!mkdtemp(dir)) {
+      snprintf(err, sizeof err, "cannot create a temporary case folder %s: %s", dir,
+               strerror(errno));
+      dir[0] = 0;
+      goto out;
+    }
+  }
+  mdp_foam_result_t res;
+  if (mdp_foam_run(dir, &img, &o, &res, err)) goto out;
+  /* Darcy: k = nu q / G with q = int(u_axis dV) / V_box (superficial velocity; nu = 1). */
+  const double vbox = (double)img.nx * img.ny * img.nz, area = vbox / dim[o.axis];
+  const double q = res.int_u[o.axis] / vbox, k_vox = q / o.gradient;
+  const double dx = mdp_image_voxel_size_m(&img);
+  char json[4096], kphys[256] = "null", kmd[64] = "null";
+  if (dx > 0) {
+    snprintf(kphys, sizeof kphys, "%.8e", k_vox * dx * dx);
+    snprintf(kmd, sizeof kmd, "%.8e", k_vox * dx * dx / 9.869233e-16);
+  }
+  snprintf(json, sizeof json,
+           "{\"image\": \"%s\", \"axis\": \"%c\", \"dims\": [%d, %d, %d], \"refine\": %d, "
+           "\"cells\": %d, \"drive\": \"%s\", \"sides\": \"%s\", \"ranks\": %d,\n"
+           " \"voxel_size\": %.10g, \"unit\": \"%s\", \"porosity\": %.8f, "
+           "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld,\n"
+           " \"permeability_voxel2\": %.10e, \"permeability_m2\": %s, \"permeability_mD\": %s,\n"
+           " \"convention\": \"k = mu q L / dp, q = Q / A_total: superficial (Darcy) velocity over "
+           "the whole cross-section including solid\",\n"
+           " \"model_units\": \"lengths in voxels, nu = 1, kinematic pressure gradient %.6g\",\n"
+           " \"flow_rate\": %.10e, \"superficial_velocity\": %.10e, \"mean_pore_velocity\": %.10e, "
+           "\"tortuosity\": %.8f,\n"
+           " \"converged\": %s, \"iterations\": %d, \"residual_p\": %.3e, \"residual_U\": %.3e, "
+           "\"flux_change\": %.3e, \"flux_error_estimate\": %.3e, \"tol_residual\": %.3g, "
+           "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
+           "\"case\": %s%s%s}\n",
+           path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells,
+           o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
+           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, k_vox,
+           kphys, kmd, o.gradient, q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
+           res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
+           res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "",
+           keep ? dir : "null", keep ? "\"" : "");
+  fputs(json, stdout);
+  rc = res.converged ? 0 : EXIT_NOT_CONVERGED;
+  if (!res.converged)
+    fprintf(stderr,
+            "mdpore foam: NOT converged after %d iterations (residual p %.3g, U %.3g, flux "
+            "change %.3g); raise --max-iter or loosen the tolerances\n",
+            res.iterations, res.res_p, res.res_u, res.flux_change);
+  if (output) {
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", output, (long)getpid());
+    FILE *f = fopen(tmp, "w");
+    if (!f || fputs(json, f) < 0 || fclose(f) != 0 || rename(tmp, output) != 0) {
+      fprintf(stderr, "mdpore foam: cannot write %s: %s\n", output, strerror(errno));
+      remove(tmp);
+      rc = 1;
+    }
+  }
+  err[0] = 0;
+out:
+  if (rc == 1 && err[0]) fprintf(stderr, "mdpore foam: %s\n", err);
+  if (dir[0] && !keep) nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+  mdp_image_free(&img);
+  return rc;
+}

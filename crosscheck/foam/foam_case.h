@@ -1,0 +1,66 @@
+/* OpenFOAM cross-check: write a case from a voxel image, run it, read the results.
+ *
+ * Mesh: blockMesh makes the image box with (nx r) x (ny r) x (nz r) hex cells (r = refine) in voxel
+ * units; the pore cells are written as a cellSet and kept by `subsetMesh -patch walls`, so every
+ * face between a pore cell and a solid voxel becomes the no-slip patch "walls". Box faces normal to
+ * the flow are "inlet"/"outlet" (fixed pressures, or a cyclic pair with a body force for --drive
+ * periodic); the other four box faces are the patch "sides" (symmetry = mirror/slip, or wall = no
+ * slip). */
+#ifndef MDPORE_FOAM_CASE_H
+#define MDPORE_FOAM_CASE_H
+
+#include "mdpore_image.h"
+
+#define MDP_FOAM_ERR_LEN 2048
+
+typedef struct {
+  int axis;             /* flow axis: 0 x, 1 y, 2 z */
+  int refine;           /* hex cells per voxel edge */
+  int periodic;         /* 0: pressure drop inlet -> outlet; 1: cyclic inlet/outlet + body force */
+  int side_walls;       /* 0: symmetry on the four side faces; 1: no-slip walls */
+  int np;               /* OpenFOAM ranks (decomposePar + mpirun) when > 1 */
+  double gradient;      /* applied kinematic pressure gradient (voxel units, nu = 1) */
+  double length_voxels; /* sample length along the axis (set by the driver) */
+  double tol_residual;  /* initial residual of p and of U along the axis */
+  double tol_flux;      /* relative flow-rate change between checks and estimated remaining error */
+  int check_every;      /* iterations between flux checks */
+  int max_iter;
+  int chunk; /* iterations per simpleFoam run between convergence checks */
+  int verbose;
+} mdp_foam_opts_t;
+
+typedef struct {
+  int iterations, converged, cells;
+  double res_p, res_u; /* last initial residuals (p; U along the axis) */
+  double flux_change;  /* relative change of q over the last check interval */
+  double flux_error;   /* estimated relative distance of q from its converged value (NaN: none) */
+  double int_u[3];     /* volume integral of U over the pore space (voxel units) */
+  double int_mag_u;    /* volume integral of |U| */
+  double wall_s;
+} mdp_foam_result_t;
+
+/* Path of the OpenFOAM environment script, or NULL when OpenFOAM is not installed. */
+const char *mdp_foam_bashrc(void);
+/* Write system/, constant/ (mesh dictionaries, transport, fvOptions) and the pore cellSet source.
+ */
+int mdp_foam_write_case(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
+                        char *err);
+/* Write the cellSet of pore cells (blockMesh numbering) into constant/polyMesh/sets/poreCells. */
+int mdp_foam_write_pore_set(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
+                            long long *n_cells, char *err);
+/* Write 0/U and 0/p (after subsetMesh, so that the walls patch exists). */
+int mdp_foam_write_fields(const char *dir, const mdp_foam_opts_t *o, char *err);
+/* controlDict for a run ending at end_iter; residualControl on p at tol. */
+int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int end_iter, double tol,
+                           char *err);
+/* Mesh, decompose, iterate simpleFoam until converged (see foam_run.c). */
+int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
+                 mdp_foam_result_t *res, char *err);
+
+/* Parsing (foam_parse.c). */
+int mdp_foam_parse_log(const char *log, int axis, int *last_iter, double *res_p, double *res_u,
+                       int *solver_converged);
+/* Read every postProcessing/flow/<start>/volFieldValue.dat; rows of (iter, int U xyz, int |U|). */
+int mdp_foam_read_flow(const char *dir, double **rows, int *n_rows, char *err);
+
+#endif

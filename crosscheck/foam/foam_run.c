@@ -1,0 +1,161 @@
+/* Driving the OpenFOAM tools: one bash subprocess per tool with the OpenFOAM environment sourced,
+ * then simpleFoam in chunks until the residuals and the flow rate have settled. */
+#include "foam_case.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+extern char **environ;
+
+/* The mdpore process may be an MPI singleton: drop the launcher's variables so that OpenFOAM's own
+ * mpirun (or a serial tool) does not try to join this process's MPI session. */
+static void scrub_mpi_environment(void) {
+  char names[512][128];
+  int n = 0;
+  for (char **e = environ; *e && n < 512; e++) {
+    if (strncmp(*e, "PMIX_", 5) && strncmp(*e, "OMPI_", 5)) continue;
+    if (!strncmp(*e, "OMPI_ALLOW_RUN_AS_ROOT", 22) ||
+        !strncmp(*e, "OMPI_MCA_rmaps_base_oversub", 27) || !strncmp(*e, "OMPI_MCA_btl_vader", 18))
+      continue;
+    size_t len = strcspn(*e, "=");
+    if (len >= sizeof names[0]) continue;
+    memcpy(names[n], *e, len);
+    names[n++][len] = 0;
+  }
+  for (int i = 0; i < n; i++) unsetenv(names[i]);
+}
+
+/* Run `command` (words only) in the case folder with output to dir/log; returns its exit status. */
+static int run_tool(const char *dir, const char *command, const char *log, int verbose) {
+  const char *bashrc = mdp_foam_bashrc();
+  if (verbose) fprintf(stderr, "mdpore foam: %s (log %s/%s)\n", command, dir, log);
+  fflush(NULL);
+  pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    scrub_mpi_environment();
+    /* The OpenFOAM bashrc treats its positional parameters as settings: clear them first. */
+    const char *script = "rc=$1 dir=$2 cmd=$3 log=$4; set --; "
+                         "[ -n \"$rc\" ] && . \"$rc\" >/dev/null 2>&1; cd \"$dir\" || exit 97; "
+                         "$cmd > \"$log\" 2>&1";
+    execl("/bin/bash", "bash", "-c", script, "mdpore-foam", bashrc ? bashrc : "", dir, command, log,
+          (char *)NULL);
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/* Error with the last lines of a tool's log. */
+static int tool_failed(const char *dir, const char *tool, const char *log, int status, char *err) {
+  char path[4200], tail[1024] = "", line[512];
+  snprintf(path, sizeof path, "%s/%s", dir, log);
+  FILE *f = fopen(path, "r");
+  char ring[6][512];
+  int n = 0;
+  while (f && fgets(line, sizeof line, f)) snprintf(ring[n++ % 6], sizeof ring[0], "%s", line);
+  if (f) fclose(f);
+  for (int i = n > 6 ? n - 6 : 0; i < n; i++)
+    strncat(tail, ring[i % 6], sizeof tail - strlen(tail) - 1);
+  snprintf(err, MDP_FOAM_ERR_LEN, "%s failed (exit %d); see %.900s; last lines:\n%s", tool, status,
+           path, tail);
+  return 1;
+}
+
+static double now_s(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
+                 mdp_foam_result_t *res, char *err) {
+  memset(res, 0, sizeof *res);
+  double t0 = now_s();
+  long long cells = 0;
+  if (mdp_foam_write_case(dir, img, o, err)) return 1;
+  int st;
+  if ((st = run_tool(dir, "blockMesh", "log.blockMesh", o->verbose)))
+    return tool_failed(dir, "blockMesh", "log.blockMesh", st, err);
+  if (mdp_foam_write_pore_set(dir, img, o, &cells, err)) return 1;
+  if ((st = run_tool(dir, "subsetMesh poreCells -patch walls -overwrite", "log.subsetMesh",
+                     o->verbose)))
+    return tool_failed(dir, "subsetMesh", "log.subsetMesh", st, err);
+  if (mdp_foam_write_fields(dir, o, err)) return 1;
+  res->cells = (int)cells;
+  char solver[128];
+  if (o->np > 1) {
+    if ((st = run_tool(dir, "decomposePar -force", "log.decomposePar", o->verbose)))
+      return tool_failed(dir, "decomposePar", "log.decomposePar", st, err);
+    snprintf(solver, sizeof solver, "mpirun -np %d simpleFoam -parallel", o->np);
+  } else {
+    snprintf(solver, sizeof solver, "simpleFoam");
+  }
+  double tol = o->tol_residual, q_prev = NAN;
+  int done = 0;
+  for (int run = 0; done < o->max_iter; run++) {
+    int end = done + o->chunk < o->max_iter ? done + o->chunk : o->max_iter;
+    if (mdp_foam_write_control(dir, o, end, tol, err)) return 1;
+    char log[64], path[4200];
+    snprintf(log, sizeof log, "log.simpleFoam.%d", run);
+    if ((st = run_tool(dir, solver, log, o->verbose)))
+      return tool_failed(dir, "simpleFoam", log, st, err);
+    snprintf(path, sizeof path, "%s/%s", dir, log);
+    int last = done, solver_conv = 0;
+    mdp_foam_parse_log(path, o->axis, &last, &res->res_p, &res->res_u, &solver_conv);
+    double *rows = NULL;
+    int n = 0;
+    if (mdp_foam_read_flow(dir, &rows, &n, err)) {
+      free(rows);
+      return 1;
+    }
+    const double *r = rows + 5 * (n - 1);
+    memcpy(res->int_u, r + 1, sizeof res->int_u);
+    res->int_mag_u = r[4];
+    double q = r[1 + o->axis];
+    /* Flux change over the last check interval, and the distance to the converged value it implies
+     * when the iteration converges geometrically (late SIMPLE iterations for Stokes flow do, with a
+     * rate close to 1): remaining = |dq| rho / (1 - rho), rho = dq_n / dq_{n-1}. */
+    double q_before = n >= 2 ? rows[5 * (n - 2) + 1 + o->axis] : q_prev;
+    double dq = q - q_before, scale = fmax(fabs(q), 1e-300);
+    res->flux_change = fabs(dq) / scale;
+    res->flux_error = NAN;
+    if (n >= 3) {
+      double dq_prev = q_before - rows[5 * (n - 3) + 1 + o->axis];
+      double rho = dq_prev != 0 ? dq / dq_prev : 0;
+      res->flux_error = rho > 0 && rho < 1 ? res->flux_change * rho / (1 - rho) : NAN;
+    }
+    free(rows);
+    q_prev = q;
+    res->iterations = last;
+    if (o->verbose)
+      fprintf(
+          stderr,
+          "mdpore foam: iteration %d: residual p %.3g U %.3g, flux change %.3g, est. error %.3g\n",
+          last, res->res_p, res->res_u, res->flux_change, res->flux_error);
+    /* Converged: residuals below tolerance, flux change and estimated remaining error below the
+     * flux tolerance (a rate that is not yet geometric gives no estimate and does not pass). */
+    if (res->res_p < o->tol_residual && res->res_u < o->tol_residual &&
+        res->flux_change < o->tol_flux && res->flux_error < o->tol_flux) {
+      res->converged = 1;
+      break;
+    }
+    if (last <= done) { /* no progress: residual control met at once; demand more */
+      tol *= 0.1;
+    } else if (solver_conv) {
+      tol *= 0.1; /* p converged but U or the flux still moving: tighten and go on */
+    }
+    if (tol < 1e-14) tol = 1e-14;
+    done = last;
+  }
+  res->wall_s = now_s() - t0;
+  return 0;
+}

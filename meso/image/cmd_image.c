@@ -1,0 +1,294 @@
+/* mdpore image info|convert|make: report porosity and connectivity, convert to HDF5/raw/TIFF, and
+ * generate synthetic images. */
+#include "mdpore_image.h"
+#include "mdpore_image_cli.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+static void usage(FILE *to) {
+  fprintf(
+      to,
+      "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--json]\n"
+      "       mdpore image convert IMAGE -o OUT.h5|OUT.raw|OUT.tif [options]\n"
+      "       mdpore image make slit --width N [--wall W] [--length L] [--depth D] -o OUT\n"
+      "       mdpore image make cylinders --cell L --c C [--cells N] [--depth D] -o OUT\n"
+      "       mdpore image make spheres --cell L --c C [--cells N] -o OUT\n"
+      "       mdpore image make random-spheres --size N --radius R --porosity P [--seed S] -o OUT\n"
+      "       mdpore image make sphere-file --centres FILE (--box LX,LY,LZ | --box-file FILE)\n"
+      "                                     --radius R --dx DX -o OUT\n"
+      "info prints porosity, connected porosity per axis and isolated pores; with --axis it fails\n"
+      "when that axis does not percolate. make labels pore 0 and solid 1; --voxel-size sets the\n"
+      "voxel size of made images.\n");
+  mdp_image_cli_help(to);
+}
+
+static int ends_with(const char *s, const char *ext) {
+  size_t n = strlen(s), m = strlen(ext);
+  return n >= m && !strcasecmp(s + n - m, ext);
+}
+
+static int write_any(const mdp_image_t *img, const char *out, char *err) {
+  if (ends_with(out, ".raw")) return mdp_image_write_raw(img, out, err);
+  if (ends_with(out, ".tif") || ends_with(out, ".tiff")) return mdp_image_write_tiff(img, out, err);
+  if (ends_with(out, ".h5") || ends_with(out, ".hdf5")) return mdp_image_write_hdf5(img, out, err);
+  snprintf(err, MDP_IMAGE_ERR_LEN, "%s: output name must end in .h5, .hdf5, .raw, .tif or .tiff",
+           out);
+  return 1;
+}
+
+static void print_info(const char *path, const mdp_image_t *img, const mdp_image_stats_t *st,
+                       int json) {
+  char map[512];
+  mdp_image_format_labels(img->phase_of, map, sizeof map);
+  double n = (double)st->n_voxels;
+  if (json) {
+    printf("{\"file\": \"%s\", \"dims\": [%d, %d, %d], \"voxel_size\": %.10g, \"unit\": \"%s\", "
+           "\"label_map\": \"%s\", \"voxels\": %lld, \"pore_voxels\": %lld, \"organic_fraction\": "
+           "%.6f, \"inorganic_fraction\": %.6f, \"porosity\": %.6f, \"clusters\": %d, "
+           "\"connected_porosity\": {\"x\": %.6f, \"y\": %.6f, \"z\": %.6f}, "
+           "\"percolates\": {\"x\": %s, \"y\": %s, \"z\": %s}, "
+           "\"isolated\": {\"clusters\": %d, \"porosity\": %.6f}, "
+           "\"non_spanning\": {\"clusters\": %d, \"porosity\": %.6f}}\n",
+           path, img->nx, img->ny, img->nz, img->voxel_size, img->unit, map, st->n_voxels,
+           st->n_pore, st->n_organic / n, st->n_inorganic / n, st->porosity, st->n_clusters,
+           st->connected_porosity[0], st->connected_porosity[1], st->connected_porosity[2],
+           st->spans[0] ? "true" : "false", st->spans[1] ? "true" : "false",
+           st->spans[2] ? "true" : "false", st->n_isolated_clusters, st->isolated_voxels / n,
+           st->n_nonspanning_clusters, st->nonspanning_voxels / n);
+    return;
+  }
+  printf("image        %s\n", path);
+  printf("dims         %d x %d x %d voxels (x fastest), voxel %.6g %s\n", img->nx, img->ny, img->nz,
+         img->voxel_size, img->unit);
+  printf("label map    %s\n", map);
+  printf("phases       pore %.6f  organic %.6f  inorganic %.6f (volume fractions)\n", st->porosity,
+         st->n_organic / n, st->n_inorganic / n);
+  printf("porosity     %.6f (%lld of %lld voxels), %d pore clusters (6-connected)\n", st->porosity,
+         st->n_pore, st->n_voxels, st->n_clusters);
+  for (int a = 0; a < 3; a++)
+    printf("axis %c       %s, connected porosity %.6f\n", 'x' + a,
+           st->spans[a] ? "percolates" : "does NOT percolate", st->connected_porosity[a]);
+  printf("isolated     %d clusters touching no face, porosity %.6f\n", st->n_isolated_clusters,
+         st->isolated_voxels / n);
+  printf("non-spanning %d clusters spanning no axis (isolated + dead ends), porosity %.6f\n",
+         st->n_nonspanning_clusters, st->nonspanning_voxels / n);
+}
+
+static int axis_of(const char *s) {
+  return !strcmp(s, "x") ? 0 : !strcmp(s, "y") ? 1 : !strcmp(s, "z") ? 2 : -1;
+}
+
+static int cmd_info_or_convert(int argc, char **argv, int convert) {
+  char err[MDP_IMAGE_ERR_LEN];
+  mdp_image_cli_t cli;
+  mdp_image_cli_init(&cli);
+  const char *path = NULL, *out = NULL;
+  int json = 0, axis = -1;
+  for (int i = 1; i < argc;) {
+    int r = mdp_image_cli_parse(argc, argv, &i, &cli, err);
+    if (r < 0) {
+      fprintf(stderr, "mdpore image: %s\n", err);
+      return 2;
+    }
+    if (r) continue;
+    if (!strcmp(argv[i], "--json")) {
+      json = 1;
+    } else if (!strcmp(argv[i], "--axis") && i + 1 < argc) {
+      if ((axis = axis_of(argv[++i])) < 0) {
+        fprintf(stderr, "mdpore image: --axis '%s': expected x, y or z\n", argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+      out = argv[++i];
+    } else if (argv[i][0] == '-') {
+      fprintf(stderr, "mdpore image: unknown option '%s' (see mdpore image --help)\n", argv[i]);
+      return 2;
+    } else if (!path) {
+      path = argv[i];
+    } else {
+      fprintf(stderr, "mdpore image: unexpected argument '%s'\n", argv[i]);
+      return 2;
+    }
+    i++;
+  }
+  if (!path || (convert && !out)) {
+    usage(stderr);
+    return 2;
+  }
+  mdp_image_t img;
+  if (mdp_image_cli_load(path, &cli, &img, err)) {
+    fprintf(stderr, "mdpore image: %s\n", err);
+    return 1;
+  }
+  int rc = 0;
+  if (convert) {
+    if (write_any(&img, out, err)) {
+      fprintf(stderr, "mdpore image: %s\n", err);
+      rc = 1;
+    } else {
+      printf("wrote %s (%d x %d x %d)\n", out, img.nx, img.ny, img.nz);
+    }
+  } else {
+    mdp_image_stats_t st;
+    if (mdp_image_stats(&img, &st, err)) {
+      fprintf(stderr, "mdpore image: %s\n", err);
+      rc = 1;
+    } else {
+      print_info(path, &img, &st, json);
+      if (st.n_pore == 0 || axis >= 0) {
+        if (mdp_image_require_percolation(&img, &st, axis < 0 ? 0 : axis, path, err) &&
+            (axis >= 0 || st.n_pore == 0)) {
+          fprintf(stderr, "mdpore image: %s\n", err);
+          rc = 1;
+        }
+      }
+    }
+  }
+  mdp_image_free(&img);
+  return rc;
+}
+
+static int read_box_file(const char *path, double box[3], char *err) {
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%s: cannot open box file", path);
+    return 1;
+  }
+  char line[512];
+  int found = 0;
+  while (fgets(line, sizeof line, f)) { /* "Relaxed State: Lx:55.18 Ly:55.40 Lz:55.54" wins */
+    char *lx = strstr(line, "Lx:"), *ly = strstr(line, "Ly:"), *lz = strstr(line, "Lz:");
+    if (!lx || !ly || !lz) continue;
+    if (found && !strstr(line, "Relaxed")) continue;
+    box[0] = atof(lx + 3), box[1] = atof(ly + 3), box[2] = atof(lz + 3);
+    found = 1;
+  }
+  fclose(f);
+  if (!found) snprintf(err, MDP_IMAGE_ERR_LEN, "%s: no line with 'Lx: Ly: Lz:' box sizes", path);
+  return !found;
+}
+
+static int cmd_make(int argc, char **argv) {
+  char err[MDP_IMAGE_ERR_LEN];
+  if (argc < 2) {
+    usage(stderr);
+    return 2;
+  }
+  const char *kind = argv[1], *out = NULL, *centres = NULL, *box_file = NULL;
+  int width = 0, wall = 1, length = 4, depth = 1, cell = 0, cells = 1, size = 0;
+  double c = 0, radius = 0, porosity = 0, dx = 0, box[3] = {0, 0, 0}, vsize = 0;
+  char unit[8] = "";
+  unsigned long long seed = 1;
+  for (int i = 2; i < argc; i++) {
+    const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!v) {
+      fprintf(stderr, "mdpore image make: option %s needs a value\n", o);
+      return 2;
+    }
+    i++;
+    if (!strcmp(o, "-o"))
+      out = v;
+    else if (!strcmp(o, "--width"))
+      width = atoi(v);
+    else if (!strcmp(o, "--wall"))
+      wall = atoi(v);
+    else if (!strcmp(o, "--length"))
+      length = atoi(v);
+    else if (!strcmp(o, "--depth"))
+      depth = atoi(v);
+    else if (!strcmp(o, "--cell"))
+      cell = atoi(v);
+    else if (!strcmp(o, "--cells"))
+      cells = atoi(v);
+    else if (!strcmp(o, "--size"))
+      size = atoi(v);
+    else if (!strcmp(o, "--c"))
+      c = atof(v);
+    else if (!strcmp(o, "--radius"))
+      radius = atof(v);
+    else if (!strcmp(o, "--porosity"))
+      porosity = atof(v);
+    else if (!strcmp(o, "--seed"))
+      seed = strtoull(v, NULL, 10);
+    else if (!strcmp(o, "--dx"))
+      dx = atof(v);
+    else if (!strcmp(o, "--centres") || !strcmp(o, "--centers"))
+      centres = v;
+    else if (!strcmp(o, "--box-file"))
+      box_file = v;
+    else if (!strcmp(o, "--box")) {
+      if (sscanf(v, "%lf,%lf,%lf", &box[0], &box[1], &box[2]) != 3) {
+        fprintf(stderr, "mdpore image make: --box '%s': expected LX,LY,LZ\n", v);
+        return 2;
+      }
+    } else if (!strcmp(o, "--voxel-size")) {
+      if (mdp_image_parse_voxel_size(v, &vsize, unit, err)) {
+        fprintf(stderr, "mdpore image make: %s\n", err);
+        return 2;
+      }
+    } else {
+      fprintf(stderr, "mdpore image make: unknown option '%s'\n", o);
+      return 2;
+    }
+  }
+  if (!out) {
+    fprintf(stderr, "mdpore image make: -o OUT is required\n");
+    return 2;
+  }
+  mdp_image_t img;
+  double achieved = -1;
+  int rc;
+  if (!strcmp(kind, "slit"))
+    rc = mdp_make_slit(&img, width, wall, length, depth, err);
+  else if (!strcmp(kind, "cylinders"))
+    rc = mdp_make_cylinders(&img, cell, c, cells, depth, &achieved, err);
+  else if (!strcmp(kind, "spheres"))
+    rc = mdp_make_spheres(&img, cell, c, cells, &achieved, err);
+  else if (!strcmp(kind, "random-spheres"))
+    rc = mdp_make_random_spheres(&img, size, radius, porosity, seed, err);
+  else if (!strcmp(kind, "sphere-file")) {
+    rc = (!centres ? (snprintf(err, MDP_IMAGE_ERR_LEN, "sphere-file needs --centres FILE"), 1) : 0);
+    if (!rc && box_file) rc = read_box_file(box_file, box, err);
+    if (!rc) rc = mdp_make_sphere_file(&img, centres, box, radius, dx, err);
+  } else {
+    fprintf(stderr,
+            "mdpore image make: unknown kind '%s' (slit, cylinders, spheres, random-spheres, "
+            "sphere-file)\n",
+            kind);
+    return 2;
+  }
+  if (rc) {
+    fprintf(stderr, "mdpore image make: %s\n", err);
+    return 1;
+  }
+  if (vsize > 0) img.voxel_size = vsize;
+  if (unit[0]) memcpy(img.unit, unit, sizeof unit);
+  mdp_image_stats_t st;
+  rc = mdp_image_stats(&img, &st, err) || write_any(&img, out, err);
+  if (rc) {
+    fprintf(stderr, "mdpore image make: %s\n", err);
+  } else {
+    printf("{\"made\": \"%s\", \"file\": \"%s\", \"dims\": [%d, %d, %d], \"porosity\": %.8f", kind,
+           out, img.nx, img.ny, img.nz, st.porosity);
+    if (achieved >= 0)
+      printf(", \"solid_fraction\": %.8f, \"requested_solid_fraction\": %.8f", achieved, c);
+    printf("}\n");
+  }
+  mdp_image_free(&img);
+  return rc;
+}
+
+int cmd_image(int argc, char **argv) {
+  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    usage(argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  if (!strcmp(argv[1], "info")) return cmd_info_or_convert(argc - 1, argv + 1, 0);
+  if (!strcmp(argv[1], "convert")) return cmd_info_or_convert(argc - 1, argv + 1, 1);
+  if (!strcmp(argv[1], "make")) return cmd_make(argc - 1, argv + 1);
+  fprintf(stderr, "mdpore image: unknown subcommand '%s' (info, convert, make)\n", argv[1]);
+  return 2;
+}

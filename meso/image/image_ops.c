@@ -1,0 +1,72 @@
+/* Crop, majority downsampling and padding. Each allocates a new image and keeps the label map. */
+#include "mdpore_image.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int mdp_image_crop(const mdp_image_t *in, const int lo[3], const int size[3], mdp_image_t *out,
+                   char *err) {
+  const int n[3] = {in->nx, in->ny, in->nz};
+  for (int a = 0; a < 3; a++)
+    if (lo[a] < 0 || size[a] < 1 || lo[a] + size[a] > n[a]) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "crop along %c: start %d size %d does not fit in the image's %d voxels", 'x' + a,
+               lo[a], size[a], n[a]);
+      return 1;
+    }
+  if (mdp_image_alloc(out, size[0], size[1], size[2], err)) return 1;
+  mdp_image_copy_meta(out, in);
+  for (int k = 0; k < size[2]; k++)
+    for (int j = 0; j < size[1]; j++)
+      memcpy(out->label + mdp_image_index(out, 0, j, k),
+             in->label + mdp_image_index(in, lo[0], lo[1] + j, lo[2] + k), (size_t)size[0]);
+  return 0;
+}
+
+int mdp_image_downsample(const mdp_image_t *in, int f, mdp_image_t *out, char *err) {
+  if (f < 1 || in->nx < f || in->ny < f || in->nz < f) {
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "downsample factor %d: must be >= 1 and <= every dimension (%dx%dx%d)", f, in->nx,
+             in->ny, in->nz);
+    return 1;
+  }
+  if (mdp_image_alloc(out, in->nx / f, in->ny / f, in->nz / f, err)) return 1;
+  mdp_image_copy_meta(out, in);
+  out->voxel_size = in->voxel_size * f;
+  for (int k = 0; k < out->nz; k++)
+    for (int j = 0; j < out->ny; j++)
+      for (int i = 0; i < out->nx; i++) {
+        int count[256] = {0};
+        for (int c = 0; c < f; c++)
+          for (int b = 0; b < f; b++)
+            for (int a = 0; a < f; a++)
+              count[in->label[mdp_image_index(in, f * i + a, f * j + b, f * k + c)]]++;
+        int best = 0;
+        for (int v = 1; v < 256; v++)
+          if (count[v] > count[best]) best = v; /* strict: ties keep the smaller value */
+        out->label[mdp_image_index(out, i, j, k)] = (uint8_t)best;
+      }
+  return 0;
+}
+
+int mdp_image_pad(const mdp_image_t *in, const int w[6], uint8_t label, mdp_image_t *out,
+                  char *err) {
+  for (int s = 0; s < 6; s++)
+    if (w[s] < 0) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "pad width %d on side %d: must be >= 0", w[s], s);
+      return 1;
+    }
+  if (in->phase_of[label] == MDP_PHASE_UNSET) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "pad label %d is not in the image's label map", label);
+    return 1;
+  }
+  if (mdp_image_alloc(out, in->nx + w[0] + w[1], in->ny + w[2] + w[3], in->nz + w[4] + w[5], err))
+    return 1;
+  mdp_image_copy_meta(out, in);
+  memset(out->label, label, mdp_image_count(out));
+  for (int k = 0; k < in->nz; k++)
+    for (int j = 0; j < in->ny; j++)
+      memcpy(out->label + mdp_image_index(out, w[0], j + w[2], k + w[4]),
+             in->label + mdp_image_index(in, 0, j, k), (size_t)in->nx);
+  return 0;
+}

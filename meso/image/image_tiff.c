@@ -1,0 +1,213 @@
+#define _GNU_SOURCE /* strverscmp */
+/* TIFF stacks via libtiff: one multi-page file or a folder of single-page slices (sorted by name,
+ * numbers compared by value). Each page is one z slice: width nx, height ny, 8- or 16-bit grey. */
+#include "image_internal.h"
+#include "mdpore_image.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#ifndef MDPORE_HAVE_TIFF
+
+int mdp_image_tiff_available(void) {
+  return 0;
+}
+int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                        char *err) {
+  (void)opts;
+  (void)img;
+  snprintf(err, MDP_IMAGE_ERR_LEN,
+           "%s: mdpore was built without libtiff; install libtiff-dev and rebuild, or convert the "
+           "stack to raw/HDF5",
+           path);
+  return 1;
+}
+int mdp_image_write_tiff(const mdp_image_t *img, const char *path, char *err) {
+  (void)img;
+  snprintf(err, MDP_IMAGE_ERR_LEN, "%s: mdpore was built without libtiff", path);
+  return 1;
+}
+
+#else
+
+#include <dirent.h>
+#include <stdlib.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <tiffio.h>
+
+int mdp_image_tiff_available(void) {
+  return 1;
+}
+
+typedef struct {
+  int nx, ny, nz, cap;
+  uint8_t *data;
+} stack_t_;
+
+static void quiet_handler(const char *module, const char *fmt, va_list ap) {
+  (void)module, (void)fmt, (void)ap;
+}
+
+/* Append every page of one TIFF file to the stack. */
+static int read_pages(const char *file, stack_t_ *st, char *err) {
+  TIFF *t = TIFFOpen(file, "r");
+  if (!t) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%s: cannot open as TIFF", file);
+    return 1;
+  }
+  int page = 0, rc = 0;
+  do {
+    uint32_t w = 0, h = 0;
+    uint16_t bps = 8, spp = 1;
+    TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &w);
+    TIFFGetField(t, TIFFTAG_IMAGELENGTH, &h);
+    TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &bps);
+    TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &spp);
+    if (spp != 1 || (bps != 8 && bps != 16) || TIFFIsTiled(t)) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s page %d: %u samples/pixel, %u bits%s; expected one 8- or 16-bit grey sample per "
+               "pixel in strips (a segmented label image)",
+               file, page, spp, bps, TIFFIsTiled(t) ? ", tiled" : "");
+      rc = 1;
+      break;
+    }
+    if (st->nz == 0) st->nx = (int)w, st->ny = (int)h;
+    if ((int)w != st->nx || (int)h != st->ny) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s page %d: size %ux%u differs from the first slice %dx%d",
+               file, page, w, h, st->nx, st->ny);
+      rc = 1;
+      break;
+    }
+    size_t per = (size_t)w * h;
+    if (st->nz == st->cap) {
+      st->cap = st->cap ? 2 * st->cap : 16;
+      uint8_t *d = realloc(st->data, per * (size_t)st->cap);
+      if (!d) {
+        snprintf(err, MDP_IMAGE_ERR_LEN, "%s: out of memory", file);
+        rc = 1;
+        break;
+      }
+      st->data = d;
+    }
+    tdata_t line = _TIFFmalloc(TIFFScanlineSize(t));
+    for (uint32_t y = 0; y < h && !rc; y++) {
+      if (TIFFReadScanline(t, line, y, 0) < 0) {
+        snprintf(err, MDP_IMAGE_ERR_LEN, "%s page %d: cannot read row %u", file, page, y);
+        rc = 1;
+        break;
+      }
+      for (uint32_t x = 0; x < w; x++) {
+        unsigned v = bps == 8 ? ((uint8_t *)line)[x] : ((uint16_t *)line)[x];
+        if (v > 255) {
+          snprintf(err, MDP_IMAGE_ERR_LEN,
+                   "%s page %d: pixel (%u,%u) has label %u; labels must be 0..255", file, page, x,
+                   y, v);
+          rc = 1;
+          break;
+        }
+        st->data[per * (size_t)st->nz + (size_t)y * w + x] = (uint8_t)v;
+      }
+    }
+    _TIFFfree(line);
+    if (rc) break;
+    st->nz++;
+    page++;
+  } while (TIFFReadDirectory(t));
+  TIFFClose(t);
+  return rc;
+}
+
+static int by_version(const void *a, const void *b) {
+  return strverscmp(*(char *const *)a, *(char *const *)b);
+}
+
+static int has_tiff_ext(const char *name) {
+  const char *dot = strrchr(name, '.');
+  return dot && (!strcasecmp(dot, ".tif") || !strcasecmp(dot, ".tiff"));
+}
+
+int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                        char *err) {
+  TIFFSetWarningHandler(quiet_handler);
+  TIFFSetErrorHandler(quiet_handler);
+  stack_t_ st = {0, 0, 0, 0, NULL};
+  struct stat sb;
+  int rc = 0;
+  memset(img, 0, sizeof *img);
+  if (stat(path, &sb) != 0) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%s: no such file or folder", path);
+    return 1;
+  }
+  if (S_ISDIR(sb.st_mode)) {
+    DIR *d = opendir(path);
+    char **names = NULL;
+    int n = 0, cap = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d))) {
+      if (!has_tiff_ext(e->d_name)) continue;
+      if (n == cap) names = realloc(names, sizeof *names * (size_t)(cap = cap ? 2 * cap : 64));
+      names[n++] = strdup(e->d_name);
+    }
+    if (d) closedir(d);
+    if (n == 0) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s: folder holds no .tif/.tiff slices", path);
+      rc = 1;
+    }
+    qsort(names, (size_t)n, sizeof *names, by_version);
+    for (int f = 0; f < n && !rc; f++) {
+      char file[4096];
+      snprintf(file, sizeof file, "%s/%s", path, names[f]);
+      rc = read_pages(file, &st, err);
+    }
+    for (int f = 0; f < n; f++) free(names[f]);
+    free(names);
+  } else {
+    rc = read_pages(path, &st, err);
+  }
+  if (!rc && !(rc = mdp_image_alloc(img, st.nx, st.ny, st.nz, err))) {
+    memcpy(img->label, st.data, mdp_image_count(img));
+    rc = mdp_image_parse_labels(opts->labels[0] ? opts->labels : MDP_IMAGE_DEFAULT_LABELS,
+                                img->phase_of, err);
+    if (opts->voxel_size > 0) img->voxel_size = opts->voxel_size;
+    if (opts->unit[0]) snprintf(img->unit, sizeof img->unit, "%s", opts->unit);
+    if (!rc) rc = mdp_image_check_labels(img, path, err);
+    if (rc) mdp_image_free(img);
+  }
+  free(st.data);
+  return rc;
+}
+
+int mdp_image_write_tiff(const mdp_image_t *img, const char *path, char *err) {
+  char tmp[4096];
+  mdp_image_tmp_path(path, tmp, sizeof tmp);
+  TIFF *t = TIFFOpen(tmp, "w");
+  if (!t) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%.800s: cannot create TIFF", tmp);
+    return 1;
+  }
+  int bad = 0;
+  for (int k = 0; k < img->nz && !bad; k++) {
+    TIFFSetField(t, TIFFTAG_IMAGEWIDTH, (uint32_t)img->nx);
+    TIFFSetField(t, TIFFTAG_IMAGELENGTH, (uint32_t)img->ny);
+    TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
+    TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, 1);
+    TIFFSetField(t, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+    TIFFSetField(t, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, (uint32_t)img->ny);
+    TIFFSetField(t, TIFFTAG_SUBFILETYPE, FILETYPE_PAGE);
+    TIFFSetField(t, TIFFTAG_PAGENUMBER, (uint16_t)k, (uint16_t)img->nz);
+    for (int j = 0; j < img->ny && !bad; j++)
+      bad = TIFFWriteScanline(t, img->label + mdp_image_index(img, 0, j, k), (uint32_t)j, 0) < 0;
+    bad |= !TIFFWriteDirectory(t);
+  }
+  TIFFClose(t);
+  if (bad) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%.800s: writing TIFF failed", tmp);
+    remove(tmp);
+    return 1;
+  }
+  return mdp_image_commit(tmp, path, err);
+}
+
+#endif

@@ -1,0 +1,161 @@
+/* mdpore_image: segmented 3D voxel images (FIB-SEM, micro-CT, synthetic).
+ *
+ * An image is nx x ny x nz uint8 labels, x fastest: voxel (i, j, k) is label[i + nx * (j + ny *
+ * k)]. A label map (phase_of) says which label values are pore, organic or inorganic solid. Voxel
+ * (i, j, k) occupies [i, i+1) x [j, j+1) x [k, k+1) voxel units; one voxel unit is voxel_size
+ * `unit`.
+ *
+ * Every function that can fail returns 0 on success and non-zero on error, with a message naming
+ * the file, key or voxel and what was expected written into err (MDP_IMAGE_ERR_LEN bytes). No
+ * function prints or exits. The module does no physics. */
+#ifndef MDPORE_IMAGE_H
+#define MDPORE_IMAGE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define MDP_IMAGE_ERR_LEN 1024
+
+typedef enum {
+  MDP_PHASE_PORE = 0,
+  MDP_PHASE_ORGANIC = 1,
+  MDP_PHASE_INORGANIC = 2,
+  MDP_PHASE_UNSET = 255 /* label value not in the map: an error wherever it occurs in an image */
+} mdp_phase_t;
+
+typedef struct {
+  int nx, ny, nz;
+  double voxel_size;     /* edge of one cubic voxel, in `unit` */
+  char unit[8];          /* "m", "mm", "um", "nm" or "voxel" (no physical size known) */
+  uint8_t *label;        /* nx*ny*nz label values, x fastest */
+  uint8_t phase_of[256]; /* label value -> mdp_phase_t */
+} mdp_image_t;
+
+/* How to read a file. Zero-initialise (or call mdp_image_read_opts_init) and set what you know;
+ * unset fields are taken from a sidecar header (raw), the file's attributes (HDF5) or defaults. */
+typedef struct {
+  int nx, ny, nz;         /* raw: dimensions (0 = unset) */
+  char type[16];          /* raw: uint8 | int8 | uint16 | int16 | uint32 | int32 ("" = unset) */
+  char byte_order[8];     /* raw: little | big */
+  char axis_order[4];     /* raw: axes fastest first, e.g. "xyz" (x fastest) or "zyx" */
+  long long header_bytes; /* raw: bytes to skip before the data (-1 = unset) */
+  double voxel_size;      /* 0 = unset */
+  char unit[8];
+  char labels[256];  /* label map, e.g. "pore=0,organic=2,inorganic=1,3-5" ("" = unset) */
+  char dataset[256]; /* HDF5 dataset path (default "/labels") */
+  char format[8];    /* raw | hdf5 | tiff ("" = from the file name) */
+} mdp_image_read_opts_t;
+
+/* Default label map when none is given anywhere: pore=0, inorganic=1, organic=2. */
+#define MDP_IMAGE_DEFAULT_LABELS "pore=0,inorganic=1,organic=2"
+
+/* ---- basics (image.c) ---- */
+static inline size_t mdp_image_index(const mdp_image_t *img, int i, int j, int k) {
+  return (size_t)i + (size_t)img->nx * ((size_t)j + (size_t)img->ny * (size_t)k);
+}
+static inline size_t mdp_image_count(const mdp_image_t *img) {
+  return (size_t)img->nx * (size_t)img->ny * (size_t)img->nz;
+}
+static inline int mdp_image_phase(const mdp_image_t *img, size_t idx) {
+  return img->phase_of[img->label[idx]];
+}
+static inline int mdp_image_is_pore(const mdp_image_t *img, size_t idx) {
+  return img->phase_of[img->label[idx]] == MDP_PHASE_PORE;
+}
+void mdp_image_read_opts_init(mdp_image_read_opts_t *o);
+/* Allocate an nx*ny*nz image filled with label 0, map unset, voxel size 1 "voxel". */
+int mdp_image_alloc(mdp_image_t *img, int nx, int ny, int nz, char *err);
+void mdp_image_free(mdp_image_t *img);
+int mdp_image_copy_meta(mdp_image_t *dst, const mdp_image_t *src); /* voxel size, unit, map */
+/* Voxel edge in metres; returns 0 for unit "voxel". */
+double mdp_image_voxel_size_m(const mdp_image_t *img);
+/* Parse "10um", "1e-5 m", "3.5" (with default unit) into size and unit. */
+int mdp_image_parse_voxel_size(const char *text, double *size, char unit[8], char *err);
+const char *mdp_phase_name(int phase);
+
+/* ---- label map (image_labels.c) ---- */
+/* Parse "pore=0,organic=2,inorganic=1,3-5" into phase_of (values 0..255, ranges allowed). */
+int mdp_image_parse_labels(const char *text, uint8_t phase_of[256], char *err);
+/* Canonical text of a map: "pore=0;organic=2;inorganic=1,3" (inverse of mdp_image_parse_labels). */
+void mdp_image_format_labels(const uint8_t phase_of[256], char *out, size_t len);
+/* Error naming the first voxel whose label is not in the map (source = file name for the message).
+ */
+int mdp_image_check_labels(const mdp_image_t *img, const char *source, char *err);
+
+/* ---- readers (image_read.c, image_raw.c, image_hdf5.c, image_tiff.c) ---- */
+/* Read any supported format: raw (+ sidecar PATH.hdr), HDF5 (.h5/.hdf5), TIFF (.tif/.tiff or a
+ * folder of slices). Checks sizes against the file and every label against the map. */
+int mdp_image_read(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                   char *err);
+int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                       char *err);
+/* Fill unset fields of opts from a sidecar "key: value" file (see docs/images.md). */
+int mdp_image_read_sidecar(const char *path, mdp_image_read_opts_t *opts, char *err);
+int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                        char *err);
+int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                        char *err);
+int mdp_image_tiff_available(void); /* 1 when built with libtiff */
+
+/* ---- writers (atomic: temporary file in the same folder, then rename) ---- */
+/* HDF5: dataset "/labels" (uint8, dims [nz][ny][nx]) with attributes voxel_size, unit, label_map.
+ */
+int mdp_image_write_hdf5(const mdp_image_t *img, const char *path, char *err);
+/* Raw uint8, x fastest, plus the sidecar PATH.hdr that mdp_image_read_raw understands. */
+int mdp_image_write_raw(const mdp_image_t *img, const char *path, char *err);
+/* Multi-page 8-bit TIFF, one page per z slice (needs libtiff). */
+int mdp_image_write_tiff(const mdp_image_t *img, const char *path, char *err);
+
+/* ---- transformations (image_ops.c); out must not alias in, it is allocated here ---- */
+int mdp_image_crop(const mdp_image_t *in, const int lo[3], const int size[3], mdp_image_t *out,
+                   char *err);
+/* Majority vote of labels over factor^3 blocks (ties: the smaller label value). Voxels beyond the
+ * last whole block are dropped; the voxel size grows by factor. */
+int mdp_image_downsample(const mdp_image_t *in, int factor, mdp_image_t *out, char *err);
+/* widths[6] = x-, x+, y-, y+, z-, z+ layers of `label` added around the image. */
+int mdp_image_pad(const mdp_image_t *in, const int widths[6], uint8_t label, mdp_image_t *out,
+                  char *err);
+
+/* ---- statistics (image_stats.c) ---- */
+typedef struct {
+  long long n_voxels, n_pore, n_organic, n_inorganic;
+  double porosity;               /* pore voxels / all voxels */
+  int n_clusters;                /* 6-connected pore clusters */
+  int spans[3];                  /* 1 when some cluster connects face 0 to face n-1 of that axis */
+  long long connected_voxels[3]; /* pore voxels in clusters spanning that axis */
+  double connected_porosity[3];  /* connected_voxels / all voxels */
+  int n_isolated_clusters;       /* clusters touching no face of the box (enclosed pores) */
+  long long isolated_voxels;
+  int n_nonspanning_clusters; /* clusters spanning no axis (isolated + dead-end at a face) */
+  long long nonspanning_voxels;
+  long long largest_cluster;
+} mdp_image_stats_t;
+
+/* Phase counts and 6-connected pore clusters (union-find). */
+int mdp_image_stats(const mdp_image_t *img, mdp_image_stats_t *st, char *err);
+/* Optional per-voxel cluster id (-1 for solid), for callers that want to drop isolated pores. */
+int mdp_image_label_clusters(const mdp_image_t *img, int32_t *cluster, int *n_clusters, char *err);
+/* Error unless pore space is non-empty and spans the axis (0 x, 1 y, 2 z). */
+int mdp_image_require_percolation(const mdp_image_t *img, const mdp_image_stats_t *st, int axis,
+                                  const char *source, char *err);
+
+/* ---- synthetic images (image_make.c); all labels: 0 pore, 1 inorganic solid ---- */
+/* Slit along x: n_pore pore layers between `wall` solid layers normal to y; nx = length, nz =
+ * depth. */
+int mdp_make_slit(mdp_image_t *img, int n_pore, int wall, int length, int depth, char *err);
+/* Square array: one cylinder (axis z) per L x L cell, cells x cells cells, depth nz, solid fraction
+ * c in voxels as close to c as whole rings of voxels allow. achieved_c may be NULL. */
+int mdp_make_cylinders(mdp_image_t *img, int L, double c, int cells, int nz, double *achieved_c,
+                       char *err);
+/* Simple-cubic array: one sphere per L^3 cell, cells^3 cells, voxel solid fraction closest to c. */
+int mdp_make_spheres(mdp_image_t *img, int L, double c, int cells, double *achieved_c, char *err);
+/* Random overlapping spheres (Boolean model, periodic) of radius r voxels added until the porosity
+ * is at or just below target. */
+int mdp_make_random_spheres(mdp_image_t *img, int n, double radius, double porosity, uint64_t seed,
+                            char *err);
+/* Spheres from a centres file ("x y z [...]" per line, '#' comments) in a periodic box of size
+ * box[3] (same length unit as the centres), voxel edge dx in that unit. */
+int mdp_make_sphere_file(mdp_image_t *img, const char *centres, const double box[3], double radius,
+                         double dx, char *err);
+
+#endif

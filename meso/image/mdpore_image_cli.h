@@ -1,0 +1,26 @@
+/* Command-line options shared by every command that reads an image (mdpore image, mdpore foam):
+ * how to read it (--dims, --type, --labels, ...) and what to do to it (--crop, --downsample,
+ * --pad). */
+#ifndef MDPORE_IMAGE_CLI_H
+#define MDPORE_IMAGE_CLI_H
+
+#include "mdpore_image.h"
+
+#include <stdio.h>
+
+typedef struct {
+  mdp_image_read_opts_t read;
+  int crop_lo[3], crop_hi[3], crop; /* half-open [lo, hi) per axis */
+  int downsample;                   /* 0/1 = none */
+  int pad[6], pad_label;            /* pad_label -1 = the smallest pore label */
+} mdp_image_cli_t;
+
+void mdp_image_cli_init(mdp_image_cli_t *c);
+/* If argv[*i] is one of the shared options, consume it (and its value), advance *i and return 1;
+ * return 0 when it is not one of them, -1 (with err) on a bad value. */
+int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char *err);
+/* Read path and apply crop, then downsample, then pad. */
+int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *img, char *err);
+void mdp_image_cli_help(FILE *to);
+
+#endif
