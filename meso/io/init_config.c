@@ -4,6 +4,7 @@
 #include "io/lammps_data.h"
 #include "io/snapshot.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -102,7 +103,19 @@ int init_configuration(sim_t *sim, const scene_t *s) {
   MPI_Comm comm = sim_comm(sim);
   if (s->init.kind == INIT_FILL) {
     fill_ctx_t c = {.s = s};
-    for (int k = 0; k < s->init.n_fill; k++) c.start[k + 1] = c.start[k] + init_fill_count(s, k);
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    for (int k = 0; k < s->init.n_fill; k++) {
+      c.start[k + 1] = c.start[k] + init_fill_count(s, k);
+      const scene_fill_t *f = &s->init.fill[k];
+      const double vol = (f->hi[0] - f->lo[0]) * (f->hi[1] - f->lo[1]) * (f->hi[2] - f->lo[2]);
+      const double got = init_fill_count(s, k) / vol;
+      if (rank == 0 && fabs(got / f->density - 1) > 0.01)
+        fprintf(
+            stderr,
+            "%s: warning: initial.fill[%d]: the %s fill realises density %.4g (requested %.4g)\n",
+            s->file, k, f->mode == FILL_LATTICE ? "lattice" : "random", got, f->density);
+    }
     return offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
   }
   particle_set_t set;
