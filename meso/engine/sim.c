@@ -59,6 +59,17 @@ int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], con
     return -1;
   }
   double pos[3] = {x[0], x[1], x[2]};
+  for (int d = 0; d < 3; d++)
+    if (!isfinite(pos[d]) ||
+        (!sim->dc.periodic[d] && (pos[d] < sim->dc.box_lo[d] || pos[d] >= sim->dc.box_hi[d]))) {
+      if (sim->dc.rank == 0)
+        fprintf(stderr,
+                "mdpore: particle %lld at (%g, %g, %g): outside the box along the non-periodic "
+                "axis %c [%g, %g) (%s)\n",
+                (long long)id, x[0], x[1], x[2], "xyz"[d], sim -> dc.box_lo[d], sim->dc.box_hi[d],
+                sim->scene.file);
+      return -1;
+    }
   decomp_wrap(&sim->dc, pos);
   if (!decomp_owns(&sim->dc, pos)) return 0;
   particles_t *p = &sim->p;

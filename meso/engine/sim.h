@@ -30,8 +30,10 @@ sim_t *sim_create(const scene_t *scene, MPI_Comm comm);
 void sim_destroy(sim_t *sim);
 
 /* Offer one particle: it is stored when its position lies in this rank's subdomain (after periodic
- * wrapping). Returns 1 if stored here, 0 if not, -1 on allocation failure. Any rank may offer any
- * particle; callers generating a global configuration offer every particle on every rank. */
+ * wrapping). Returns 1 if stored here, 0 if not, -1 on allocation failure or a position that no
+ * rank can own (non-finite, or outside the box along a non-periodic axis; message on rank 0). Any
+ * rank may offer any particle; callers generating a global configuration offer every particle on
+ * every rank. */
 int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], const double v[3]);
 
 /* After all particles were added (or a checkpoint was loaded): check global count and ids, exchange
