@@ -1,6 +1,6 @@
 /* Time-averaged 1D profiles with block-averaged errors (see profile.h). */
 #include "analysis/profile.h"
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 
 #include <math.h>
 #include <stdlib.h>

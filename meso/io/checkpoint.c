@@ -1,6 +1,6 @@
 /* Checkpoint/restart files (see checkpoint.h). */
 #include "io/checkpoint.h"
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 #include "io/gather.h"
 #include "io/h5_util.h"
 

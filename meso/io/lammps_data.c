@@ -1,6 +1,6 @@
 /* LAMMPS data files (atomic style): reader and writer. */
 #include "io/lammps_data.h"
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 #include "io/gather.h"
 
 #include <errno.h>

@@ -1,6 +1,6 @@
 /* HDF5 snapshots (serial HDF5 on rank 0) and their XDMF index. */
 #include "io/snapshot.h"
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 #include "io/gather.h"
 #include "io/h5_util.h"
 #include "physics/density_kernels.h"

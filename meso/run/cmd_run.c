@@ -1,7 +1,7 @@
 /* mdpore run [--explain] [--steps N] [--output-dir D] [--restart FILE] SCENE */
 #include "commands.h"
 #include "engine/sim.h"
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 #include "run/run_loop.h"
 
 #include <getopt.h>

@@ -1,6 +1,6 @@
 /* Final summary of a run: human-readable lines on stdout and summary.json (atomic), with
  * block-averaged standard errors (Flyvbjerg-Petersen, analysis/block_average.c). */
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 #include "physics/density_kernels.h"
 #include "run/run_stats.h"
 

@@ -34,11 +34,11 @@ static int write_dataset(hid_t f, const char *name, int rank, const hsize_t *dim
 int darcy_write_hdf5(const char *path, const darcy_config *c, const double *pressure,
                      const darcy_post *post) {
   const darcy_problem *p = &c->problem;
-  atomic_file a;
-  atomic_temp_name(&a, path);
-  hid_t f = H5Fcreate(a.temp_path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  char tmp[4200];
+  atomic_tmp_name(path, tmp, sizeof tmp);
+  hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (f < 0) {
-    fprintf(stderr, "mdpore darcy: cannot create '%s'\n", a.temp_path);
+    fprintf(stderr, "mdpore darcy: cannot create '%s'\n", tmp);
     return -1;
   }
   int rank = p->dim;
@@ -69,21 +69,22 @@ int darcy_write_hdf5(const char *path, const darcy_config *c, const double *pres
                       "per block and axis: mean driving gradient G = -dp/dx = drop / cell size");
   if (H5Fclose(f) < 0) rc = -1;
   if (rc) {
-    fprintf(stderr, "mdpore darcy: error writing '%s'\n", a.temp_path);
-    remove(a.temp_path);
+    fprintf(stderr, "mdpore darcy: error writing '%s'\n", tmp);
+    remove(tmp);
     return -1;
   }
-  return atomic_rename(&a);
+  return atomic_rename(tmp, path);
 }
 
 int darcy_write_json(const char *path, const char *config_path, const darcy_config *c,
                      const double *pressure, const darcy_post *post, const darcy_stats *st,
                      int nranks) {
   const darcy_problem *p = &c->problem;
-  atomic_file a;
-  if (atomic_open(&a, path)) return -1;
+  char tmp[4200];
+  FILE *fp = atomic_open(path, tmp, sizeof tmp);
+  if (!fp) return -1;
   json_out j;
-  json_begin(&j, a.f);
+  json_begin(&j, fp);
   json_string(&j, "format", "mdpore-darcy");
   json_int(&j, "version", 1);
   json_string(&j, "config", config_path);
@@ -135,5 +136,5 @@ int darcy_write_json(const char *path, const char *config_path, const darcy_conf
     json_array_end(&j);
   }
   json_end(&j);
-  return atomic_commit(&a);
+  return atomic_commit(fp, tmp, path);
 }

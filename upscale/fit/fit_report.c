@@ -107,10 +107,11 @@ static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
 
 int fit_write_json(const char *path, const flow_table *t, const fit_result *r, int nr, int chosen,
                    fit_criterion crit) {
-  atomic_file a;
-  if (atomic_open(&a, path)) return -1;
+  char tmp[4200];
+  FILE *fp = atomic_open(path, tmp, sizeof tmp);
+  if (!fp) return -1;
   json_out j;
-  json_begin(&j, a.f);
+  json_begin(&j, fp);
   json_string(&j, "format", "mdpore-fit");
   json_int(&j, "version", 1);
   json_string(&j, "table", t->path);
@@ -143,7 +144,7 @@ int fit_write_json(const char *path, const flow_table *t, const fit_result *r, i
   for (int i = 0; i < nr; i++) write_model(&j, t, &r[i]);
   json_array_end(&j);
   json_end(&j);
-  return atomic_commit(&a);
+  return atomic_commit(fp, tmp, path);
 }
 
 void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr, int chosen,

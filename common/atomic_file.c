@@ -1,5 +1,5 @@
 /* Atomic whole-file writes (temp file in the same directory + rename) and mkdir -p. */
-#include "io/atomic_file.h"
+#include "common/atomic_file.h"
 
 #include <errno.h>
 #include <string.h>

@@ -1,8 +1,8 @@
 /* Whole output files are written atomically: into a temporary file in the same directory, then
  * rename()d over the target, so a reader never sees a half-written file (and a crash keeps the old
  * one). */
-#ifndef MESO_IO_ATOMIC_FILE_H
-#define MESO_IO_ATOMIC_FILE_H
+#ifndef MDPORE_COMMON_ATOMIC_FILE_H
+#define MDPORE_COMMON_ATOMIC_FILE_H
 
 #include <stddef.h>
 #include <stdio.h>
