@@ -48,6 +48,7 @@ void sim_destroy(sim_t *sim) {
   ghosts_free(&sim->ghosts);
   xbuf_free(&sim->sbuf);
   xbuf_free(&sim->rbuf);
+  sort_scratch_free(&sim->sort);
   decomp_free(&sim->dc);
   free(sim);
 }
@@ -129,6 +130,8 @@ int sim_setup(sim_t *sim) {
   /* Forces at the current step use the current velocities (v~ = v). Forces loaded from a checkpoint
    * are kept: they were evaluated with the predicted velocities of the step that produced them; the
    * pass still runs for the densities, the ghosts and the pair virial. */
+  /* Spatial order first (idempotent on an already sorted set: restarts keep their order). */
+  if (sort_owned_by_bin(p, sim->dc.lo, sim->dc.hi, sim->plan.rcut, &sim->sort)) return -1;
   double *saved = NULL;
   if (sim->forces_loaded) {
     saved = malloc((size_t)(3 * p->n_local + 1) * sizeof(double));
@@ -182,6 +185,8 @@ int sim_step(sim_t *sim) {
   migrate_report_t mr = {0};
   migrate_particles(&sim->dc, p, &sim->sbuf, &sim->rbuf, &mr);
   if (mr.n_lost) step_problem_note(&pr, STEP_LOST, mr.lost_id, mr.lost_x, (double)mr.n_lost);
+  if (sort_owned_by_bin(p, sim->dc.lo, sim->dc.hi, plan->rcut, &sim->sort))
+    step_problem_note(&pr, STEP_NO_MEMORY, -1, NULL, 0);
   integrate_predict(plan, p, dt, sim->scene.vv_lambda);
   if (mr.out_of_memory || sim_compute_forces(sim))
     step_problem_note(&pr, STEP_NO_MEMORY, -1, NULL, 0);

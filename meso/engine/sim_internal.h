@@ -10,6 +10,7 @@
 #include "particles.h"
 #include "plan.h"
 #include "sim.h"
+#include "sort_owned.h"
 #include "step_check.h"
 
 struct sim {
@@ -21,6 +22,7 @@ struct sim {
   nlist_t neighbours;
   ghost_plan_t ghosts;
   xbuf_t sbuf, rbuf; /* migration buffers */
+  sort_scratch_t sort;
   long step;
   long n_total; /* global particle count fixed at sim_setup; checked every step */
   int forces_loaded, want_virial, is_setup;
