@@ -49,7 +49,8 @@ def main():
     for A in (args.A or list(CASES)):
         ref = CASES[A]
         box = [Lx, Ly, Lz]
-        fill = mdval.fill_box(box, ref["rho"], lo=[10.0, 0.0, 0.0], hi=[20.0, Ly, Lz])
+        # A lattice start: a random fill of dense liquid next to vacuum starts at p ~ 140 and can leave a cavity.
+        fill = mdval.fill_box(box, ref["rho"], lo=[10.0, 0.0, 0.0], hi=[20.0, Ly, Lz], mode="lattice")
         scene = mdval.mdpd_scene(f"slab_A{A:g}", box, [fill], A=A, steps=steps,
                                  profile={"axis": "x", "bins": 60, "every": 10, "start": equil})
         wd = os.path.join(out, f"A{A:g}")
