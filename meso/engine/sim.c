@@ -37,11 +37,17 @@ sim_t *sim_create(const scene_t *scene, MPI_Comm comm) {
     sim_destroy(sim);
     return NULL;
   }
+  if (scene->backend == SCENE_BACKEND_CUDA && sim_cuda_create(sim)) {
+    report(comm, sim->err);
+    sim_destroy(sim);
+    return NULL;
+  }
   return sim;
 }
 
 void sim_destroy(sim_t *sim) {
   if (!sim) return;
+  if (sim->gpu) sim_cuda_destroy(sim);
   pstore_free(&sim->p);
   cell_list_free(&sim->cells);
   cpu_neighbours_free(&sim->neighbours);
@@ -127,6 +133,11 @@ int sim_setup(sim_t *sim) {
     report(sim->dc.cart, sim->err);
     return -1;
   }
+  if (sim->gpu) { /* CUDA path: the device sorts, evaluates and checks (sim_cuda.c) */
+    if (sim_cuda_setup(sim)) return -1;
+    sim->is_setup = 1;
+    return 0;
+  }
   /* Forces at the current step use the current velocities (v~ = v). Forces loaded from a checkpoint
    * are kept: they were evaluated with the predicted velocities of the step that produced them; the
    * pass still runs for the densities, the ghosts and the pair virial. */
@@ -163,6 +174,7 @@ int sim_setup(sim_t *sim) {
 }
 
 int sim_step(sim_t *sim) {
+  if (sim->gpu) return sim_cuda_step(sim);
   particles_t *p = &sim->p;
   const plan_t *plan = &sim->plan;
   const double dt = sim->scene.dt;
@@ -203,6 +215,7 @@ int sim_check_count(sim_t *sim) {
 }
 
 particles_t *sim_particles(sim_t *sim) {
+  sim_cuda_sync_host(sim); /* no-op on the CPU path */
   return &sim->p;
 }
 const scene_t *sim_scene(const sim_t *sim) {

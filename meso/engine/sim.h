@@ -63,6 +63,14 @@ int sim_check_count(sim_t *sim);
 /* The last error message of this rank ("" when none). */
 const char *sim_last_error(const sim_t *sim);
 
+/* The backend for --backend NAME: "cpu", "cuda", or "auto" (cuda when this build has CUDA, a GPU is
+ * visible and the run has one rank; cpu otherwise). 0, or -1 with the reason in err (cuda asked for
+ * but not built, no GPU visible, or more than one rank). */
+int sim_backend_choose(const char *name, int nranks, int *backend, char *err, size_t errlen);
+/* With the CUDA backend the particles live on the GPU between steps: sim_particles() copies them
+ * back first when they changed (outputs only; changes made through it after sim_setup are not seen
+ * by the device). */
+
 /* Print the per-step pass plan for a scene without running it (mdpore run --explain). */
 void sim_explain(const scene_t *scene, int nranks, FILE *out);
 

@@ -26,9 +26,19 @@ struct sim {
   long step;
   long n_total; /* global particle count fixed at sim_setup; checked every step */
   int forces_loaded, want_virial, is_setup;
-  double virial[6]; /* local pair virial of the last force pass: 1/2 sum r_ij (x) F_ij */
-  char err[2048];   /* last error message on this rank */
+  double virial[6];     /* local pair virial of the last force pass: 1/2 sum r_ij (x) F_ij */
+  char err[2048];       /* last error message on this rank */
+  struct cuda_sim *gpu; /* CUDA backend state (scene.backend == SCENE_BACKEND_CUDA), else NULL */
+  int host_stale;       /* the device holds a newer state than p */
 };
+
+/* CUDA backend glue (sim_cuda.c; errors when the build has no CUDA). 0 or -1 (message in err). */
+int sim_cuda_create(sim_t *sim);
+void sim_cuda_destroy(sim_t *sim);
+int sim_cuda_setup(sim_t *sim);
+int sim_cuda_step(sim_t *sim);
+int sim_cuda_thermo_sums(sim_t *sim, double sums[17]);
+void sim_cuda_sync_host(sim_t *sim);
 
 /* Ghosts, densities, pair and particle forces at the current positions for step index sim->step. */
 int sim_compute_forces(sim_t *sim);

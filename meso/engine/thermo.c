@@ -12,7 +12,8 @@ void sim_thermo(sim_t *sim, thermo_t *out) {
   const plan_t *plan = &sim->plan;
   enum { N_MOBILE, KE, PX, PY, PZ, K0, NV = K0 + 6, NVAL = NV + 6 };
   double v[NVAL] = {0}, g[NVAL];
-  for (int i = 0; i < p->n_local; i++) {
+  if (sim->gpu && sim_cuda_thermo_sums(sim, v)) memset(v, 0, sizeof v); /* message printed */
+  for (int i = 0; i < (sim->gpu ? 0 : p->n_local); i++) {
     const int s = p->species[i];
     const double m = plan->mass[s];
     const double vx = p->v[0][i], vy = p->v[1][i], vz = p->v[2][i];
@@ -29,7 +30,8 @@ void sim_thermo(sim_t *sim, thermo_t *out) {
     v[PY] += m * vy;
     v[PZ] += m * vz;
   }
-  for (int k = 0; k < 6; k++) v[NV + k] = sim->virial[k];
+  if (!sim->gpu)
+    for (int k = 0; k < 6; k++) v[NV + k] = sim->virial[k];
   /* Reduce on rank 0 and broadcast: bitwise identical values on every rank. */
   MPI_Reduce(v, g, NVAL, MPI_DOUBLE, MPI_SUM, 0, sim->dc.cart);
   MPI_Bcast(g, NVAL, MPI_DOUBLE, 0, sim->dc.cart);

@@ -73,6 +73,9 @@ typedef struct {
   char path[SCENE_PATH_LEN];
 } scene_profile_t;
 
+/* Engine backends (meso/backend/<name>). */
+enum scene_backend { SCENE_BACKEND_CPU = 0, SCENE_BACKEND_CUDA = 1 };
+
 typedef struct {
   char file[SCENE_PATH_LEN]; /* the scene file this came from (for messages) */
   char name[SCENE_NAME_LEN];
@@ -109,6 +112,8 @@ typedef struct {
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
   int progress;                      /* progress + ETA on stderr (default 1)             */
   char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */
+  int backend; /* enum scene_backend: where the engine runs; set by mdpore run/forces --backend,
+                  not read from the scene file (0 = cpu) */
 } scene_t;
 
 /* Parse and validate a scene file. On error prints "FILE:LINE: key 'K': expected ..." to stderr and

@@ -15,19 +15,24 @@
 int cmd_forces(int argc, char **argv) {
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  static const struct option opts[] = {
-      {"dump", required_argument, NULL, 'd'}, {"help", no_argument, NULL, 'h'}, {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {{"dump", required_argument, NULL, 'd'},
+                                       {"backend", required_argument, NULL, 'b'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {NULL, 0, NULL, 0}};
+  const char *backend = "auto";
   const char *dump = "forces.lammpstrj";
   int c;
   optind = 1;
   opterr = rank == 0;
-  while ((c = getopt_long(argc, argv, "d:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, "d:b:h", opts, NULL)) != -1) {
     if (c == 'd') {
       dump = optarg;
+    } else if (c == 'b') {
+      backend = optarg;
     } else {
       if (rank == 0)
         fprintf(c == 'h' ? stdout : stderr,
-                "usage: mdpore forces SCENE.yaml [--dump FILE]\n"
+                "usage: mdpore forces SCENE.yaml [--dump FILE] [--backend cpu|cuda|auto]\n"
                 "  evaluate densities and forces on the initial configuration and "
                 "write them as a LAMMPS-style dump (default forces.lammpstrj)\n");
       return c == 'h' ? 0 : 2;
@@ -43,6 +48,14 @@ int cmd_forces(int argc, char **argv) {
     return 1;
   }
   scene->restart_from[0] = 0;
+  int nranks = 1;
+  char err[512];
+  MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+  if (sim_backend_choose(backend, nranks, &scene->backend, err, sizeof err)) {
+    if (rank == 0) fprintf(stderr, "mdpore forces: %s\n", err);
+    free(scene);
+    return 2;
+  }
   sim_t *sim = sim_create(scene, MPI_COMM_WORLD);
   int rc = !sim || init_configuration(sim, scene) || sim_setup(sim);
   if (!rc) rc = dump_lammps_frame(dump, sim, 1) != 0;

@@ -18,7 +18,8 @@ static void usage(FILE *to) {
       "  --explain         print the per-step plan the scene's effects produce, and exit\n"
       "  --steps N         run N steps instead of run.steps (after a restart: N more steps)\n"
       "  --output-dir DIR  write the outputs (relative paths) into DIR (created if needed)\n"
-      "  --restart FILE    continue from a checkpoint (overrides the scene's 'restart')\n");
+      "  --restart FILE    continue from a checkpoint (overrides the scene's 'restart')\n"
+      "  --backend B       cpu, cuda or auto (default: cuda when a GPU is visible and one rank)\n");
 }
 
 int cmd_run(int argc, char **argv) {
@@ -29,14 +30,15 @@ int cmd_run(int argc, char **argv) {
                                        {"steps", required_argument, NULL, 's'},
                                        {"output-dir", required_argument, NULL, 'o'},
                                        {"restart", required_argument, NULL, 'r'},
+                                       {"backend", required_argument, NULL, 'b'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   int explain = 0, c;
   long steps = -1;
-  const char *outdir = NULL, *restart = NULL;
+  const char *outdir = NULL, *restart = NULL, *backend = "auto";
   optind = 1;
   opterr = rank == 0;
-  while ((c = getopt_long(argc, argv, "es:o:r:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, "es:o:r:b:h", opts, NULL)) != -1) {
     switch (c) {
     case 'e':
       explain = 1;
@@ -57,6 +59,9 @@ int cmd_run(int argc, char **argv) {
     case 'r':
       restart = optarg;
       break;
+    case 'b':
+      backend = optarg;
+      break;
     case 'h':
       if (rank == 0) usage(stdout);
       return 0;
@@ -75,6 +80,12 @@ int cmd_run(int argc, char **argv) {
     return 1;
   }
   if (steps >= 0) scene->steps = steps;
+  char err[512];
+  if (sim_backend_choose(backend, size, &scene->backend, err, sizeof err)) {
+    if (rank == 0) fprintf(stderr, "mdpore run: %s\n", err);
+    free(scene);
+    return 2;
+  }
   if (restart) snprintf(scene->restart_from, sizeof scene->restart_from, "%s", restart);
   int rc = 0;
   if (explain) {

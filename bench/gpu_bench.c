@@ -1,0 +1,155 @@
+/* GPU throughput benchmark (issue 5, item 5; not a test): particle-steps per second, ns per
+ * particle-step and device bytes per particle of the CUDA path for
+ *   bulk K    : periodic mDPD fluid, rho = 6.2, cubic box of side K
+ *   porous K  : the paper's homogeneous porous medium (physics.md section 7), K x K quasi-2D cells
+ *               Lx = Lz = 16, Ly = 2; a ring of frozen wall particles (radii 6..7, density 8) and
+ *               fluid at density 6.2 outside it; even rows of cells shifted by Lx/2; A = -40 for
+ * all pairs, B = 25, rd = 0.75, gamma = 4.5, g_z = 0.02 on the fluid, dt = 0.01. usage: gpu_bench
+ * bulk|porous K [steps] [warmup] [cpu|cuda] Particles start at random positions (fixed seed); the
+ * warm-up steps relax the overlaps. */
+#include "engine/sim.h"
+#include "engine/sim_internal.h"
+#ifdef MDPORE_HAVE_CUDA
+#include "backend/cuda/cuda_backend.h"
+#endif
+
+#include <math.h>
+#include <mpi.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static uint64_t rng_state = 2024;
+static double uniform(void) {
+  uint64_t z = (rng_state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return ((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+}
+
+static void scene_base(scene_t *s, double lx, double ly, double lz, int n_species) {
+  memset(s, 0, sizeof *s);
+  snprintf(s->file, sizeof s->file, "(gpu_bench)");
+  snprintf(s->name, sizeof s->name, "gpu_bench");
+  const double L[3] = {lx, ly, lz};
+  for (int d = 0; d < 3; d++) {
+    s->box_hi[d] = L[d];
+    s->periodic[d] = 1;
+  }
+  s->n_species = n_species;
+  snprintf(s->species[0].name, SCENE_NAME_LEN, "fluid");
+  snprintf(s->species[1].name, SCENE_NAME_LEN, "wall");
+  s->species[0].mass = s->species[1].mass = 1.0;
+  s->species[1].frozen = 1;
+  for (int a = 0; a < SCENE_MAX_SPECIES; a++)
+    for (int b = 0; b < SCENE_MAX_SPECIES; b++)
+      s->pair[a][b] = (scene_pair_t){.A = -40, .B = 25, .gamma = 4.5, .rc = 1.0, .rd = 0.75};
+  s->kT = 1.0;
+  s->weight_exp = 1.0;
+  s->vv_lambda = 0.5;
+  s->body_force_reverse_axis = -1;
+  s->dt = 0.01;
+  s->seed = 7;
+  s->effect[EFFECT_MDPD_ATTRACTION] = s->effect[EFFECT_MDPD_REPULSION] = 1;
+  s->effect[EFFECT_DPD_THERMOSTAT] = 1;
+}
+
+static long add(sim_t *sim, long id, int species, double x, double y, double z, const scene_t *s) {
+  double pos[3] = {x, y, z}, v[3];
+  for (int d = 0; d < 3; d++) {
+    const double L = s->box_hi[d];
+    pos[d] = fmod(pos[d], L);
+    if (pos[d] < 0) pos[d] += L;
+    v[d] = species == 0 ? sqrt(3.0) * (2.0 * uniform() - 1.0) : 0.0;
+  }
+  return sim_add_particle(sim, id, species, pos, v) < 0 ? -1 : id + 1;
+}
+
+static long fill_bulk(sim_t *sim, const scene_t *s) {
+  const long n = lround(6.2 * s->box_hi[0] * s->box_hi[1] * s->box_hi[2]);
+  long id = 0;
+  for (long k = 0; k < n && id >= 0; k++)
+    id = add(sim, id, 0, s->box_hi[0] * uniform(), s->box_hi[1] * uniform(),
+             s->box_hi[2] * uniform(), s);
+  return id;
+}
+
+/* One cell of the porous medium centred on its ring (cx, cz): wall particles in 6 <= r < 7 at
+ * density 8, fluid at r >= 7 at density 6.2 within the 16 x 16 square around the centre. */
+static long fill_porous(sim_t *sim, const scene_t *s, int k) {
+  const double c = 16.0, ly = 2.0, pi = 3.14159265358979323846;
+  const long n_wall = lround(8.0 * pi * (49.0 - 36.0) * ly);
+  const long n_fluid = lround(6.2 * (c * c - pi * 49.0) * ly);
+  long id = 0;
+  for (int iz = 0; iz < k && id >= 0; iz++)
+    for (int ix = 0; ix < k && id >= 0; ix++) {
+      const double cx = c * ix + c / 2 + (iz % 2 == 0 ? c / 2 : 0.0), cz = c * iz + c / 2;
+      for (long w = 0; w < n_wall && id >= 0;) {
+        const double dx = 14.0 * uniform() - 7.0, dz = 14.0 * uniform() - 7.0;
+        const double r2 = dx * dx + dz * dz;
+        if (r2 < 36.0 || r2 >= 49.0) continue;
+        id = add(sim, id, 1, cx + dx, ly * uniform(), cz + dz, s);
+        w++;
+      }
+      for (long f = 0; f < n_fluid && id >= 0;) {
+        const double dx = c * uniform() - c / 2, dz = c * uniform() - c / 2;
+        if (dx * dx + dz * dz < 49.0) continue;
+        id = add(sim, id, 0, cx + dx, ly * uniform(), cz + dz, s);
+        f++;
+      }
+    }
+  return id;
+}
+
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  if (argc < 3) {
+    fprintf(stderr, "usage: gpu_bench bulk|porous K [steps] [warmup] [cpu|cuda]\n");
+    return 2;
+  }
+  const int porous = !strcmp(argv[1], "porous"), k = atoi(argv[2]);
+  const int steps = argc > 3 ? atoi(argv[3]) : 100, warm = argc > 4 ? atoi(argv[4]) : 50;
+  const char *backend = argc > 5 ? argv[5] : "cuda";
+  scene_t *s = malloc(sizeof *s);
+  if (porous) {
+    scene_base(s, 16.0 * k, 2.0, 16.0 * k, 2);
+    s->effect[EFFECT_BODY_FORCE] = 1;
+    s->body_force[0][2] = 0.02;
+  } else {
+    scene_base(s, k, k, k, 1);
+  }
+  char err[512];
+  if (sim_backend_choose(backend, 1, &s->backend, err, sizeof err)) {
+    fprintf(stderr, "gpu_bench: %s\n", err);
+    return 1;
+  }
+  sim_t *sim = sim_create(s, MPI_COMM_WORLD);
+  const long n = sim ? (porous ? fill_porous(sim, s, k) : fill_bulk(sim, s)) : -1;
+  if (n < 0 || sim_setup(sim)) return 1;
+  for (int i = 0; i < warm; i++)
+    if (sim_step(sim)) return 1;
+  const double t0 = MPI_Wtime();
+  for (int i = 0; i < steps; i++)
+    if (sim_step(sim)) return 1;
+  const double t = MPI_Wtime() - t0; /* each step ends with a device->host copy: synchronised */
+  thermo_t th;
+  sim_thermo(sim, &th);
+  const char *device = "cpu";
+  double bytes = 0;
+#ifdef MDPORE_HAVE_CUDA
+  if (sim->gpu) {
+    device = cuda_sim_device_name(sim->gpu);
+    bytes = (double)cuda_sim_bytes(sim->gpu) / (double)n;
+  }
+#endif
+  const double mps = (double)n * steps / t;
+  printf("case=%s K=%d particles=%ld steps=%d device=\"%s\" seconds=%.3f MPS=%.4g "
+         "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f T=%.4f\n",
+         porous ? "porous" : "bulk", k, n, steps, device, t, mps / 1e6, 1e9 / mps, bytes,
+         th.temperature);
+  sim_destroy(sim);
+  free(s);
+  MPI_Finalize();
+  return 0;
+}

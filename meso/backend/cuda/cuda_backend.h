@@ -1,0 +1,74 @@
+/* The CUDA backend's C interface (used by meso/engine/sim_cuda.c). One GPU holds the particles of
+ * one rank between steps; the host sees them only through cuda_sim_download (outputs, checkpoints).
+ * Pair math comes from meso/physics (*.h), compiled for the device with MESO_REAL_FLOAT unless the
+ * build sets MDPORE_DOUBLE. Cells wrap periodically on the device (one rank: no ghost copies). */
+#ifndef MESO_BACKEND_CUDA_BACKEND_H
+#define MESO_BACKEND_CUDA_BACKEND_H
+
+#include "engine/particles.h"
+#include "engine/plan.h"
+#include "io/scene.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct cuda_sim cuda_sim_t;
+
+/* Problems the device reports (same order of seriousness as enum step_problem_kind). */
+enum cuda_problem_kind {
+  CUDA_OK = 0,
+  CUDA_NONFINITE = 2,
+  CUDA_TOO_FAST = 3,
+  CUDA_LOST = 4,
+  CUDA_PROBLEM_KINDS = 8
+};
+
+typedef struct {
+  int kind;     /* enum cuda_problem_kind (the most serious one seen) */
+  int at_drift; /* 1: found after the drift (the CPU path reports it at step + 1 before forces) */
+  int64_t id;
+  double x[3];
+  double value;
+  long count; /* particles with a problem of this kind */
+} cuda_problem_t;
+
+/* Number of visible CUDA devices; 0 with the reason in why (no driver, no device, ...). */
+int cuda_device_count(char *why, size_t len);
+
+/* Device state for the scene's box. NULL with a message in err. */
+cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *scene, char *err, size_t len);
+void cuda_sim_destroy(cuda_sim_t *g);
+
+/* Copy the n_local owned particles of p (id, species, x, v, f) to the device. 0 or -1. */
+int cuda_sim_upload(cuda_sim_t *g, const particles_t *p);
+/* Copy the device state back into p (n_local, order of the device; rho, vpred, virial when
+ * allocated on the host). p must have room (pstore_reserve). 0 or -1. */
+int cuda_sim_download(cuda_sim_t *g, particles_t *p);
+/* Number of particles on the device. */
+int cuda_sim_count(const cuda_sim_t *g);
+
+/* Sort by cell, densities and forces at step index `step` (setup: v~ = v). keep_forces: forces
+ * were loaded from a checkpoint and are kept (the pass still runs for rho and the virial). */
+int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, int want_virial,
+                          cuda_problem_t *pr);
+/* One velocity-Verlet step; step is the index after the step (keys the random numbers). */
+int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_problem_t *pr);
+
+/* Local sums for sim_thermo in double, in the CPU path's order of quantities: N_mobile, KE, px, py,
+ * pz, sum m v_a v_b (6), pair virial (6). 0 or -1. */
+int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[17]);
+
+/* Bytes of device memory this state holds. */
+size_t cuda_sim_bytes(const cuda_sim_t *g);
+/* Name of the device (for summaries and the benchmark). */
+const char *cuda_sim_device_name(const cuda_sim_t *g);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,74 @@
+/* Cell sort of the device particles: bin index per particle, stable radix sort of (bin, index),
+ * gather of every field into bin order, and the first slot of each bin (cell_start). The sort is
+ * stable, so an already sorted set keeps its order and the traversal order is deterministic. */
+#include "cuda_state.cuh"
+
+#include <cub/device/device_radix_sort.cuh>
+
+__device__ __forceinline__ int bin_of(double x, double lo, double inv, int nb) {
+  const double s = (x - lo) * inv;
+  if (!(s >= 0.0)) return 0; /* NaN goes to bin 0 (the step check stops the run) */
+  const int b = (int)s;
+  return b < nb ? b : nb - 1;
+}
+
+__global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict__ x,
+                            const double *__restrict__ y, const double *__restrict__ z,
+                            uint32_t *key, int *iota) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const int bx = bin_of(x[i], q.lo[0], q.inv_bin[0], q.nb[0]);
+  const int by = bin_of(y[i], q.lo[1], q.inv_bin[1], q.nb[1]);
+  const int bz = bin_of(z[i], q.lo[2], q.inv_bin[2], q.nb[2]);
+  key[i] = (uint32_t)(bx + q.nb[0] * (by + q.nb[1] * bz));
+  iota[i] = i;
+}
+
+/* dst[k] = src[perm[k]] for every field. */
+__global__ void k_gather(int n, const int *__restrict__ perm, struct dev_fields src,
+                         struct dev_fields dst, int with_vpred) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const int i = perm[k];
+  dst.id[k] = src.id[i];
+  dst.species[k] = src.species[i];
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    dst.x[d][k] = src.x[d][i];
+    dst.v[d][k] = src.v[d][i];
+    dst.f[d][k] = src.f[d][i];
+    if (with_vpred) dst.vpred[d][k] = src.vpred[d][i];
+  }
+}
+
+/* cell_start[c] = first sorted slot with key >= c, for c in [0, ncell]. */
+__global__ void k_cell_start(int n, int ncell, const uint32_t *__restrict__ key, int *start) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const int c = (int)key[k];
+  const int prev = k > 0 ? (int)key[k - 1] : -1;
+  for (int b = prev + 1; b <= c; b++) start[b] = k;
+  if (k == n - 1)
+    for (int b = c + 1; b <= ncell; b++) start[b] = n;
+}
+
+int cuda_sort_cells(struct cuda_sim *g) {
+  const int n = g->n;
+  const struct dev_params *q = &g->prm;
+  if (n == 0) return cuda_check(cudaMemset(g->cell_start, 0, (q->ncell + 1) * sizeof(int)), "sort");
+  const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota);
+  int end_bit = 1;
+  while (end_bit < 32 && (1u << end_bit) < (unsigned)q->ncell) end_bit++;
+  size_t tmp = g->sort_tmp_bytes;
+  if (cuda_check(cub::DeviceRadixSort::SortPairs(g->sort_tmp, tmp, g->key, g->key_sorted, g->iota,
+                                                 g->perm, n, 0, end_bit),
+                 "cell sort"))
+    return -1;
+  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm, g->a, g->b, q->use_vpred);
+  struct dev_fields t = g->a;
+  g->a = g->b;
+  g->b = t;
+  k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted, g->cell_start);
+  return cuda_check(cudaGetLastError(), "cell sort kernels");
+}

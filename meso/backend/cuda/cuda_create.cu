@@ -1,0 +1,104 @@
+/* The device constants of a scene (dev_params) and the creation of the device state. Cells: nb[d]
+ * bins of width >= the ghost cutoff over the box; a periodic axis needs at least 2 bins (box >= 2
+ * cutoffs, so a pair meets at most one image of its partner). */
+#include "cuda_state.cuh"
+#include "effects/effect.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static void fill_coef(struct dev_coef *d, const pair_coef_t *c) {
+  d->A = (meso_real)c->A;
+  d->B = (meso_real)c->B;
+  d->gamma = (meso_real)c->gamma;
+  d->sigma = (meso_real)c->sigma;
+  d->inv_rc = (meso_real)c->inv_rc;
+  d->rc2 = (meso_real)c->rc2;
+  d->inv_rd = (meso_real)c->inv_rd;
+  d->rd2 = (meso_real)c->rd2;
+  d->wnorm = (meso_real)c->wnorm;
+  d->cut2 = (meso_real)c->cut2;
+}
+
+static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s, char *err,
+                      size_t len) {
+  const double rcut = plan->rcut > 0 ? plan->rcut : 1.0;
+  q->ncell = 1;
+  for (int d = 0; d < 3; d++) {
+    q->lo[d] = s->box_lo[d];
+    q->hi[d] = s->box_hi[d];
+    q->L[d] = s->box_hi[d] - s->box_lo[d];
+    q->periodic[d] = s->periodic[d];
+    int nb = (int)(q->L[d] / rcut);
+    if (nb < 1) nb = 1;
+    if (q->periodic[d] && nb < 2 && plan->pair_terms) {
+      snprintf(err, len,
+               "%s: CUDA backend: periodic box length %g along %c is shorter than twice the "
+               "cutoff %g (use --backend cpu)",
+               s->file, q->L[d], "xyz"[d], rcut);
+      return -1;
+    }
+    q->nb[d] = nb;
+    q->inv_bin[d] = nb / q->L[d];
+    q->ncell *= nb;
+    q->min_image[d] = q->periodic[d] && nb < 3;
+    q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* nb = 2, periodic: bins b and b + 1 */
+    q->off_hi[d] = nb >= 2 ? 1 : 0;
+  }
+  return 0;
+}
+
+extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, char *err,
+                                       size_t len) {
+  char why[256];
+  if (cuda_device_count(why, sizeof why) < 1) {
+    snprintf(err, len, "CUDA backend asked for but no GPU is visible: %s", why);
+    return NULL;
+  }
+  cuda_sim_t *g = (cuda_sim_t *)calloc(1, sizeof *g);
+  if (!g) {
+    snprintf(err, len, "out of memory");
+    return NULL;
+  }
+  struct dev_params *q = &g->prm;
+  q->n_species = plan->n_species;
+  q->terms = plan->pair_terms;
+  q->density = plan->density;
+  q->kernel = plan->density_kernel;
+  q->s_one = plan->weight_exp_is_one;
+  q->walls = plan->walls;
+  q->particle_forces = plan->particle_forces;
+  q->use_vpred = plan->use_vpred;
+  q->s_exp = (meso_real)plan->weight_exp;
+  q->inv_sqrt_dt = (meso_real)(1.0 / sqrt(s->dt));
+  q->seed = s->seed;
+  q->dt = s->dt;
+  q->max_disp = plan->max_disp;
+  q->predict_c = (s->vv_lambda - 0.5) * s->dt;
+  for (int a = 0; a < plan->n_species; a++) {
+    q->mobile[a] = plan->mobile[a];
+    q->inv_mass[a] = plan->inv_mass[a];
+    q->mass[a] = plan->mass[a];
+    for (int d = 0; d < 3; d++)
+      q->g[a][d] = plan->named[EFFECT_BODY_FORCE] ? s->body_force[a][d] : 0.0;
+    for (int b = 0; b < plan->n_species; b++) fill_coef(&q->coef[a][b], &plan->coef[a][b]);
+  }
+  q->rev_axis = plan->named[EFFECT_BODY_FORCE] ? s->body_force_reverse_axis : -1;
+  q->centre = q->rev_axis >= 0 ? 0.5 * (s->box_lo[q->rev_axis] + s->box_hi[q->rev_axis]) : 0.0;
+  if (fill_cells(q, plan, s, err, len)) {
+    free(g);
+    return NULL;
+  }
+  cudaDeviceProp prop;
+  if (cudaGetDeviceProperties(&prop, 0) == cudaSuccess)
+    snprintf(g->device_name, sizeof g->device_name, "%s", prop.name);
+  if (cuda_alloc(g, (void **)&g->cell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->thermo_part, (size_t)THERMO_SUMS * (THERMO_BLOCKS + 1) * 8) ||
+      cuda_alloc(g, (void **)&g->problem, sizeof(struct dev_problem))) {
+    snprintf(err, len, "CUDA backend: out of device memory");
+    cuda_sim_destroy(g);
+    return NULL;
+  }
+  return g;
+}

@@ -1,0 +1,114 @@
+/* Device force pass: the fused pair kernel of the CUDA path (physics.md section 1, paper eq. 1),
+ *   F_ij = [ A w_c + B (rho_i + rho_j) w_d ] e - gamma w_R^2 (e . v~_ij) e + sigma w_R xi_ij / sqrt(dt) e
+ * with the pair functions of meso/physics/pair_forces.h and xi_ij of pair_random.h (the same numbers
+ * as the CPU path draws). One thread per particle, full neighbour traversal; separations in double,
+ * pair math in meso_real (float unless MDPORE_DOUBLE), the sum per particle in meso_real and the
+ * pair virial per block in double. The term set is a template parameter, so unused terms cost
+ * nothing (as in backend/cpu/force_pass.c). */
+#include "cuda_neighbours.cuh"
+#include "physics/pair_forces.h"
+#include "physics/pair_random.h"
+
+#include <cub/block/block_reduce.cuh>
+
+struct force_args {
+  const int *start;
+  const double *x, *y, *z, *vx, *vy, *vz;
+  const int32_t *species;
+  const int64_t *id;
+  const meso_real *rho;
+  double *fx, *fy, *fz, *virial, *block_virial;
+  uint64_t step;
+  int n, write_f;
+};
+
+template <int TERMS, int VIRIAL>
+__global__ void __launch_bounds__(CUDA_BLOCK) k_force(const struct dev_params q, struct force_args a) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  meso_real w[6] = {0, 0, 0, 0, 0, 0};
+  if (i < a.n) {
+    const struct dev_coef *row = q.coef[a.species[i]];
+    const meso_real rho_i = (TERMS & PAIR_TERM_MANYBODY) ? a.rho[i] : MESO_R(0.0);
+    const double vxi = a.vx[i], vyi = a.vy[i], vzi = a.vz[i];
+    const int64_t id_i = a.id[i];
+    meso_real sfx = 0, sfy = 0, sfz = 0;
+    dev_for_each_neighbour(
+        q, a.start, a.x, a.y, a.z, a.x[i], a.y[i], a.z[i],
+        [&](int t, double dxd, double dyd, double dzd) {
+          const meso_real dx = (meso_real)dxd, dy = (meso_real)dyd, dz = (meso_real)dzd;
+          const meso_real r2 = dx * dx + dy * dy + dz * dz;
+          const struct dev_coef &c = row[a.species[t]];
+          if (r2 >= c.cut2 || r2 == MESO_R(0.0)) return; /* also the particle itself */
+          const meso_real dist = meso_sqrt(r2), inv_r = MESO_R(1.0) / dist;
+          meso_real fp = 0;
+          if ((TERMS & PAIR_TERM_CONSERVATIVE) && r2 < c.rc2)
+            fp += pair_conservative_inv(c.A, dist, c.inv_rc);
+          if ((TERMS & PAIR_TERM_MANYBODY) && r2 < c.rd2)
+            fp += pair_manybody_inv(c.B, rho_i + a.rho[t], dist, c.inv_rd);
+          if ((TERMS & PAIR_TERM_THERMOSTAT) && r2 < c.rc2) {
+            const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
+            const meso_real e_dot_v = (dx * (meso_real)(vxi - a.vx[t]) +
+                                       dy * (meso_real)(vyi - a.vy[t]) +
+                                       dz * (meso_real)(vzi - a.vz[t])) *
+                                      inv_r;
+            const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
+            fp += pair_thermostat(c.gamma, c.sigma, wR, e_dot_v, xi_ij, q.inv_sqrt_dt);
+          }
+          const meso_real s = fp * inv_r;
+          sfx += s * dx;
+          sfy += s * dy;
+          sfz += s * dz;
+          const meso_real hs = MESO_R(0.5) * s; /* each pair is seen from both sides */
+          w[0] += hs * dx * dx;
+          w[1] += hs * dy * dy;
+          w[2] += hs * dz * dz;
+          w[3] += hs * dx * dy;
+          w[4] += hs * dx * dz;
+          w[5] += hs * dy * dz;
+        });
+    if (a.write_f) {
+      a.fx[i] = sfx;
+      a.fy[i] = sfy;
+      a.fz[i] = sfz;
+    }
+    if (VIRIAL)
+      for (int k = 0; k < 6; k++) a.virial[6 * (size_t)i + k] = w[k];
+  }
+  /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
+  typedef cub::BlockReduce<double, CUDA_BLOCK> reduce_t;
+  __shared__ typename reduce_t::TempStorage tmp;
+  for (int k = 0; k < 6; k++) {
+    const double s = reduce_t(tmp).Sum((double)w[k]);
+    if (threadIdx.x == 0) a.block_virial[6 * blockIdx.x + k] = s;
+    __syncthreads();
+  }
+}
+
+template <int T>
+static void launch(const struct dev_params &q, const struct force_args &a, int blocks, int virial) {
+  if (virial)
+    k_force<T, 1><<<blocks, CUDA_BLOCK>>>(q, a);
+  else
+    k_force<T, 0><<<blocks, CUDA_BLOCK>>>(q, a);
+}
+
+void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
+  const int n = g->n, blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  g->n_force_blocks = n > 0 ? blocks : 0;
+  if (n == 0) return;
+  double *const *v = g->prm.use_vpred ? g->a.vpred : g->a.v;
+  struct force_args a = {g->cell_start, g->a.x[0], g->a.x[1], g->a.x[2], v[0], v[1], v[2],
+                         g->a.species, g->a.id, g->rho, g->a.f[0], g->a.f[1], g->a.f[2],
+                         g->virial, g->block_virial, step, n, !keep_forces};
+  const int virial = want_virial && g->virial != NULL;
+  switch (g->prm.terms & 7) {
+  case 0: launch<0>(g->prm, a, blocks, virial); break;
+  case 1: launch<1>(g->prm, a, blocks, virial); break;
+  case 2: launch<2>(g->prm, a, blocks, virial); break;
+  case 3: launch<3>(g->prm, a, blocks, virial); break;
+  case 4: launch<4>(g->prm, a, blocks, virial); break;
+  case 5: launch<5>(g->prm, a, blocks, virial); break;
+  case 6: launch<6>(g->prm, a, blocks, virial); break;
+  default: launch<7>(g->prm, a, blocks, virial); break;
+  }
+}

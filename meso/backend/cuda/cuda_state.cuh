@@ -1,0 +1,118 @@
+/* Device-side state of the CUDA backend (internal to meso/backend/cuda). Particle arrays are kept
+ * in cell order: every step they are sorted by cell (stable radix sort, so the order, and with it
+ * every per-particle sum, is a deterministic function of the configuration). */
+#ifndef MESO_BACKEND_CUDA_STATE_CUH
+#define MESO_BACKEND_CUDA_STATE_CUH
+
+#include "cuda_backend.h"
+#include "physics/hd.h"
+
+#include <cuda_runtime.h>
+#include <stdint.h>
+
+#define CUDA_BLOCK 128
+
+/* Constants of one species pair in the pair math's precision (plan.h pair_coef_t). */
+struct dev_coef {
+  meso_real A, B, gamma, sigma;
+  meso_real inv_rc, rc2, inv_rd, rd2, wnorm, cut2;
+};
+
+/* Everything the kernels need besides the particle arrays; passed by value to each launch. */
+struct dev_params {
+  int n_species, terms, density, kernel, s_one, walls, particle_forces, use_vpred;
+  meso_real s_exp, inv_sqrt_dt;
+  uint64_t seed;
+  double dt, max_disp;
+  double predict_c; /* (vv_lambda - 1/2) dt: v~ = v + predict_c f / m (Groot-Warren) */
+  int mobile[SCENE_MAX_SPECIES];
+  double inv_mass[SCENE_MAX_SPECIES], mass[SCENE_MAX_SPECIES];
+  double g[SCENE_MAX_SPECIES][3]; /* body force per species (0 when body_force is not named) */
+  int rev_axis;                   /* reverse-Poiseuille axis or -1 */
+  double centre;                  /* box centre along rev_axis */
+  double lo[3], hi[3], L[3];
+  int periodic[3];
+  /* Cells: nb[d] bins of width >= the cutoff; periodic axes wrap. An axis with fewer than 3 bins
+   * visits each bin once and takes the nearest image (minimum image; the box is >= 2 cutoffs). */
+  int nb[3], ncell;
+  double inv_bin[3];
+  int off_lo[3], off_hi[3], min_image[3];
+  struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
+};
+
+/* One particle field set (double-buffered for the cell sort). */
+struct dev_fields {
+  int64_t *id;
+  int32_t *species;
+  double *x[3], *v[3], *f[3], *vpred[3];
+};
+
+/* Device record of problems, one slot per kind (the first particle that claimed it). */
+struct dev_problem {
+  int kind, at_drift;
+  unsigned long long count[CUDA_PROBLEM_KINDS];
+  int claimed[CUDA_PROBLEM_KINDS];
+  long long id[CUDA_PROBLEM_KINDS];
+  double x[CUDA_PROBLEM_KINDS][3];
+  double value[CUDA_PROBLEM_KINDS];
+};
+
+#define THERMO_SUMS 17
+#define THERMO_BLOCKS 512
+
+struct cuda_sim {
+  struct dev_params prm;
+  int n, cap;
+  struct dev_fields a, b; /* a: current; b: scratch for the sort */
+  meso_real *rho;         /* [cap] (density pass only) */
+  double *virial;         /* [6 cap] per-particle virial (on request) */
+  int virial_cap;
+  uint32_t *key, *key_sorted; /* cell of each particle */
+  int *iota, *perm;
+  int *cell_start; /* [ncell + 1] */
+  void *sort_tmp;
+  size_t sort_tmp_bytes;
+  double *block_virial; /* [6 * blocks] pair virial per force block (reduced in cuda_thermo.cu) */
+  int block_virial_cap, n_force_blocks;
+  double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
+  struct dev_problem *problem;
+  size_t bytes;
+  char device_name[256];
+};
+
+/* cuda_util.cu */
+int cuda_check(cudaError_t e, const char *what);
+int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes);
+void cuda_free_ptr(struct cuda_sim *g, void **ptr);
+int cuda_reserve(struct cuda_sim *g, int n);
+int cuda_set_virial(struct cuda_sim *g, int on);
+
+/* cuda_cells.cu: sort the particles by cell and build cell_start. */
+int cuda_sort_cells(struct cuda_sim *g);
+
+/* cuda_density.cu / cuda_force.cu */
+void cuda_density_pass(struct cuda_sim *g);
+void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
+
+/* cuda_integrate.cu */
+void cuda_kick_drift(struct cuda_sim *g);
+void cuda_predict(struct cuda_sim *g, int setup);
+void cuda_finish_forces(struct cuda_sim *g, int add_body, int kick);
+int cuda_problem_fetch(struct cuda_sim *g, cuda_problem_t *pr);
+
+/* Record a problem from device code (first particle of each kind keeps its slot). */
+__device__ __forceinline__ void dev_note(struct dev_problem *pb, int kind, int at_drift, int64_t id,
+                                         double x0, double x1, double x2, double value) {
+  atomicAdd(&pb->count[kind], 1ull);
+  if (atomicCAS(&pb->claimed[kind], 0, 1) == 0) {
+    pb->id[kind] = (long long)id;
+    pb->x[kind][0] = x0;
+    pb->x[kind][1] = x1;
+    pb->x[kind][2] = x2;
+    pb->value[kind] = value;
+    if (at_drift) atomicMax(&pb->at_drift, 1);
+  }
+  atomicMax(&pb->kind, kind);
+}
+
+#endif

@@ -1,0 +1,30 @@
+/* The device step, in the order of the CPU path (docs/engine-core.md): kick + drift + walls + wrap,
+ * cell sort, prediction, density pass, force pass, body force + second kick; one copy of the
+ * problem record per step. */
+#include "cuda_state.cuh"
+
+static int finish(struct cuda_sim *g, cuda_problem_t *pr) {
+  if (cuda_check(cudaGetLastError(), "step kernels")) return -1;
+  return cuda_problem_fetch(g, pr);
+}
+
+extern "C" int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, int want_virial,
+                                     cuda_problem_t *pr) {
+  if (cuda_set_virial(g, want_virial) || cuda_sort_cells(g)) return -1;
+  cuda_predict(g, 1); /* v~ = v at setup */
+  cuda_density_pass(g);
+  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+  cuda_finish_forces(g, !keep_forces, 0);
+  return finish(g, pr);
+}
+
+extern "C" int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_problem_t *pr) {
+  if (cuda_set_virial(g, want_virial)) return -1;
+  cuda_kick_drift(g);
+  if (cuda_sort_cells(g)) return -1;
+  cuda_predict(g, 0);
+  cuda_density_pass(g);
+  cuda_force_pass(g, (uint64_t)step, want_virial, 0);
+  cuda_finish_forces(g, 1, 1);
+  return finish(g, pr);
+}

@@ -1,0 +1,127 @@
+/* Device memory of the CUDA backend: allocation with byte accounting, growth, error reporting. */
+#include "cuda_state.cuh"
+
+#include <cub/device/device_radix_sort.cuh>
+#include <stdio.h>
+
+int cuda_check(cudaError_t e, const char *what) {
+  if (e == cudaSuccess) return 0;
+  fprintf(stderr, "mdpore: CUDA error in %s: %s\n", what, cudaGetErrorString(e));
+  return -1;
+}
+
+int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes) {
+  *ptr = NULL;
+  if (bytes == 0) return 0;
+  if (cuda_check(cudaMalloc(ptr, bytes), "cudaMalloc")) return -1;
+  g->bytes += bytes;
+  return 0;
+}
+
+void cuda_free_ptr(struct cuda_sim *g, void **ptr) {
+  (void)g;
+  if (*ptr) cudaFree(*ptr);
+  *ptr = NULL;
+}
+
+static void free_fields(struct cuda_sim *g, struct dev_fields *f) {
+  cuda_free_ptr(g, (void **)&f->id);
+  cuda_free_ptr(g, (void **)&f->species);
+  for (int d = 0; d < 3; d++) {
+    cuda_free_ptr(g, (void **)&f->x[d]);
+    cuda_free_ptr(g, (void **)&f->v[d]);
+    cuda_free_ptr(g, (void **)&f->f[d]);
+    cuda_free_ptr(g, (void **)&f->vpred[d]);
+  }
+}
+
+static int alloc_fields(struct cuda_sim *g, struct dev_fields *f, int cap) {
+  const size_t n = (size_t)cap;
+  int rc = cuda_alloc(g, (void **)&f->id, n * sizeof(int64_t)) ||
+           cuda_alloc(g, (void **)&f->species, n * sizeof(int32_t));
+  for (int d = 0; d < 3 && !rc; d++) {
+    rc = cuda_alloc(g, (void **)&f->x[d], n * sizeof(double)) ||
+         cuda_alloc(g, (void **)&f->v[d], n * sizeof(double)) ||
+         cuda_alloc(g, (void **)&f->f[d], n * sizeof(double));
+    if (!rc && g->prm.use_vpred) rc = cuda_alloc(g, (void **)&f->vpred[d], n * sizeof(double));
+  }
+  return rc ? -1 : 0;
+}
+
+/* Room for n particles; contents are not kept (called before an upload only). */
+int cuda_reserve(struct cuda_sim *g, int n) {
+  if (n <= g->cap) return 0;
+  free_fields(g, &g->a);
+  free_fields(g, &g->b);
+  cuda_free_ptr(g, (void **)&g->rho);
+  cuda_free_ptr(g, (void **)&g->key);
+  cuda_free_ptr(g, (void **)&g->key_sorted);
+  cuda_free_ptr(g, (void **)&g->iota);
+  cuda_free_ptr(g, (void **)&g->perm);
+  cuda_free_ptr(g, &g->sort_tmp);
+  cuda_free_ptr(g, (void **)&g->block_virial);
+  cuda_free_ptr(g, (void **)&g->virial);
+  g->virial_cap = 0;
+  g->bytes = 0;
+  const int cap = n + n / 16 + 256;
+  const size_t c = (size_t)cap;
+  const int blocks = (cap + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  size_t tmp = 0;
+  cub::DeviceRadixSort::SortPairs(NULL, tmp, (const uint32_t *)NULL, (uint32_t *)NULL,
+                                  (const int *)NULL, (int *)NULL, cap);
+  if (alloc_fields(g, &g->a, cap) || alloc_fields(g, &g->b, cap) ||
+      (g->prm.density && cuda_alloc(g, (void **)&g->rho, c * sizeof(meso_real))) ||
+      cuda_alloc(g, (void **)&g->key, c * sizeof(uint32_t)) ||
+      cuda_alloc(g, (void **)&g->key_sorted, c * sizeof(uint32_t)) ||
+      cuda_alloc(g, (void **)&g->iota, c * sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->perm, c * sizeof(int)) || cuda_alloc(g, &g->sort_tmp, tmp) ||
+      cuda_alloc(g, (void **)&g->block_virial, (size_t)blocks * 6 * sizeof(double)))
+    return -1;
+  g->sort_tmp_bytes = tmp;
+  g->block_virial_cap = blocks;
+  g->cap = cap;
+  return 0;
+}
+
+int cuda_set_virial(struct cuda_sim *g, int on) {
+  if (!on || g->virial_cap >= g->cap) return 0;
+  cuda_free_ptr(g, (void **)&g->virial);
+  if (cuda_alloc(g, (void **)&g->virial, (size_t)g->cap * 6 * sizeof(double))) return -1;
+  g->virial_cap = g->cap;
+  return 0;
+}
+
+extern "C" int cuda_device_count(char *why, size_t len) {
+  int n = 0;
+  const cudaError_t e = cudaGetDeviceCount(&n);
+  if (e != cudaSuccess) {
+    snprintf(why, len, "cudaGetDeviceCount = 0 (%s)", cudaGetErrorString(e));
+    return 0;
+  }
+  if (n == 0) snprintf(why, len, "cudaGetDeviceCount = 0");
+  return n;
+}
+
+extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
+  if (!g) return;
+  free_fields(g, &g->a);
+  free_fields(g, &g->b);
+  void **ptrs[] = {(void **)&g->rho,          (void **)&g->virial,     (void **)&g->key,
+                   (void **)&g->key_sorted,   (void **)&g->iota,       (void **)&g->perm,
+                   (void **)&g->cell_start,   &g->sort_tmp,            (void **)&g->block_virial,
+                   (void **)&g->thermo_part,  (void **)&g->problem};
+  for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
+  free(g);
+}
+
+extern "C" int cuda_sim_count(const cuda_sim_t *g) {
+  return g->n;
+}
+
+extern "C" size_t cuda_sim_bytes(const cuda_sim_t *g) {
+  return g->bytes;
+}
+
+extern "C" const char *cuda_sim_device_name(const cuda_sim_t *g) {
+  return g->device_name;
+}
