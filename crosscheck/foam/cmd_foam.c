@@ -21,22 +21,25 @@ static void usage(FILE *to) {
   fprintf(
       to,
       "usage: mdpore foam IMAGE --axis x|y|z [options]\n"
-      "Stokes flow through the pore voxels with OpenFOAM (simpleFoam, laminar, nu = 1 in voxel\n"
-      "units) and the permeability k = mu q L / dp, q = Q / A_total (superficial velocity over "
-      "the\n"
-      "whole cross-section, solid included). Prints JSON.\n"
+      "Stokes flow through the pore voxels with OpenFOAM (laminar, nu = 1 in voxel units) and\n"
+      "the permeability k = mu q L / dp with q = Q / A_total: the superficial velocity over the\n"
+      "whole cross-section, solid included. Prints JSON.\n"
       "  --axis x|y|z          flow direction (required)\n"
       "  --refine R            R^3 hex cells per voxel (default 1)\n"
       "  --drive pressure|periodic  pressure drop between inlet and outlet faces (default), or\n"
       "                        cyclic inlet/outlet with a body force (needs matching end slices)\n"
       "  --sides symmetry|wall the four box faces parallel to the flow (default symmetry)\n"
+      "  --solver pimple|simple  pimpleFoam marched in pseudo-time to the steady state (default;\n"
+      "                        converges in far fewer steps) or simpleFoam (SIMPLEC)\n"
+      "  --dt DT               pimple: pseudo time step in voxel units (nu = 1; default 20,\n"
+      "                        divided by 4 automatically while the march diverges)\n"
       "  --np N                run OpenFOAM on N ranks (decomposePar, mpirun)\n"
       "  --tol-residual T      initial residuals of p and U along the axis (default 1e-6)\n"
-      "  --tol-flux T          relative flow-rate change between checks and its estimated "
+      "  --tol-flux T          relative flow-rate change between checks, and its estimated "
       "distance\n"
       "                        from convergence (geometric extrapolation) (default 1e-5)\n"
-      "  --check-every N       iterations between flow-rate checks (default 10)\n"
-      "  --max-iter N          give up after N iterations (default 20000; exit 3)\n"
+      "  --check-every N       steps between flow-rate checks (default 5; simple: 10)\n"
+      "  --max-iter N          give up after N steps (default 5000; simple: 50000; exit 3)\n"
       "  --gradient G          kinematic pressure gradient, voxel units (default 1e-5)\n"
       "  --case DIR            build the case in DIR (new or empty) and keep it\n"
       "  --keep                keep the temporary case folder\n"
@@ -122,9 +125,10 @@ int cmd_foam(int argc, char **argv) {
                        .gradient = 1e-5,
                        .tol_residual = 1e-6,
                        .tol_flux = 1e-5,
-                       .check_every = 10,
-                       .max_iter = 20000,
-                       .chunk = 2000};
+                       .check_every = 0,
+                       .max_iter = 0,
+                       .chunk = 0,
+                       .dt = 20};
   const char *path = NULL, *case_dir = NULL, *output = NULL;
   int keep = 0;
   for (int i = 1; i < argc;) {
@@ -161,7 +165,12 @@ int cmd_foam(int argc, char **argv) {
     } else if (!strcmp(a, "--sides")) {
       o.side_walls = !strcmp(v, "wall");
       bad = !o.side_walls && strcmp(v, "symmetry");
-    } else if (!strcmp(a, "--np"))
+    } else if (!strcmp(a, "--solver")) {
+      o.simple = !strcmp(v, "simple");
+      bad = !o.simple && strcmp(v, "pimple");
+    } else if (!strcmp(a, "--dt"))
+      bad = !((o.dt = atof(v)) > 0);
+    else if (!strcmp(a, "--np"))
       bad = (o.np = atoi(v)) < 1;
     else if (!strcmp(a, "--tol-residual"))
       bad = !((o.tol_residual = atof(v)) > 0);
@@ -191,6 +200,10 @@ int cmd_foam(int argc, char **argv) {
     usage(stderr);
     return 2;
   }
+  /* SIMPLE iterations are cheap and many; pseudo-time steps are dearer and few. */
+  if (!o.check_every) o.check_every = o.simple ? 10 : 5;
+  if (!o.max_iter) o.max_iter = o.simple ? 50000 : 5000;
+  if (!o.chunk) o.chunk = o.simple ? 2000 : 50;
   if (!mdp_foam_bashrc()) {
     fprintf(stderr,
             "mdpore foam: OpenFOAM not found (no /usr/share/openfoam/etc/bashrc; install the "
@@ -222,6 +235,7 @@ int cmd_foam(int argc, char **argv) {
   }
   const int dim[3] = {img.nx, img.ny, img.nz};
   o.length_voxels = dim[o.axis];
+  memcpy(o.box, dim, sizeof o.box);
   if (case_dir) {
     snprintf(dir, sizeof dir, "%s", case_dir);
     if (mkdir(dir, 0755) != 0 && errno != EEXIST) {
@@ -258,28 +272,31 @@ int cmd_foam(int argc, char **argv) {
     snprintf(kphys, sizeof kphys, "%.8e", k_vox * dx * dx);
     snprintf(kmd, sizeof kmd, "%.8e", k_vox * dx * dx / 9.869233e-16);
   }
-  snprintf(json, sizeof json,
-           "{\"image\": \"%s\", \"axis\": \"%c\", \"dims\": [%d, %d, %d], \"refine\": %d, "
-           "\"cells\": %d, \"drive\": \"%s\", \"sides\": \"%s\", \"ranks\": %d,\n"
-           " \"voxel_size\": %.10g, \"unit\": \"%s\", \"porosity\": %.8f, "
-           "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld,\n"
-           " \"permeability_voxel2\": %.10e, \"permeability_m2\": %s, \"permeability_mD\": %s,\n"
-           " \"convention\": \"k = mu q L / dp, q = Q / A_total: superficial (Darcy) velocity over "
-           "the whole cross-section including solid\",\n"
-           " \"model_units\": \"lengths in voxels, nu = 1, kinematic pressure gradient %.6g\",\n"
-           " \"flow_rate\": %.10e, \"superficial_velocity\": %.10e, \"mean_pore_velocity\": %.10e, "
-           "\"tortuosity\": %.8f,\n"
-           " \"converged\": %s, \"iterations\": %d, \"residual_p\": %.3e, \"residual_U\": %.3e, "
-           "\"flux_change\": %.3e, \"flux_error_estimate\": %.3e, \"tol_residual\": %.3g, "
-           "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
-           "\"case\": %s%s%s}\n",
-           path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells,
-           o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
-           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, k_vox,
-           kphys, kmd, o.gradient, q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
-           res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
-           res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "",
-           keep ? dir : "null", keep ? "\"" : "");
+  snprintf(
+      json, sizeof json,
+      "{\"image\": \"%s\", \"axis\": \"%c\", \"dims\": [%d, %d, %d], \"refine\": %d, "
+      "\"cells\": %d, \"drive\": \"%s\", \"sides\": \"%s\", \"ranks\": %d, \"solver\": \"%s\", "
+      "\"pseudo_dt\": %.6g, \"restarts\": %d,\n"
+      " \"voxel_size\": %.10g, \"unit\": \"%s\", \"porosity\": %.8f, "
+      "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld,\n"
+      " \"permeability_voxel2\": %.10e, \"permeability_m2\": %s, \"permeability_mD\": %s,\n"
+      " \"convention\": \"k = mu q L / dp, q = Q / A_total: superficial (Darcy) velocity over "
+      "the whole cross-section including solid\",\n"
+      " \"model_units\": \"lengths in voxels, nu = 1, kinematic pressure gradient %.6g\",\n"
+      " \"flow_rate\": %.10e, \"superficial_velocity\": %.10e, \"mean_pore_velocity\": %.10e, "
+      "\"tortuosity\": %.8f,\n"
+      " \"converged\": %s, \"iterations\": %d, \"residual_p\": %.3e, \"residual_U\": %.3e, "
+      "\"flux_change\": %.3e, \"flux_error_estimate\": %.3e, \"tol_residual\": %.3g, "
+      "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
+      "\"case\": %s%s%s}\n",
+      path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells,
+      o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
+      o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts, img.voxel_size,
+      img.unit, st.porosity, st.connected_porosity[o.axis], dropped, k_vox, kphys, kmd, o.gradient,
+      q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
+      res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
+      res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "", keep ? dir : "null",
+      keep ? "\"" : "");
   fputs(json, stdout);
   rc = res.converged ? 0 : EXIT_NOT_CONVERGED;
   if (!res.converged)

@@ -85,17 +85,19 @@ static int write_block_mesh(const char *dir, const mdp_image_t *img, const mdp_f
   return close_out(&out, err);
 }
 
-int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int end_iter, double tol,
-                           char *err) {
+int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int start, int end,
+                           double tol, char *err) {
   out_t out;
+  const double dt = o->simple ? 1.0 : o->dt;
   if (open_out(&out, dir, "system/controlDict", err)) return 1;
   FILE *f = out.f;
   header(f, "dictionary", "controlDict");
-  fprintf(f,
-          "application simpleFoam;\nstartFrom latestTime;\nstartTime 0;\nstopAt endTime;\n"
-          "endTime %d;\ndeltaT 1;\nwriteControl timeStep;\nwriteInterval %d;\npurgeWrite 1;\n"
-          "writeFormat ascii;\nwritePrecision 14;\ntimePrecision 10;\nrunTimeModifiable false;\n\n",
-          end_iter, end_iter);
+  fprintf(
+      f,
+      "application %s;\nstartFrom latestTime;\nstartTime 0;\nstopAt endTime;\n"
+      "endTime %.17g;\ndeltaT %.17g;\nwriteControl timeStep;\nwriteInterval %d;\npurgeWrite 1;\n"
+      "writeFormat ascii;\nwritePrecision 14;\ntimePrecision 12;\nrunTimeModifiable false;\n\n",
+      o->simple ? "simpleFoam" : "pimpleFoam", end * dt, dt, end - start);
   /* Volume integrals of U and |U| over the pore space: the superficial velocity is int(U)/V_box
    * (exact for incompressible flow: int u_a dV = Q L), tortuosity int|U| / int(U_a). */
   fprintf(f,
@@ -108,36 +110,48 @@ int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int end_it
           "           writeControl timeStep; writeInterval %d; }\n}\n",
           o->check_every, o->check_every, o->check_every);
   if (close_out(&out, err)) return 1;
-  /* residualControl lets simpleFoam stop itself once p has converged; U along the axis and the flux
-   * are checked by the driver (a transverse U component that is zero everywhere has a meaningless
-   * normalised residual, so U cannot be listed here). */
+  if (open_out(&out, dir, "system/fvSchemes", err)) return 1;
+  header(out.f, "dictionary", "fvSchemes");
+  /* Stokes regime: the drive is small enough (Re << 1e-3) that convection is negligible. */
+  fprintf(out.f,
+          "ddtSchemes { default %s; }\ngradSchemes { default Gauss linear; }\n"
+          "divSchemes { default none; div(phi,U) bounded Gauss linear;\n"
+          "             div((nuEff*dev2(T(grad(U))))) Gauss linear; }\n"
+          "laplacianSchemes { default Gauss linear corrected; }\n"
+          "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n",
+          o->simple ? "steadyState" : "Euler");
+  if (close_out(&out, err)) return 1;
   if (open_out(&out, dir, "system/fvSolution", err)) return 1;
   f = out.f;
   header(f, "dictionary", "fvSolution");
   fprintf(
-      f,
-      "solvers\n{\n"
-      "    p { solver GAMG; smoother GaussSeidel; tolerance 1e-14; relTol 0.01; }\n"
-      "    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-15; relTol 0.05; }\n}\n\n"
-      "SIMPLE\n{\n    nNonOrthogonalCorrectors 0;\n    consistent yes; // SIMPLEC\n"
-      "    pRefCell 0;\n    pRefValue 0;\n    residualControl { p %.3g; }\n}\n\n"
-      "relaxationFactors { equations { U 0.9; } }\n",
-      tol);
+      f, "solvers\n{\n"
+         "    \"(p|pFinal)\" { solver GAMG; smoother GaussSeidel; tolerance 1e-14; relTol 0.01; }\n"
+         "    \"(U|UFinal)\" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-15;\n"
+         "                   relTol 0.05; }\n}\n\n");
+  if (o->simple) {
+    /* residualControl lets simpleFoam stop itself once p has converged; U along the axis and the
+     * flux are checked by the driver (a transverse U component that is zero everywhere has a
+     * meaningless normalised residual, so U cannot be listed here). */
+    fprintf(f,
+            "SIMPLE\n{\n    nNonOrthogonalCorrectors 0;\n    consistent yes; // SIMPLEC\n"
+            "    pRefCell 0;\n    pRefValue 0;\n    residualControl { p %.3g; }\n}\n\n"
+            "relaxationFactors { equations { U 0.9; } }\n",
+            tol);
+  } else {
+    /* Pseudo-transient march to the steady Stokes state: PISO with a large time step converges in
+     * a few hundred steps where SIMPLE needs thousands of iterations (docs/foam.md). The steady
+     * state carries a Rhie-Chow (ddtCorr) term of relative size ~ h^2 / (nu dt), below 1e-4 here.
+     */
+    fprintf(f,
+            "PIMPLE\n{\n    momentumPredictor yes;\n    nOuterCorrectors 1;\n    nCorrectors 4;\n"
+            "    nNonOrthogonalCorrectors 0;\n    pRefCell 0;\n    pRefValue 0;\n}\n");
+  }
   return close_out(&out, err);
 }
 
 static int write_static(const char *dir, const mdp_foam_opts_t *o, char *err) {
   out_t out;
-  if (open_out(&out, dir, "system/fvSchemes", err)) return 1;
-  header(out.f, "dictionary", "fvSchemes");
-  /* Stokes regime: the drive is small enough (Re << 1e-3) that convection is negligible. */
-  fprintf(out.f,
-          "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
-          "divSchemes { default none; div(phi,U) bounded Gauss linear;\n"
-          "             div((nuEff*dev2(T(grad(U))))) Gauss linear; }\n"
-          "laplacianSchemes { default Gauss linear corrected; }\n"
-          "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n");
-  if (close_out(&out, err)) return 1;
   if (open_out(&out, dir, "constant/transportProperties", err)) return 1;
   header(out.f, "dictionary", "transportProperties");
   fprintf(out.f, "transportModel Newtonian;\nnu 1; // voxel units\n");
@@ -160,7 +174,15 @@ static int write_static(const char *dir, const mdp_foam_opts_t *o, char *err) {
   if (o->np > 1) {
     if (open_out(&out, dir, "system/decomposeParDict", err)) return 1;
     header(out.f, "dictionary", "decomposeParDict");
-    fprintf(out.f, "numberOfSubdomains %d;\nmethod scotch;\n", o->np);
+    /* "simple" slabs along the longest box edge: needs no graph partitioner (Debian's OpenFOAM
+     * has only a stub for scotch). */
+    int n[3] = {1, 1, 1}, longest = 0;
+    for (int a = 1; a < 3; a++)
+      if (o->box[a] > o->box[longest]) longest = a;
+    n[longest] = o->np;
+    fprintf(out.f,
+            "numberOfSubdomains %d;\nmethod simple;\nsimpleCoeffs { n (%d %d %d); delta 0.001; }\n",
+            o->np, n[0], n[1], n[2]);
     if (close_out(&out, err)) return 1;
   }
   return 0;
@@ -178,7 +200,7 @@ int mdp_foam_write_case(const char *dir, const mdp_image_t *img, const mdp_foam_
     }
   }
   return write_block_mesh(dir, img, o, err) || write_static(dir, o, err) ||
-         mdp_foam_write_control(dir, o, o->chunk, o->tol_residual, err);
+         mdp_foam_write_control(dir, o, 0, o->chunk, o->tol_residual, err);
 }
 
 int mdp_foam_write_pore_set(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,

@@ -14,23 +14,28 @@
 #define MDP_FOAM_ERR_LEN 2048
 
 typedef struct {
-  int axis;             /* flow axis: 0 x, 1 y, 2 z */
-  int refine;           /* hex cells per voxel edge */
-  int periodic;         /* 0: pressure drop inlet -> outlet; 1: cyclic inlet/outlet + body force */
-  int side_walls;       /* 0: symmetry on the four side faces; 1: no-slip walls */
-  int np;               /* OpenFOAM ranks (decomposePar + mpirun) when > 1 */
-  double gradient;      /* applied kinematic pressure gradient (voxel units, nu = 1) */
+  int axis;        /* flow axis: 0 x, 1 y, 2 z */
+  int refine;      /* hex cells per voxel edge */
+  int periodic;    /* 0: pressure drop inlet -> outlet; 1: cyclic inlet/outlet + body force */
+  int side_walls;  /* 0: symmetry on the four side faces; 1: no-slip walls */
+  int np;          /* OpenFOAM ranks (decomposePar + mpirun) when > 1 */
+  int simple;      /* 1: simpleFoam (SIMPLEC); 0: pimpleFoam marched in pseudo-time to steady */
+  double dt;       /* pimple: pseudo time step (voxel units, nu = 1) */
+  double gradient; /* applied kinematic pressure gradient (voxel units, nu = 1) */
   double length_voxels; /* sample length along the axis (set by the driver) */
+  int box[3];           /* image dimensions (set by the driver) */
   double tol_residual;  /* initial residual of p and of U along the axis */
   double tol_flux;      /* relative flow-rate change between checks and estimated remaining error */
-  int check_every;      /* iterations between flux checks */
-  int max_iter;
-  int chunk; /* iterations per simpleFoam run between convergence checks */
+  int check_every;      /* iterations (time steps) between flux checks */
+  int max_iter;         /* iterations (time steps) before giving up */
+  int chunk;            /* iterations (time steps) per solver run between convergence checks */
   int verbose;
 } mdp_foam_opts_t;
 
 typedef struct {
   int iterations, converged, cells;
+  int restarts;        /* pimple: restarts with a smaller time step after a divergence */
+  double dt;           /* pimple: the time step that converged */
   double res_p, res_u; /* last initial residuals (p; U along the axis) */
   double flux_change;  /* relative change of q over the last check interval */
   double flux_error;   /* estimated relative distance of q from its converged value (NaN: none) */
@@ -50,15 +55,18 @@ int mdp_foam_write_pore_set(const char *dir, const mdp_image_t *img, const mdp_f
                             long long *n_cells, char *err);
 /* Write 0/U and 0/p (after subsetMesh, so that the walls patch exists). */
 int mdp_foam_write_fields(const char *dir, const mdp_foam_opts_t *o, char *err);
-/* controlDict for a run ending at end_iter; residualControl on p at tol. */
-int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int end_iter, double tol,
-                           char *err);
+/* controlDict, fvSchemes and fvSolution for a run from iteration (time step) start to end;
+ * simpleFoam also stops itself when the initial residual of p falls below tol. */
+int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int start, int end,
+                           double tol, char *err);
 /* Mesh, decompose, iterate simpleFoam until converged (see foam_run.c). */
 int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
                  mdp_foam_result_t *res, char *err);
 
 /* Parsing (foam_parse.c). */
-int mdp_foam_parse_log(const char *log, int axis, int *last_iter, double *res_p, double *res_u,
+/* Last "Time =" value, the initial residuals of the last step's first p solve and of U along the
+ * axis, and whether simpleFoam reported convergence. */
+int mdp_foam_parse_log(const char *log, int axis, double *last_time, double *res_p, double *res_u,
                        int *solver_converged);
 /* Read every postProcessing/flow/<start>/volFieldValue.dat; rows of (iter, int U xyz, int |U|). */
 int mdp_foam_read_flow(const char *dir, double **rows, int *n_rows, char *err);

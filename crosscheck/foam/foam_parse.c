@@ -6,20 +6,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-int mdp_foam_parse_log(const char *log, int axis, int *last_iter, double *res_p, double *res_u,
+int mdp_foam_parse_log(const char *log, int axis, double *last_time, double *res_p, double *res_u,
                        int *solver_converged) {
   FILE *f = fopen(log, "r");
   if (!f) return 1;
   char line[1024], ufield[16];
   snprintf(ufield, sizeof ufield, "for U%c,", 'x' + axis);
   *solver_converged = 0;
+  int first_p = 0; /* the first p solve of a step (PISO solves p several times per step) */
   while (fgets(line, sizeof line, f)) {
     char *s;
-    if (!strncmp(line, "Time = ", 7)) *last_iter = atoi(line + 7);
+    if (!strncmp(line, "Time = ", 7)) *last_time = atof(line + 7), first_p = 1;
     if (strstr(line, "solution converged in")) *solver_converged = 1;
     if (!(s = strstr(line, "Initial residual = "))) continue;
     double v = atof(s + 19);
-    if (strstr(line, "for p,")) *res_p = v;
+    if (strstr(line, "for p,") && first_p) *res_p = v, first_p = 0;
     if (strstr(line, ufield)) *res_u = v;
   }
   fclose(f);

@@ -1,6 +1,10 @@
 /* Driving the OpenFOAM tools: one bash subprocess per tool with the OpenFOAM environment sourced,
  * then simpleFoam in chunks until the residuals and the flow rate have settled. */
+#define _GNU_SOURCE /* nftw */
 #include "foam_case.h"
+
+#include <dirent.h>
+#include <ftw.h>
 
 #include <errno.h>
 #include <math.h>
@@ -70,10 +74,62 @@ static int tool_failed(const char *dir, const char *tool, const char *log, int s
   return 1;
 }
 
+static int log_mentions(const char *path, const char *text) {
+  FILE *f = fopen(path, "r");
+  char line[1024];
+  int found = 0;
+  while (f && !found && fgets(line, sizeof line, f)) found = strstr(line, text) != NULL;
+  if (f) fclose(f);
+  return found;
+}
+
 static double now_s(void) {
   struct timespec t;
   clock_gettime(CLOCK_MONOTONIC, &t);
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
+  (void)sb, (void)flag, (void)ftw;
+  return remove(path);
+}
+
+/* A folder name that is a positive time ("20", "1.5e+03"). */
+static int is_later_time(const char *name) {
+  char *end;
+  double t = strtod(name, &end);
+  return end != name && !*end && t > 0;
+}
+
+/* Remove every result after time 0 (serial and processor folders) and the function-object output,
+ * so that a run can start again from the initial fields. */
+static int mdp_foam_clear_results(const char *dir, char *err) {
+  char sub[4200], path[4600];
+  const char *where[2] = {dir, NULL};
+  DIR *top = opendir(dir);
+  struct dirent *e;
+  char procs[64][64];
+  int np = 0;
+  while (top && (e = readdir(top)))
+    if (!strncmp(e->d_name, "processor", 9) && np < 64)
+      snprintf(procs[np++], 64, "%.60s", e->d_name);
+  if (top) closedir(top);
+  for (int p = -1; p < np; p++) {
+    if (p >= 0) snprintf(sub, sizeof sub, "%s/%s", dir, procs[p]), where[0] = sub;
+    DIR *d = opendir(where[0]);
+    while (d && (e = readdir(d))) {
+      if (!is_later_time(e->d_name)) continue;
+      snprintf(path, sizeof path, "%s/%s", where[0], e->d_name);
+      nftw(path, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
+    }
+    if (d) closedir(d);
+  }
+  snprintf(path, sizeof path, "%s/postProcessing", dir);
+  if (nftw(path, rm_entry, 16, FTW_DEPTH | FTW_PHYS) != 0 && errno != ENOENT) {
+    snprintf(err, MDP_FOAM_ERR_LEN, "%.1500s: cannot remove: %s", path, strerror(errno));
+    return 1;
+  }
+  return 0;
 }
 
 int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
@@ -91,56 +147,84 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
     return tool_failed(dir, "subsetMesh", "log.subsetMesh", st, err);
   if (mdp_foam_write_fields(dir, o, err)) return 1;
   res->cells = (int)cells;
+  const char *app = o->simple ? "simpleFoam" : "pimpleFoam";
   char solver[128];
   if (o->np > 1) {
     if ((st = run_tool(dir, "decomposePar -force", "log.decomposePar", o->verbose)))
       return tool_failed(dir, "decomposePar", "log.decomposePar", st, err);
-    snprintf(solver, sizeof solver, "mpirun -np %d simpleFoam -parallel", o->np);
+    /* In containers mdpore often runs as root, which Open MPI refuses without this flag. */
+    snprintf(solver, sizeof solver, "mpirun %s-np %d %s -parallel",
+             geteuid() == 0 ? "--allow-run-as-root " : "", o->np, app);
   } else {
-    snprintf(solver, sizeof solver, "simpleFoam");
+    snprintf(solver, sizeof solver, "%s", app);
   }
+  mdp_foam_opts_t run_o = *o; /* dt may shrink */
   double tol = o->tol_residual, q_prev = NAN;
   int done = 0;
   for (int run = 0; done < o->max_iter; run++) {
     int end = done + o->chunk < o->max_iter ? done + o->chunk : o->max_iter;
-    if (mdp_foam_write_control(dir, o, end, tol, err)) return 1;
+    if (mdp_foam_write_control(dir, &run_o, done, end, tol, err)) return 1;
     char log[64], path[4200];
-    snprintf(log, sizeof log, "log.simpleFoam.%d", run);
-    if ((st = run_tool(dir, solver, log, o->verbose)))
-      return tool_failed(dir, "simpleFoam", log, st, err);
+    snprintf(log, sizeof log, "log.%s.%d", app, run);
+    st = run_tool(dir, solver, log, o->verbose);
+    double *rows = NULL, last_time = 0;
+    int n = 0, solver_conv = 0, diverged = 0;
     snprintf(path, sizeof path, "%s/%s", dir, log);
-    int last = done, solver_conv = 0;
-    mdp_foam_parse_log(path, o->axis, &last, &res->res_p, &res->res_u, &solver_conv);
-    double *rows = NULL;
-    int n = 0;
-    if (mdp_foam_read_flow(dir, &rows, &n, err)) {
+    /* A crash on a floating-point error is a diverging march; any other failure is an error. */
+    if (st) {
+      if (o->simple || !log_mentions(path, "Floating point exception"))
+        return tool_failed(dir, app, log, st, err);
+      diverged = 1;
+    }
+    mdp_foam_parse_log(path, o->axis, &last_time, &res->res_p, &res->res_u, &solver_conv);
+    int last = (int)lround(last_time / (o->simple ? 1.0 : run_o.dt));
+    if (!diverged && mdp_foam_read_flow(dir, &rows, &n, err)) {
       free(rows);
       return 1;
     }
-    const double *r = rows + 5 * (n - 1);
-    memcpy(res->int_u, r + 1, sizeof res->int_u);
-    res->int_mag_u = r[4];
-    double q = r[1 + o->axis];
-    /* Flux change over the last check interval, and the distance to the converged value it implies
-     * when the iteration converges geometrically (late SIMPLE iterations for Stokes flow do, with a
-     * rate close to 1): remaining = |dq| rho / (1 - rho), rho = dq_n / dq_{n-1}. */
-    double q_before = n >= 2 ? rows[5 * (n - 2) + 1 + o->axis] : q_prev;
-    double dq = q - q_before, scale = fmax(fabs(q), 1e-300);
-    res->flux_change = fabs(dq) / scale;
-    res->flux_error = NAN;
-    if (n >= 3) {
-      double dq_prev = q_before - rows[5 * (n - 3) + 1 + o->axis];
-      double rho = dq_prev != 0 ? dq / dq_prev : 0;
-      res->flux_error = rho > 0 && rho < 1 ? res->flux_change * rho / (1 - rho) : NAN;
+    double q = NAN, dq = NAN, dq_prev = NAN;
+    if (n >= 1) {
+      const double *r = rows + 5 * (n - 1);
+      memcpy(res->int_u, r + 1, sizeof res->int_u);
+      res->int_mag_u = r[4];
+      q = r[1 + o->axis];
+      /* Flux change over the last check interval, and the distance to the converged value it
+       * implies when the iteration converges geometrically (late iterations do, with a rate close
+       * to 1 for SIMPLE): remaining = |dq| rho / (1 - rho), rho = dq_n / dq_{n-1}. */
+      double q_before = n >= 2 ? rows[5 * (n - 2) + 1 + o->axis] : q_prev;
+      dq = q - q_before;
+      if (n >= 3) dq_prev = q_before - rows[5 * (n - 3) + 1 + o->axis];
     }
     free(rows);
+    double scale = fmax(fabs(q), 1e-300), rho = dq_prev != 0 ? dq / dq_prev : NAN;
+    res->flux_change = fabs(dq) / scale;
+    res->flux_error = rho > 0 && rho < 1 ? res->flux_change * rho / (1 - rho) : NAN;
+    if (res->flux_change < 1e-13) res->flux_error = res->flux_change; /* settled to round-off */
+    /* The drive pushes along +axis: a flux that is not positive and finite, or whose changes grow
+     * from check to check once started, means the pseudo-time step is too large. */
+    if (!o->simple && (diverged || !(q > 0) || !isfinite(q) || (n >= 4 && fabs(rho) > 1.2))) {
+      if (res->restarts >= 4) {
+        snprintf(err, MDP_FOAM_ERR_LEN,
+                 "pimpleFoam diverged even with time step %g (see %.900s/%s); try --solver simple",
+                 run_o.dt, dir, log);
+        return 1;
+      }
+      res->restarts++;
+      run_o.dt *= 0.25;
+      if (o->verbose)
+        fprintf(stderr, "mdpore foam: diverging at step %d; restarting with time step %g\n", last,
+                run_o.dt);
+      if (mdp_foam_clear_results(dir, err)) return 1;
+      done = 0, q_prev = NAN, tol = o->tol_residual;
+      continue;
+    }
     q_prev = q;
     res->iterations = last;
+    res->dt = run_o.dt;
     if (o->verbose)
-      fprintf(
-          stderr,
-          "mdpore foam: iteration %d: residual p %.3g U %.3g, flux change %.3g, est. error %.3g\n",
-          last, res->res_p, res->res_u, res->flux_change, res->flux_error);
+      fprintf(stderr,
+              "mdpore foam: step %d: residual p %.3g U %.3g, flux change %.3g, est. error %.3g\n",
+              last, res->res_p, res->res_u, res->flux_change, res->flux_error);
     /* Converged: residuals below tolerance, flux change and estimated remaining error below the
      * flux tolerance (a rate that is not yet geometric gives no estimate and does not pass). */
     if (res->res_p < o->tol_residual && res->res_u < o->tol_residual &&
@@ -148,12 +232,8 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
       res->converged = 1;
       break;
     }
-    if (last <= done) { /* no progress: residual control met at once; demand more */
-      tol *= 0.1;
-    } else if (solver_conv) {
-      tol *= 0.1; /* p converged but U or the flux still moving: tighten and go on */
-    }
-    if (tol < 1e-14) tol = 1e-14;
+    if (o->simple && (last <= done || solver_conv))
+      tol = fmax(tol * 0.1, 1e-14); /* p met its target but U or the flux still move: tighten */
     done = last;
   }
   res->wall_s = now_s() - t0;
