@@ -31,7 +31,7 @@ static void usage(FILE *to) {
       "  --sides symmetry|wall the four box faces parallel to the flow (default symmetry)\n"
       "  --solver pimple|simple  pimpleFoam marched in pseudo-time to the steady state (default;\n"
       "                        converges in far fewer steps) or simpleFoam (SIMPLEC)\n"
-      "  --dt DT               pimple: pseudo time step in voxel units (nu = 1; default 20,\n"
+      "  --dt DT               pimple: pseudo time step in voxel units (nu = 1; default 20 / R^2,\n"
       "                        divided by 4 automatically while the march diverges)\n"
       "  --np N                run OpenFOAM on N ranks (decomposePar, mpirun)\n"
       "  --tol-residual T      initial residuals of p and U along the axis (default 1e-6)\n"
@@ -128,7 +128,7 @@ int cmd_foam(int argc, char **argv) {
                        .check_every = 0,
                        .max_iter = 0,
                        .chunk = 0,
-                       .dt = 20};
+                       .dt = 0};
   const char *path = NULL, *case_dir = NULL, *output = NULL;
   int keep = 0;
   for (int i = 1; i < argc;) {
@@ -204,12 +204,8 @@ int cmd_foam(int argc, char **argv) {
   if (!o.check_every) o.check_every = o.simple ? 10 : 5;
   if (!o.max_iter) o.max_iter = o.simple ? 50000 : 5000;
   if (!o.chunk) o.chunk = o.simple ? 2000 : 50;
-  if (!mdp_foam_bashrc()) {
-    fprintf(stderr,
-            "mdpore foam: OpenFOAM not found (no /usr/share/openfoam/etc/bashrc; install the "
-            "Debian package openfoam, see scripts/setup.sh, or set MDPORE_OPENFOAM_BASHRC)\n");
-    return EXIT_NO_OPENFOAM;
-  }
+  /* The stable pseudo time step scales with the cell size squared (viscous time of one cell). */
+  if (!(o.dt > 0)) o.dt = 20.0 / ((double)o.refine * o.refine);
   mdp_image_t img;
   if (mdp_image_cli_load(path, &cli, &img, err)) {
     fprintf(stderr, "mdpore foam: %s\n", err);
@@ -232,6 +228,13 @@ int cmd_foam(int argc, char **argv) {
                path, 'x' + o.axis, bad);
       goto out;
     }
+  }
+  if (!mdp_foam_bashrc()) {
+    fprintf(stderr,
+            "mdpore foam: OpenFOAM not found (no /usr/share/openfoam/etc/bashrc; install the "
+            "Debian package openfoam, see scripts/setup.sh, or set MDPORE_OPENFOAM_BASHRC)\n");
+    mdp_image_free(&img);
+    return EXIT_NO_OPENFOAM;
   }
   const int dim[3] = {img.nx, img.ny, img.nz};
   o.length_voxels = dim[o.axis];

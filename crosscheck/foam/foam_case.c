@@ -12,11 +12,15 @@
 
 const char *mdp_foam_bashrc(void) {
   static char path[4096];
-  const char *env = getenv("MDPORE_OPENFOAM_BASHRC");
-  const char *candidates[] = {env, "/usr/share/openfoam/etc/bashrc",
-                              "/usr/lib/openfoam/etc/bashrc"};
+  const char *env = getenv("MDPORE_OPENFOAM_BASHRC"); /* set: use exactly this one */
+  const char *candidates[] = {"/usr/share/openfoam/etc/bashrc", "/usr/lib/openfoam/etc/bashrc"};
+  if (env && env[0]) {
+    if (access(env, R_OK) != 0) return NULL;
+    snprintf(path, sizeof path, "%s", env);
+    return path;
+  }
   for (size_t c = 0; c < sizeof candidates / sizeof candidates[0]; c++)
-    if (candidates[c] && candidates[c][0] && access(candidates[c], R_OK) == 0) {
+    if (access(candidates[c], R_OK) == 0) {
       snprintf(path, sizeof path, "%s", candidates[c]);
       return path;
     }
@@ -135,7 +139,7 @@ int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int start,
      * meaningless normalised residual, so U cannot be listed here). */
     fprintf(f,
             "SIMPLE\n{\n    nNonOrthogonalCorrectors 0;\n    consistent yes; // SIMPLEC\n"
-            "    pRefCell 0;\n    pRefValue 0;\n    residualControl { p %.3g; }\n}\n\n"
+            "    pRefCell 0;\n    pRefValue 0;\n    residualControl { p %.3g; } // 0: none\n}\n\n"
             "relaxationFactors { equations { U 0.9; } }\n",
             tol);
   } else {

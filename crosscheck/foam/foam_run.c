@@ -160,10 +160,14 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
   }
   mdp_foam_opts_t run_o = *o; /* dt may shrink */
   double tol = o->tol_residual, q_prev = NAN;
-  int done = 0;
+  int done = 0, have_rows = 0, stopped_early = 0;
   for (int run = 0; done < o->max_iter; run++) {
-    int end = done + o->chunk < o->max_iter ? done + o->chunk : o->max_iter;
-    if (mdp_foam_write_control(dir, &run_o, done, end, tol, err)) return 1;
+    /* The first run is short and, for simpleFoam, without residual control, so that the flux has
+     * a few checks to judge before simpleFoam may stop itself. */
+    int collect = have_rows < 3 || stopped_early;
+    int len = collect ? 5 * o->check_every : o->chunk;
+    int end = done + len < o->max_iter ? done + len : o->max_iter;
+    if (mdp_foam_write_control(dir, &run_o, done, end, collect ? 0 : tol, err)) return 1;
     char log[64], path[4200];
     snprintf(log, sizeof log, "log.%s.%d", app, run);
     st = run_tool(dir, solver, log, o->verbose);
@@ -196,13 +200,16 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
       if (n >= 3) dq_prev = q_before - rows[5 * (n - 3) + 1 + o->axis];
     }
     free(rows);
+    have_rows = n;
     double scale = fmax(fabs(q), 1e-300), rho = dq_prev != 0 ? dq / dq_prev : NAN;
     res->flux_change = fabs(dq) / scale;
     res->flux_error = rho > 0 && rho < 1 ? res->flux_change * rho / (1 - rho) : NAN;
     if (res->flux_change < 1e-13) res->flux_error = res->flux_change; /* settled to round-off */
     /* The drive pushes along +axis: a flux that is not positive and finite, or whose changes grow
      * from check to check once started, means the pseudo-time step is too large. */
-    if (!o->simple && (diverged || !(q > 0) || !isfinite(q) || (n >= 4 && fabs(rho) > 1.2))) {
+    /* ... or a pressure residual still of order one after two runs (a neutral oscillation). */
+    if (!o->simple && (diverged || !(q > 0) || !isfinite(q) || (n >= 4 && fabs(rho) > 1.2) ||
+                       (last >= 2 * o->chunk && res->res_p > 0.1))) {
       if (res->restarts >= 4) {
         snprintf(err, MDP_FOAM_ERR_LEN,
                  "pimpleFoam diverged even with time step %g (see %.900s/%s); try --solver simple",
@@ -215,7 +222,7 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
         fprintf(stderr, "mdpore foam: diverging at step %d; restarting with time step %g\n", last,
                 run_o.dt);
       if (mdp_foam_clear_results(dir, err)) return 1;
-      done = 0, q_prev = NAN, tol = o->tol_residual;
+      done = 0, have_rows = 0, q_prev = NAN, tol = o->tol_residual;
       continue;
     }
     q_prev = q;
@@ -232,8 +239,10 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
       res->converged = 1;
       break;
     }
-    if (o->simple && (last <= done || solver_conv))
-      tol = fmax(tol * 0.1, 1e-14); /* p met its target but U or the flux still move: tighten */
+    /* simpleFoam met its p target but U or the flux still move: collect a few more checks
+     * without residual control, then go on with a tighter target. */
+    stopped_early = o->simple && solver_conv;
+    if (stopped_early) tol = fmax(tol * 0.1, 1e-14);
     done = last;
   }
   res->wall_s = now_s() - t0;
