@@ -44,7 +44,7 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--np", type=int, default=2)
     args = ap.parse_args()
-    L, steps, equil = (7.0, 3000, 1000) if args.quick else (8.0, 12000, 2000)
+    L, steps, equil = (7.0, 3000, 1000) if args.quick else (8.0, 8000, 2000)
     cases = [(-40.0, r, REF_M40.get(r)) for r in (SEPARATING + list(REF_M40))]
     cases += [(0.0, r, v) for r, v in REF_A0.items()]
     if args.quick:

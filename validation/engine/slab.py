@@ -42,7 +42,7 @@ def main():
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--A", type=float, action="append", help="only these A values")
     args = ap.parse_args()
-    steps, equil, tol = (4000, 1500, 0.05) if args.quick else (40000, 4000, 0.01)
+    steps, equil, tol = (4000, 1500, 0.05) if args.quick else (20000, 4000, 0.01)
     Lx, Ly, Lz = 30.0, 10.0, 10.0
     out = mdval.out_dir("slab" + ("_quick" if args.quick else ""))
     rows, ok, profiles = [], True, {}

@@ -48,7 +48,7 @@ def main():
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--case", action="append", choices=list(CASES))
     args = ap.parse_args()
-    production, tol, Ly, gscale = (3000, 0.08, 10.0, 4.0) if args.quick else (30000, 0.02, 20.0, 1.0)
+    production, tol, Ly, gscale = (3000, 0.08, 10.0, 4.0) if args.quick else (15000, 0.02, 20.0, 1.0)
     Lx, Lz, dt = 10.0, 10.0, 0.01
     out = mdval.out_dir("viscosity" + ("_quick" if args.quick else ""))
     rows, ok, curves = [], True, {}
