@@ -4,7 +4,7 @@
  * the momentum along the periodic axes to float rounding. Skipped (exit 77) without a GPU. */
 #include "test_cuda_common.h"
 
-enum { N = 3000, EQUIL = 200, STEPS = 1200, BLOCKS = 10 };
+enum { N = 3000, EQUIL = 1000, STEPS = 3000, BLOCKS = 15 };
 
 typedef struct {
   double mean, err;
@@ -22,10 +22,10 @@ static stat_t block_stat(const double *x, int n) {
   return (stat_t){mean, sqrt(var / BLOCKS)};
 }
 
-static int run(scene_t *s, int backend, stat_t *T, stat_t *P, double *drift) {
+static int run(scene_t *s, int backend, uint64_t seed, stat_t *T, stat_t *P, double *drift) {
   s->backend = backend;
   sim_t *sim = sim_create(s, MPI_COMM_WORLD);
-  if (!sim || test_fill_random(sim, s, N, 0.0, 5)) return -1;
+  if (!sim || test_fill_random(sim, s, N, 0.0, seed)) return -1;
   particles_t *p = sim_particles(sim);
   double mom[3] = {0, 0, 0};
   for (int i = 0; i < p->n_local; i++)
@@ -61,8 +61,8 @@ int main(int argc, char **argv) {
   s.effect[EFFECT_DPD_THERMOSTAT] = s.effect[EFFECT_BOX_WALLS] = 1;
   stat_t Tc, Pc, Tg, Pg;
   double dc, dg;
-  CHECK(!run(&s, SCENE_BACKEND_CPU, &Tc, &Pc, &dc), "CPU run");
-  CHECK(!run(&s, SCENE_BACKEND_CUDA, &Tg, &Pg, &dg), "CUDA run");
+  CHECK(!run(&s, SCENE_BACKEND_CPU, 5, &Tc, &Pc, &dc), "CPU run");
+  CHECK(!run(&s, SCENE_BACKEND_CUDA, 5, &Tg, &Pg, &dg), "CUDA run");
   printf("T: cpu %.5f +- %.5f, gpu %.5f +- %.5f\n", Tc.mean, Tc.err, Tg.mean, Tg.err);
   printf("p: cpu %.5f +- %.5f, gpu %.5f +- %.5f\n", Pc.mean, Pc.err, Pg.mean, Pg.err);
   printf("momentum drift (x, y) per particle: cpu %.3e, gpu %.3e\n", dc / N, dg / N);

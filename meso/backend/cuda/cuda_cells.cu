@@ -72,3 +72,33 @@ int cuda_sort_cells(struct cuda_sim *g) {
   k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted, g->cell_start);
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
+
+__global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
+                       const uint32_t *__restrict__ key, struct dev_pos *pos, struct dev_vel *vel,
+                       int use_vpred) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const int c = (int)key[k];
+  const int b[3] = {c % q.nb[0], (c / q.nb[0]) % q.nb[1], c / (q.nb[0] * q.nb[1])};
+  struct dev_pos r;
+  r.x = (meso_real)(p.x[0][k] - (q.lo[0] + b[0] * (q.L[0] / q.nb[0])));
+  r.y = (meso_real)(p.x[1][k] - (q.lo[1] + b[1] * (q.L[1] / q.nb[1])));
+  r.z = (meso_real)(p.x[2][k] - (q.lo[2] + b[2] * (q.L[2] / q.nb[2])));
+  r.species = p.species[k];
+  pos[k] = r;
+  if (vel) {
+    double *const *v = use_vpred ? p.vpred : p.v;
+    struct dev_vel u;
+    u.x = (meso_real)v[0][k];
+    u.y = (meso_real)v[1][k];
+    u.z = (meso_real)v[2][k];
+    u.pad = 0;
+    vel[k] = u;
+  }
+}
+
+void cuda_pack(struct cuda_sim *g) {
+  if (g->n == 0) return;
+  k_pack<<<(g->n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, g->n, g->a, g->key_sorted,
+                                                               g->pos, g->vel, g->prm.use_vpred);
+}

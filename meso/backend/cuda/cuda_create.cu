@@ -41,6 +41,9 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     }
     q->nb[d] = nb;
     q->inv_bin[d] = nb / q->L[d];
+    q->bin_w[d] = (meso_real)(q->L[d] / nb);
+    q->box_L[d] = (meso_real)q->L[d];
+    q->inv_box_L[d] = (meso_real)(1.0 / q->L[d]);
     q->ncell *= nb;
     q->min_image[d] = q->periodic[d] && nb < 3;
     q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* nb = 2, periodic: bins b and b + 1 */
@@ -82,7 +85,11 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, cha
     q->mass[a] = plan->mass[a];
     for (int d = 0; d < 3; d++)
       q->g[a][d] = plan->named[EFFECT_BODY_FORCE] ? s->body_force[a][d] : 0.0;
-    for (int b = 0; b < plan->n_species; b++) fill_coef(&q->coef[a][b], &plan->coef[a][b]);
+    for (int b = 0; b < plan->n_species; b++) {
+      fill_coef(&q->coef[a][b], &plan->coef[a][b]);
+      if (q->coef[a][b].cut2 > q->cut2_max) q->cut2_max = q->coef[a][b].cut2;
+      if (q->coef[a][b].rd2 > q->rd2_max) q->rd2_max = q->coef[a][b].rd2;
+    }
   }
   q->rev_axis = plan->named[EFFECT_BODY_FORCE] ? s->body_force_reverse_axis : -1;
   q->centre = q->rev_axis >= 0 ? 0.5 * (s->box_lo[q->rev_axis] + s->box_hi[q->rev_axis]) : 0.0;

@@ -13,8 +13,9 @@
 
 struct force_args {
   const int *start;
-  const double *x, *y, *z, *vx, *vy, *vz;
-  const int32_t *species;
+  const struct dev_pos *pos;
+  const struct dev_vel *vel;
+  const uint32_t *key;
   const int64_t *id;
   const meso_real *rho;
   double *fx, *fy, *fz, *virial, *block_virial;
@@ -27,19 +28,21 @@ __global__ void __launch_bounds__(CUDA_BLOCK) k_force(const struct dev_params q,
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   meso_real w[6] = {0, 0, 0, 0, 0, 0};
   if (i < a.n) {
-    const struct dev_coef *row = q.coef[a.species[i]];
+    const struct dev_pos pi = a.pos[i];
+    const struct dev_coef *row = q.coef[pi.species];
     const meso_real rho_i = (TERMS & PAIR_TERM_MANYBODY) ? a.rho[i] : MESO_R(0.0);
-    const double vxi = a.vx[i], vyi = a.vy[i], vzi = a.vz[i];
+    struct dev_vel vi = {0, 0, 0, 0};
+    if (TERMS & PAIR_TERM_THERMOSTAT) vi = a.vel[i];
     const int64_t id_i = a.id[i];
     meso_real sfx = 0, sfy = 0, sfz = 0;
     dev_for_each_neighbour(
-        q, a.start, a.x, a.y, a.z, a.x[i], a.y[i], a.z[i],
-        [&](int t, double dxd, double dyd, double dzd) {
-          const meso_real dx = (meso_real)dxd, dy = (meso_real)dyd, dz = (meso_real)dzd;
+        q, a.start, a.pos, pi, a.key[i],
+        [&](int t, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
           const meso_real r2 = dx * dx + dy * dy + dz * dz;
-          const struct dev_coef &c = row[a.species[t]];
-          if (r2 >= c.cut2 || r2 == MESO_R(0.0)) return; /* also the particle itself */
-          const meso_real dist = meso_sqrt(r2), inv_r = MESO_R(1.0) / dist;
+          if (r2 >= q.cut2_max || r2 == MESO_R(0.0)) return; /* most candidates; i itself */
+          const struct dev_coef &c = row[pj.species];
+          if (r2 >= c.cut2) return;
+          const meso_real inv_r = rsqrt(r2), dist = r2 * inv_r; /* no division */
           meso_real fp = 0;
           if ((TERMS & PAIR_TERM_CONSERVATIVE) && r2 < c.rc2)
             fp += pair_conservative_inv(c.A, dist, c.inv_rc);
@@ -47,10 +50,9 @@ __global__ void __launch_bounds__(CUDA_BLOCK) k_force(const struct dev_params q,
             fp += pair_manybody_inv(c.B, rho_i + a.rho[t], dist, c.inv_rd);
           if ((TERMS & PAIR_TERM_THERMOSTAT) && r2 < c.rc2) {
             const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
-            const meso_real e_dot_v = (dx * (meso_real)(vxi - a.vx[t]) +
-                                       dy * (meso_real)(vyi - a.vy[t]) +
-                                       dz * (meso_real)(vzi - a.vz[t])) *
-                                      inv_r;
+            const struct dev_vel vj = a.vel[t];
+            const meso_real e_dot_v =
+                (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
             const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
             fp += pair_thermostat(c.gamma, c.sigma, wR, e_dot_v, xi_ij, q.inv_sqrt_dt);
           }
@@ -96,10 +98,10 @@ void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int kee
   const int n = g->n, blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   g->n_force_blocks = n > 0 ? blocks : 0;
   if (n == 0) return;
-  double *const *v = g->prm.use_vpred ? g->a.vpred : g->a.v;
-  struct force_args a = {g->cell_start, g->a.x[0], g->a.x[1], g->a.x[2], v[0], v[1], v[2],
-                         g->a.species, g->a.id, g->rho, g->a.f[0], g->a.f[1], g->a.f[2],
-                         g->virial, g->block_virial, step, n, !keep_forces};
+  struct force_args a = {g->cell_start, g->pos,      g->vel,     g->key_sorted,
+                         g->a.id,        g->rho,      g->a.f[0],  g->a.f[1],
+                         g->a.f[2],      g->virial,   g->block_virial, step,
+                         n,              !keep_forces};
   const int virial = want_virial && g->virial != NULL;
   switch (g->prm.terms & 7) {
   case 0: launch<0>(g->prm, a, blocks, virial); break;

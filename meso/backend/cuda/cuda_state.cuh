@@ -36,9 +36,33 @@ struct dev_params {
    * visits each bin once and takes the nearest image (minimum image; the box is >= 2 cutoffs). */
   int nb[3], ncell;
   double inv_bin[3];
+  meso_real bin_w[3], box_L[3], inv_box_L[3]; /* in the pair math's precision */
+  meso_real cut2_max, rd2_max; /* largest squared cutoffs of any pair (tested before the table) */
   int off_lo[3], off_hi[3], min_image[3];
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
 };
+
+/* Packed copies for the pair passes, rebuilt every step after the sort: the position relative to
+ * the lower corner of the particle's own bin (small numbers, so single precision keeps ~1e-7 of a
+ * bin width in any box size) with the species, and the velocity the thermostat sees. One 16-byte
+ * load per candidate in single precision. */
+#ifdef MESO_REAL_FLOAT
+struct __align__(16) dev_pos {
+  float x, y, z;
+  int species;
+};
+struct __align__(16) dev_vel {
+  float x, y, z, pad;
+};
+#else
+struct __align__(32) dev_pos {
+  double x, y, z;
+  long long species;
+};
+struct __align__(32) dev_vel {
+  double x, y, z, pad;
+};
+#endif
 
 /* One particle field set (double-buffered for the cell sort). */
 struct dev_fields {
@@ -70,6 +94,8 @@ struct cuda_sim {
   uint32_t *key, *key_sorted; /* cell of each particle */
   int *iota, *perm;
   int *cell_start; /* [ncell + 1] */
+  struct dev_pos *pos; /* [cap] packed positions (cell order) */
+  struct dev_vel *vel; /* [cap] packed thermostat velocities (thermostat only) */
   void *sort_tmp;
   size_t sort_tmp_bytes;
   double *block_virial; /* [6 * blocks] pair virial per force block (reduced in cuda_thermo.cu) */
@@ -89,6 +115,9 @@ int cuda_set_virial(struct cuda_sim *g, int on);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 int cuda_sort_cells(struct cuda_sim *g);
+/* Pack positions (bin-relative) and thermostat velocities for the pair passes (after the
+ * prediction). */
+void cuda_pack(struct cuda_sim *g);
 
 /* cuda_density.cu / cuda_force.cu */
 void cuda_density_pass(struct cuda_sim *g);

@@ -61,6 +61,8 @@ int cuda_reserve(struct cuda_sim *g, int n) {
   cuda_free_ptr(g, &g->sort_tmp);
   cuda_free_ptr(g, (void **)&g->block_virial);
   cuda_free_ptr(g, (void **)&g->virial);
+  cuda_free_ptr(g, (void **)&g->pos);
+  cuda_free_ptr(g, (void **)&g->vel);
   g->virial_cap = 0;
   g->bytes = 0;
   const int cap = n + n / 16 + 256;
@@ -74,7 +76,10 @@ int cuda_reserve(struct cuda_sim *g, int n) {
       cuda_alloc(g, (void **)&g->key, c * sizeof(uint32_t)) ||
       cuda_alloc(g, (void **)&g->key_sorted, c * sizeof(uint32_t)) ||
       cuda_alloc(g, (void **)&g->iota, c * sizeof(int)) ||
-      cuda_alloc(g, (void **)&g->perm, c * sizeof(int)) || cuda_alloc(g, &g->sort_tmp, tmp) ||
+      cuda_alloc(g, (void **)&g->perm, c * sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->pos, c * sizeof(struct dev_pos)) ||
+      ((g->prm.terms & PAIR_TERM_THERMOSTAT) &&
+       cuda_alloc(g, (void **)&g->vel, c * sizeof(struct dev_vel))) || cuda_alloc(g, &g->sort_tmp, tmp) ||
       cuda_alloc(g, (void **)&g->block_virial, (size_t)blocks * 6 * sizeof(double)))
     return -1;
   g->sort_tmp_bytes = tmp;
@@ -109,7 +114,8 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
   void **ptrs[] = {(void **)&g->rho,          (void **)&g->virial,     (void **)&g->key,
                    (void **)&g->key_sorted,   (void **)&g->iota,       (void **)&g->perm,
                    (void **)&g->cell_start,   &g->sort_tmp,            (void **)&g->block_virial,
-                   (void **)&g->thermo_part,  (void **)&g->problem};
+                   (void **)&g->thermo_part,  (void **)&g->problem,
+                   (void **)&g->pos,          (void **)&g->vel};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   free(g);
 }
