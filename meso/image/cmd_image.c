@@ -45,13 +45,13 @@ static void print_info(const char *path, const mdp_image_t *img, const mdp_image
   mdp_image_format_labels(img->phase_of, map, sizeof map);
   double n = (double)st->n_voxels;
   if (json) {
-    printf("{\"file\": \"%s\", \"dims\": [%d, %d, %d], \"voxel_size\": %.10g, \"unit\": \"%s\", "
+    printf("{\"file\": \"%s\", \"dims\": [%d, %d, %d], \"voxel_size\": %.12g, \"unit\": \"%s\", "
            "\"label_map\": \"%s\", \"voxels\": %lld, \"pore_voxels\": %lld, \"organic_fraction\": "
-           "%.6f, \"inorganic_fraction\": %.6f, \"porosity\": %.6f, \"clusters\": %d, "
-           "\"connected_porosity\": {\"x\": %.6f, \"y\": %.6f, \"z\": %.6f}, "
+           "%.12g, \"inorganic_fraction\": %.12g, \"porosity\": %.12g, \"clusters\": %d, "
+           "\"connected_porosity\": {\"x\": %.12g, \"y\": %.12g, \"z\": %.12g}, "
            "\"percolates\": {\"x\": %s, \"y\": %s, \"z\": %s}, "
-           "\"isolated\": {\"clusters\": %d, \"porosity\": %.6f}, "
-           "\"non_spanning\": {\"clusters\": %d, \"porosity\": %.6f}}\n",
+           "\"isolated\": {\"clusters\": %d, \"porosity\": %.12g}, "
+           "\"non_spanning\": {\"clusters\": %d, \"porosity\": %.12g}}\n",
            path, img->nx, img->ny, img->nz, img->voxel_size, img->unit, map, st->n_voxels,
            st->n_pore, st->n_organic / n, st->n_inorganic / n, st->porosity, st->n_clusters,
            st->connected_porosity[0], st->connected_porosity[1], st->connected_porosity[2],
