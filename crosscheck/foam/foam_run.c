@@ -234,7 +234,11 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
               last, res->res_p, res->res_u, res->flux_change, res->flux_error);
     /* Converged: residuals below tolerance, flux change and estimated remaining error below the
      * flux tolerance (a rate that is not yet geometric gives no estimate and does not pass). */
-    if (res->res_p < o->tol_residual && res->res_u < o->tol_residual &&
+    /* OpenFOAM normalises a residual by the field's deviation from its mean, so a velocity that is
+     * uniform over the cells (a slit two cells wide) keeps a normalised residual of order one at
+     * convergence: a flux settled to round-off over three checks waives the U residual. */
+    int settled = n >= 3 && res->flux_change < 1e-13 && fabs(dq_prev) < 1e-13 * scale;
+    if (res->res_p < o->tol_residual && (res->res_u < o->tol_residual || settled) &&
         res->flux_change < o->tol_flux && res->flux_error < o->tol_flux) {
       res->converged = 1;
       break;
