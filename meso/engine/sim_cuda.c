@@ -52,7 +52,10 @@ int sim_cuda_create(sim_t *sim) {
     return -1;
   }
   sim->gpu = cuda_sim_create(&sim->plan, &sim->scene, sim->err, sizeof sim->err);
-  return sim->gpu ? 0 : -1;
+  if (!sim->gpu) return -1;
+  printf("mdpore: backend cuda on %s (%s-precision pair math)\n", cuda_sim_device_name(sim->gpu),
+         cuda_sim_double_precision() ? "double" : "single");
+  return 0;
 }
 
 void sim_cuda_destroy(sim_t *sim) {

@@ -64,6 +64,8 @@ int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[17]);
 
 /* Bytes of device memory this state holds. */
 size_t cuda_sim_bytes(const cuda_sim_t *g);
+/* 1 when the pair math was built in double (MDPORE_DOUBLE), 0 for single precision. */
+int cuda_sim_double_precision(void);
 /* Name of the device (for summaries and the benchmark). */
 const char *cuda_sim_device_name(const cuda_sim_t *g);
 

@@ -102,7 +102,8 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, cha
     snprintf(g->device_name, sizeof g->device_name, "%s", prop.name);
   if (cuda_alloc(g, (void **)&g->cell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->thermo_part, (size_t)THERMO_SUMS * (THERMO_BLOCKS + 1) * 8) ||
-      cuda_alloc(g, (void **)&g->problem, sizeof(struct dev_problem))) {
+      cuda_alloc(g, (void **)&g->problem, sizeof(struct dev_problem)) ||
+      cuda_alloc(g, (void **)&g->nbr_most, sizeof(int))) {
     snprintf(err, len, "CUDA backend: out of device memory");
     cuda_sim_destroy(g);
     return NULL;

@@ -1,10 +1,11 @@
 /* Device force pass: the fused pair kernel of the CUDA path (physics.md section 1, paper eq. 1),
- *   F_ij = [ A w_c + B (rho_i + rho_j) w_d ] e - gamma w_R^2 (e . v~_ij) e + sigma w_R xi_ij / sqrt(dt) e
+ *   F_ij = [A w_c + B (rho_i + rho_j) w_d] e - gamma w_R^2 (e . v~_ij) e + sigma w_R xi_ij / sqrt(dt) e
  * with the pair functions of meso/physics/pair_forces.h and xi_ij of pair_random.h (the same numbers
- * as the CPU path draws). One thread per particle, full neighbour traversal; separations in double,
- * pair math in meso_real (float unless MDPORE_DOUBLE), the sum per particle in meso_real and the
- * pair virial per block in double. The term set is a template parameter, so unused terms cost
- * nothing (as in backend/cpu/force_pass.c). */
+ * as the CPU path draws). One thread per particle over its neighbour list of this step (written by
+ * the density pass, cuda_density.cu; full traversal, each pair from both sides with exactly negated
+ * separation and velocity difference). Bin-relative positions and the pair math in meso_real (float
+ * unless MDPORE_DOUBLE), the sum per particle in meso_real, the pair virial per block in double.
+ * The term set is a template parameter, so unused terms cost nothing (as in backend/cpu). */
 #include "cuda_neighbours.cuh"
 #include "physics/pair_forces.h"
 #include "physics/pair_random.h"
@@ -12,10 +13,11 @@
 #include <cub/block/block_reduce.cuh>
 
 struct force_args {
-  const int *start;
+  const uint32_t *nbr;
+  const int *count;
+  int cap;
   const struct dev_pos *pos;
   const struct dev_vel *vel;
-  const uint32_t *key;
   const int64_t *id;
   const meso_real *rho;
   double *fx, *fy, *fz, *virial, *block_virial;
@@ -24,7 +26,8 @@ struct force_args {
 };
 
 template <int TERMS, int VIRIAL>
-__global__ void __launch_bounds__(CUDA_BLOCK) k_force(const struct dev_params q, struct force_args a) {
+__global__ void __launch_bounds__(CUDA_BLOCK)
+    k_force(const struct dev_params q, struct force_args a) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   meso_real w[6] = {0, 0, 0, 0, 0, 0};
   if (i < a.n) {
@@ -35,39 +38,42 @@ __global__ void __launch_bounds__(CUDA_BLOCK) k_force(const struct dev_params q,
     if (TERMS & PAIR_TERM_THERMOSTAT) vi = a.vel[i];
     const int64_t id_i = a.id[i];
     meso_real sfx = 0, sfy = 0, sfz = 0;
-    dev_for_each_neighbour(
-        q, a.start, a.pos, pi, a.key[i],
-        [&](int t, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
-          const meso_real r2 = dx * dx + dy * dy + dz * dz;
-          if (r2 >= q.cut2_max || r2 == MESO_R(0.0)) return; /* most candidates; i itself */
-          const struct dev_coef &c = row[pj.species];
-          if (r2 >= c.cut2) return;
-          const meso_real inv_r = rsqrt(r2), dist = r2 * inv_r; /* no division */
-          meso_real fp = 0;
-          if ((TERMS & PAIR_TERM_CONSERVATIVE) && r2 < c.rc2)
-            fp += pair_conservative_inv(c.A, dist, c.inv_rc);
-          if ((TERMS & PAIR_TERM_MANYBODY) && r2 < c.rd2)
-            fp += pair_manybody_inv(c.B, rho_i + a.rho[t], dist, c.inv_rd);
-          if ((TERMS & PAIR_TERM_THERMOSTAT) && r2 < c.rc2) {
-            const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
-            const struct dev_vel vj = a.vel[t];
-            const meso_real e_dot_v =
-                (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
-            const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
-            fp += pair_thermostat(c.gamma, c.sigma, wR, e_dot_v, xi_ij, q.inv_sqrt_dt);
-          }
-          const meso_real s = fp * inv_r;
-          sfx += s * dx;
-          sfy += s * dy;
-          sfz += s * dz;
-          const meso_real hs = MESO_R(0.5) * s; /* each pair is seen from both sides */
-          w[0] += hs * dx * dx;
-          w[1] += hs * dy * dy;
-          w[2] += hs * dz * dz;
-          w[3] += hs * dx * dy;
-          w[4] += hs * dx * dz;
-          w[5] += hs * dy * dz;
-        });
+    const int m = a.count[i];
+    for (int k = 0; k < m; k++) {
+      const uint32_t e = a.nbr[(size_t)k * a.cap + i];
+      const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
+      const struct dev_pos pj = a.pos[t];
+      meso_real dx, dy, dz;
+      dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+      const meso_real r2 = dx * dx + dy * dy + dz * dz;
+      const struct dev_coef &c = row[pj.species];
+      if (r2 >= c.cut2 || r2 == MESO_R(0.0)) continue;      /* r2 == 0: coincident, no direction */
+      const meso_real inv_r = rsqrt(r2), dist = r2 * inv_r; /* no division */
+      meso_real fp = 0;
+      if ((TERMS & PAIR_TERM_CONSERVATIVE) && r2 < c.rc2)
+        fp += pair_conservative_inv(c.A, dist, c.inv_rc);
+      if ((TERMS & PAIR_TERM_MANYBODY) && r2 < c.rd2)
+        fp += pair_manybody_inv(c.B, rho_i + a.rho[t], dist, c.inv_rd);
+      if ((TERMS & PAIR_TERM_THERMOSTAT) && r2 < c.rc2) {
+        const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
+        const struct dev_vel vj = a.vel[t];
+        const meso_real e_dot_v =
+            (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
+        const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
+        fp += pair_thermostat(c.gamma, c.sigma, wR, e_dot_v, xi_ij, q.inv_sqrt_dt);
+      }
+      const meso_real s = fp * inv_r;
+      sfx += s * dx;
+      sfy += s * dy;
+      sfz += s * dz;
+      const meso_real hs = MESO_R(0.5) * s; /* each pair is seen from both sides */
+      w[0] += hs * dx * dx;
+      w[1] += hs * dy * dy;
+      w[2] += hs * dz * dz;
+      w[3] += hs * dx * dy;
+      w[4] += hs * dx * dz;
+      w[5] += hs * dy * dz;
+    }
     if (a.write_f) {
       a.fx[i] = sfx;
       a.fy[i] = sfy;
@@ -98,19 +104,34 @@ void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int kee
   const int n = g->n, blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   g->n_force_blocks = n > 0 ? blocks : 0;
   if (n == 0) return;
-  struct force_args a = {g->cell_start, g->pos,      g->vel,     g->key_sorted,
-                         g->a.id,        g->rho,      g->a.f[0],  g->a.f[1],
-                         g->a.f[2],      g->virial,   g->block_virial, step,
-                         n,              !keep_forces};
+  struct force_args a = {g->nbr,    g->nbr_count,    g->cap,    g->pos,    g->vel,
+                         g->a.id,   g->rho,          g->a.f[0], g->a.f[1], g->a.f[2],
+                         g->virial, g->block_virial, step,      n,         !keep_forces};
   const int virial = want_virial && g->virial != NULL;
   switch (g->prm.terms & 7) {
-  case 0: launch<0>(g->prm, a, blocks, virial); break;
-  case 1: launch<1>(g->prm, a, blocks, virial); break;
-  case 2: launch<2>(g->prm, a, blocks, virial); break;
-  case 3: launch<3>(g->prm, a, blocks, virial); break;
-  case 4: launch<4>(g->prm, a, blocks, virial); break;
-  case 5: launch<5>(g->prm, a, blocks, virial); break;
-  case 6: launch<6>(g->prm, a, blocks, virial); break;
-  default: launch<7>(g->prm, a, blocks, virial); break;
+  case 0:
+    launch<0>(g->prm, a, blocks, virial);
+    break;
+  case 1:
+    launch<1>(g->prm, a, blocks, virial);
+    break;
+  case 2:
+    launch<2>(g->prm, a, blocks, virial);
+    break;
+  case 3:
+    launch<3>(g->prm, a, blocks, virial);
+    break;
+  case 4:
+    launch<4>(g->prm, a, blocks, virial);
+    break;
+  case 5:
+    launch<5>(g->prm, a, blocks, virial);
+    break;
+  case 6:
+    launch<6>(g->prm, a, blocks, virial);
+    break;
+  default:
+    launch<7>(g->prm, a, blocks, virial);
+    break;
   }
 }

@@ -93,7 +93,8 @@ void cuda_kick_drift(struct cuda_sim *g) {
 }
 
 void cuda_predict(struct cuda_sim *g, int setup) {
-  if (g->n && g->prm.use_vpred) k_predict<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, setup);
+  if (g->n && g->prm.use_vpred)
+    k_predict<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, setup);
 }
 
 void cuda_finish_forces(struct cuda_sim *g, int add_body, int kick) {
@@ -105,8 +106,7 @@ void cuda_finish_forces(struct cuda_sim *g, int add_body, int kick) {
 int cuda_problem_fetch(struct cuda_sim *g, cuda_problem_t *pr) {
   struct dev_problem h;
   memset(pr, 0, sizeof *pr);
-  if (cuda_check(cudaMemcpy(&h, g->problem, sizeof h, cudaMemcpyDeviceToHost), "step"))
-    return -1;
+  if (cuda_check(cudaMemcpy(&h, g->problem, sizeof h, cudaMemcpyDeviceToHost), "step")) return -1;
   if (h.kind == 0) return 0;
   pr->kind = h.kind;
   pr->at_drift = h.at_drift;

@@ -1,8 +1,8 @@
 /* Neighbour traversal of the device pair passes: the bins around a particle's bin, with periodic
  * wrap. Positions are packed relative to their own bin's lower corner (dev_pos), so the separation
- * to a particle of the bin at offset o along an axis is r_i - r_j = (x_i - x_j) - o w: a bin reached
- * across a periodic face gives exactly the image the CPU path's ghost copy gives. Along an axis
- * with only 2 bins both bins are visited once and the nearest image is taken. The visit order
+ * to a particle of the bin at offset o along an axis is r_i - r_j = (x_i - x_j) - o w: a bin
+ * reached across a periodic face gives exactly the image the CPU path's ghost copy gives. Along an
+ * axis with only 2 bins both bins are visited once and the nearest image is taken. The visit order
  * (bins z, y, x, then slots in bin order) is fixed, so every sum is deterministic. */
 #ifndef MESO_BACKEND_CUDA_NEIGHBOURS_CUH
 #define MESO_BACKEND_CUDA_NEIGHBOURS_CUH
@@ -23,14 +23,25 @@ __device__ __forceinline__ meso_real dev_nearest(const struct dev_params &q, int
   return q.min_image[d] ? x - q.box_L[d] * rint(x * q.inv_box_L[d]) : x;
 }
 
-/* Call f(t, pj, dx, dy, dz) for every slot t of the bins around particle i (slot i, packed position
- * pi, bin key ci), i itself included (callers skip it); d = r_i - r_j of the nearest image. */
+/* Separation of a partner at bin offset code (ox + 1) + 3 (oy + 1) + 9 (oz + 1): the same float
+ * operations as the traversal below, so a list entry replays the traversal's value exactly. */
+__device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const struct dev_pos &pi,
+                                               const struct dev_pos &pj, int code, meso_real *dx,
+                                               meso_real *dy, meso_real *dz) {
+  const int ox = code % 3 - 1, oy = (code / 3) % 3 - 1, oz = code / 9 - 1;
+  *dx = dev_nearest(q, 0, (pi.x - (meso_real)ox * q.bin_w[0]) - pj.x);
+  *dy = dev_nearest(q, 1, (pi.y - (meso_real)oy * q.bin_w[1]) - pj.y);
+  *dz = dev_nearest(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
+}
+
+/* Call f(t, code, pj, dx, dy, dz) for every slot t of the bins around particle i (slot i, packed
+ * position pi, bin key ci), i itself included (callers skip it); d = r_i - r_j of the nearest
+ * image. */
 template <class F>
-__device__ __forceinline__ void dev_for_each_neighbour(const struct dev_params &q,
-                                                       const int *__restrict__ start,
-                                                       const struct dev_pos *__restrict__ pos,
-                                                       const struct dev_pos &pi, uint32_t ci,
-                                                       F &&f) {
+__device__ __forceinline__ void
+dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start,
+                       const struct dev_pos *__restrict__ pos, const struct dev_pos &pi,
+                       uint32_t ci, F &&f) {
   const int bx = (int)ci % q.nb[0], by = ((int)ci / q.nb[0]) % q.nb[1],
             bz = (int)ci / (q.nb[0] * q.nb[1]);
   for (int oz = q.off_lo[2]; oz <= q.off_hi[2]; oz++) {
@@ -46,10 +57,11 @@ __device__ __forceinline__ void dev_for_each_neighbour(const struct dev_params &
         if (cx < 0) continue;
         const meso_real sx = pi.x - (meso_real)ox * q.bin_w[0];
         const int c = cx + q.nb[0] * (cy + q.nb[1] * cz);
+        const int code = (ox + 1) + 3 * (oy + 1) + 9 * (oz + 1);
         const int t1 = start[c + 1];
         for (int t = start[c]; t < t1; t++) {
           const struct dev_pos pj = pos[t];
-          f(t, pj, dev_nearest(q, 0, sx - pj.x), dev_nearest(q, 1, sy - pj.y),
+          f(t, code, pj, dev_nearest(q, 0, sx - pj.x), dev_nearest(q, 1, sy - pj.y),
             dev_nearest(q, 2, sz - pj.z));
         }
       }

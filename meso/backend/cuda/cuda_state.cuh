@@ -11,6 +11,7 @@
 #include <stdint.h>
 
 #define CUDA_BLOCK 128
+#define NBR_SLOT_BITS 27 /* slots < 2^27 particles per GPU; 5 bits for the 27 bin offsets */
 
 /* Constants of one species pair in the pair math's precision (plan.h pair_coef_t). */
 struct dev_coef {
@@ -93,9 +94,15 @@ struct cuda_sim {
   int virial_cap;
   uint32_t *key, *key_sorted; /* cell of each particle */
   int *iota, *perm;
-  int *cell_start; /* [ncell + 1] */
+  int *cell_start;     /* [ncell + 1] */
   struct dev_pos *pos; /* [cap] packed positions (cell order) */
   struct dev_vel *vel; /* [cap] packed thermostat velocities (thermostat only) */
+  /* Per-step neighbour lists written by the density pass (cuda_density.cu): entry k of particle i
+   * at nbr[k * cap + i] (coalesced), slot | bin-offset code << NBR_SLOT_BITS, partners within the
+   * largest cutoff in traversal order. */
+  uint32_t *nbr;
+  int *nbr_count, *nbr_most; /* [cap]; [1] the longest list of the last pass */
+  int nbr_stride;
   void *sort_tmp;
   size_t sort_tmp_bytes;
   double *block_virial; /* [6 * blocks] pair virial per force block (reduced in cuda_thermo.cu) */
@@ -112,6 +119,7 @@ int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes);
 void cuda_free_ptr(struct cuda_sim *g, void **ptr);
 int cuda_reserve(struct cuda_sim *g, int n);
 int cuda_set_virial(struct cuda_sim *g, int on);
+int cuda_nbr_reserve(struct cuda_sim *g, int stride);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 int cuda_sort_cells(struct cuda_sim *g);
@@ -119,8 +127,8 @@ int cuda_sort_cells(struct cuda_sim *g);
  * prediction). */
 void cuda_pack(struct cuda_sim *g);
 
-/* cuda_density.cu / cuda_force.cu */
-void cuda_density_pass(struct cuda_sim *g);
+/* cuda_density.cu (densities + neighbour lists; 0 or -1) / cuda_force.cu */
+int cuda_density_pass(struct cuda_sim *g);
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
 
 /* cuda_integrate.cu */

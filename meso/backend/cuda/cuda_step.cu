@@ -13,7 +13,7 @@ extern "C" int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, 
   if (cuda_set_virial(g, want_virial) || cuda_sort_cells(g)) return -1;
   cuda_predict(g, 1); /* v~ = v at setup */
   cuda_pack(g);
-  cuda_density_pass(g);
+  if (cuda_density_pass(g)) return -1;
   cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
   cuda_finish_forces(g, !keep_forces, 0);
   return finish(g, pr);
@@ -25,7 +25,7 @@ extern "C" int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_pro
   if (cuda_sort_cells(g)) return -1;
   cuda_predict(g, 0);
   cuda_pack(g);
-  cuda_density_pass(g);
+  if (cuda_density_pass(g)) return -1;
   cuda_force_pass(g, (uint64_t)step, want_virial, 0);
   cuda_finish_forces(g, 1, 1);
   return finish(g, pr);

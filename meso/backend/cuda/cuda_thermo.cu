@@ -5,10 +5,9 @@
 
 #include <cub/block/block_reduce.cuh>
 
-__global__ void __launch_bounds__(256) k_thermo_part(const struct dev_params q, int n,
-                                                     struct dev_fields p, int nvb,
-                                                     const double *__restrict__ block_virial,
-                                                     double *part) {
+__global__ void __launch_bounds__(256)
+    k_thermo_part(const struct dev_params q, int n, struct dev_fields p, int nvb,
+                  const double *__restrict__ block_virial, double *part) {
   double s[THERMO_SUMS];
   for (int k = 0; k < THERMO_SUMS; k++) s[k] = 0.0;
   for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {

@@ -23,7 +23,8 @@ extern "C" int cuda_sim_upload(cuda_sim_t *g, const particles_t *p) {
 extern "C" int cuda_sim_download(cuda_sim_t *g, particles_t *p) {
   const int n = g->n;
   const size_t nd = (size_t)n * sizeof(double);
-  int rc = cuda_check(cudaMemcpy(p->id, g->a.id, (size_t)n * 8, cudaMemcpyDeviceToHost), "download");
+  int rc =
+      cuda_check(cudaMemcpy(p->id, g->a.id, (size_t)n * 8, cudaMemcpyDeviceToHost), "download");
   rc |= cuda_check(cudaMemcpy(p->species, g->a.species, (size_t)n * 4, cudaMemcpyDeviceToHost),
                    "download");
   for (int d = 0; d < 3 && !rc; d++) {

@@ -63,8 +63,16 @@ int cuda_reserve(struct cuda_sim *g, int n) {
   cuda_free_ptr(g, (void **)&g->virial);
   cuda_free_ptr(g, (void **)&g->pos);
   cuda_free_ptr(g, (void **)&g->vel);
+  cuda_free_ptr(g, (void **)&g->nbr);
+  cuda_free_ptr(g, (void **)&g->nbr_count);
+  g->nbr_stride = 0;
   g->virial_cap = 0;
   g->bytes = 0;
+  if (n >= (1 << NBR_SLOT_BITS) - 4096) {
+    fprintf(stderr, "mdpore: CUDA backend: %d particles on one GPU: at most %d\n", n,
+            (1 << NBR_SLOT_BITS) - 4096);
+    return -1;
+  }
   const int cap = n + n / 16 + 256;
   const size_t c = (size_t)cap;
   const int blocks = (cap + CUDA_BLOCK - 1) / CUDA_BLOCK;
@@ -78,13 +86,25 @@ int cuda_reserve(struct cuda_sim *g, int n) {
       cuda_alloc(g, (void **)&g->iota, c * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->perm, c * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->pos, c * sizeof(struct dev_pos)) ||
+      cuda_alloc(g, (void **)&g->nbr_count, c * sizeof(int)) ||
       ((g->prm.terms & PAIR_TERM_THERMOSTAT) &&
-       cuda_alloc(g, (void **)&g->vel, c * sizeof(struct dev_vel))) || cuda_alloc(g, &g->sort_tmp, tmp) ||
+       cuda_alloc(g, (void **)&g->vel, c * sizeof(struct dev_vel))) ||
+      cuda_alloc(g, &g->sort_tmp, tmp) ||
       cuda_alloc(g, (void **)&g->block_virial, (size_t)blocks * 6 * sizeof(double)))
     return -1;
   g->sort_tmp_bytes = tmp;
   g->block_virial_cap = blocks;
   g->cap = cap;
+  return 0;
+}
+
+/* Neighbour-list room for stride entries per particle. */
+int cuda_nbr_reserve(struct cuda_sim *g, int stride) {
+  if (stride <= g->nbr_stride) return 0;
+  cuda_free_ptr(g, (void **)&g->nbr);
+  if (cuda_alloc(g, (void **)&g->nbr, (size_t)g->cap * (size_t)stride * sizeof(uint32_t)))
+    return -1;
+  g->nbr_stride = stride;
   return 0;
 }
 
@@ -111,11 +131,12 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
   if (!g) return;
   free_fields(g, &g->a);
   free_fields(g, &g->b);
-  void **ptrs[] = {(void **)&g->rho,          (void **)&g->virial,     (void **)&g->key,
-                   (void **)&g->key_sorted,   (void **)&g->iota,       (void **)&g->perm,
-                   (void **)&g->cell_start,   &g->sort_tmp,            (void **)&g->block_virial,
-                   (void **)&g->thermo_part,  (void **)&g->problem,
-                   (void **)&g->pos,          (void **)&g->vel};
+  void **ptrs[] = {(void **)&g->rho,         (void **)&g->virial,  (void **)&g->key,
+                   (void **)&g->key_sorted,  (void **)&g->iota,    (void **)&g->perm,
+                   (void **)&g->cell_start,  &g->sort_tmp,         (void **)&g->block_virial,
+                   (void **)&g->thermo_part, (void **)&g->problem, (void **)&g->pos,
+                   (void **)&g->vel,         (void **)&g->nbr,     (void **)&g->nbr_count,
+                   (void **)&g->nbr_most};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   free(g);
 }
@@ -130,4 +151,8 @@ extern "C" size_t cuda_sim_bytes(const cuda_sim_t *g) {
 
 extern "C" const char *cuda_sim_device_name(const cuda_sim_t *g) {
   return g->device_name;
+}
+
+extern "C" int cuda_sim_double_precision(void) {
+  return sizeof(meso_real) == sizeof(double);
 }
