@@ -205,9 +205,9 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
     res->flux_change = fabs(dq) / scale;
     res->flux_error = rho > 0 && rho < 1 ? res->flux_change * rho / (1 - rho) : NAN;
     if (res->flux_change < 1e-13) res->flux_error = res->flux_change; /* settled to round-off */
-    /* The drive pushes along +axis: a flux that is not positive and finite, or whose changes grow
-     * from check to check once started, means the pseudo-time step is too large. */
-    /* ... or a pressure residual still of order one after two runs (a neutral oscillation). */
+    /* The drive pushes along +axis: a flux that is not positive and finite, changes that grow from
+     * check to check, or a pressure residual still of order one after two runs (a neutral
+     * oscillation) mean that the pseudo-time step is too large. */
     if (!o->simple && (diverged || !(q > 0) || !isfinite(q) || (n >= 4 && fabs(rho) > 1.2) ||
                        (last >= 2 * o->chunk && res->res_p > 0.1))) {
       if (res->restarts >= 4) {
@@ -233,8 +233,8 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
               "mdpore foam: step %d: residual p %.3g U %.3g, flux change %.3g, est. error %.3g\n",
               last, res->res_p, res->res_u, res->flux_change, res->flux_error);
     /* Converged: residuals below tolerance, flux change and estimated remaining error below the
-     * flux tolerance (a rate that is not yet geometric gives no estimate and does not pass). */
-    /* OpenFOAM normalises a residual by the field's deviation from its mean, so a velocity that is
+     * flux tolerance (a rate that is not yet geometric gives no estimate and does not pass).
+     * OpenFOAM normalises a residual by the field's deviation from its mean, so a velocity that is
      * uniform over the cells (a slit two cells wide) keeps a normalised residual of order one at
      * convergence: a flux settled to round-off over three checks waives the U residual. */
     int settled = n >= 3 && res->flux_change < 1e-13 && fabs(dq_prev) < 1e-13 * scale;
