@@ -17,6 +17,13 @@ int sim_backend_choose(const char *name, int nranks, int *backend, char *err, si
 #endif
   if (!name || !strcmp(name, "auto")) {
     *backend = gpus > 0 && nranks == 1 ? SCENE_BACKEND_CUDA : SCENE_BACKEND_CPU;
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (gpus > 0 && nranks > 1 && rank == 0)
+      fprintf(stderr,
+              "mdpore: %d MPI ranks: running the CPU path (the CUDA path runs on one rank in "
+              "this version)\n",
+              nranks);
     return 0;
   }
   if (!strcmp(name, "cpu")) {
