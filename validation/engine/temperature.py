@@ -20,8 +20,8 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--np", type=int, default=2)
     args = ap.parse_args()
-    dts = [0.01, 0.02] if args.quick else [0.0025, 0.005, 0.01, 0.015, 0.02, 0.03]
-    t_total, t_equil = (30.0, 10.0) if args.quick else (60.0, 10.0)
+    dts = [0.01, 0.02] if args.quick else [0.005, 0.01, 0.015, 0.02, 0.03]
+    t_total, t_equil = (30.0, 10.0) if args.quick else (40.0, 10.0)
     L, rho = 8.0, 6.2
     out = mdval.out_dir("temperature" + ("_quick" if args.quick else ""))
     rows, ok = [], True
