@@ -109,8 +109,8 @@ def check_spheres(tmp):
     # a quarter of the cell (mirror planes y = L/2 and z = L/2) with symmetry sides is exact
     r = foam(path, "--axis", "x", "--drive", "periodic", "--crop", f":,{L // 2}:,{L // 2}:")
     if r:
-        # The staircase sphere at 32^3 is 3.1% below Zick & Homsy (first-order geometric error: 1.8%
-        # at 48^3, 1.1% at 64^3; validation/foam). The 1% of the brief is not reached at 32^3.
+        # The staircase sphere at 32^3 is 3.1% below Zick & Homsy (geometric error, falling with the voxel: 1.8%
+        # at 48^3, 1.1% at 64^3; --refine 2 gives -6.9%; docs/foam.md). The brief's 1% is not reached at 32^3.
         compare(f"spheres c={c} {L}^3", r["permeability_voxel2"] / L**2, ZICK_HOMSY[c], 0.035)
         if not 1.0 < r["tortuosity"] < 1.2:
             fail(f"sphere tortuosity {r['tortuosity']} outside (1, 1.2)")
