@@ -2,7 +2,7 @@
  * docs/scene-format.md. Every mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got
  * ...)". */
 #include "io/scene.h"
-#include "io/yaml_tree.h"
+#include "common/yaml_tree.h"
 #include "physics/density_kernels.h"
 
 #include <ctype.h>

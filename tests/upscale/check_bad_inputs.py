@@ -45,7 +45,7 @@ CONFIGS = [
     ("unknown_key.yaml", GOOD_CFG.replace("fluid: {", "fluid: {viscosty: 1, "),
      ["unknown_key.yaml:3", "viscosty"]),
     ("bad_number.yaml", GOOD_CFG.replace("k: 1.0e-15", "k: lots"),
-     ["bad_number.yaml:8", "'k'", "lots"]),
+     ["bad_number.yaml:8", "'laws.uniform.k'", "lots"]),
     ("bad_law.yaml", GOOD_CFG.replace("law: darcy", "law: magic"), ["bad_law.yaml:8", "magic"]),
     ("neg_k.yaml", GOOD_CFG.replace("k: 1.0e-15", "k: -1.0e-15"), ["neg_k.yaml:8", "k > 0"]),
     ("no_boundary.yaml", GOOD_CFG.replace("  x-: {pressure: 2.0}\n  x+: {pressure: 1.0}\n", "  {}\n"),

@@ -56,10 +56,8 @@ int cmd_darcy(int argc, char **argv) {
     return 2;
   }
   darcy_config c;
-  char err[2048];
-  int rc = darcy_config_read(config, &c, err, sizeof err); /* every rank reads it (small) */
+  int rc = darcy_config_read(config, &c, rank != 0); /* every rank reads it (small); 0 reports */
   if (rc) {
-    if (rank == 0) fprintf(stderr, "mdpore darcy: %s\n", err);
     free(pargv);
     return 1;
   }

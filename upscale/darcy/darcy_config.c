@@ -1,4 +1,5 @@
-/* YAML configuration reader for `mdpore darcy` (see darcy_config.h, docs/darcy-config.md). */
+/* YAML configuration reader for `mdpore darcy` (see darcy_config.h, docs/darcy-config.md). Every
+ * mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got ...)" (common/yaml_tree.h). */
 #include "darcy_config.h"
 
 #include <hdf5.h>
@@ -8,66 +9,111 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/yaml_doc.h"
+#include "common/yaml_tree.h"
 #include "fit_json_law.h"
 
-static const char *face_names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+#define TRY(x)                                                                                     \
+  do {                                                                                             \
+    if ((x) != 0) return -1;                                                                       \
+  } while (0)
 
-/* path relative to the config file's folder (unless absolute) */
-static void resolve(const char *config, const char *rel, char *out, int len) {
-  if (rel[0] == '/') {
-    snprintf(out, len, "%s", rel);
-    return;
-  }
-  char tmp[4096];
-  snprintf(tmp, sizeof tmp, "%s", config);
-  snprintf(out, len, "%s/%s", dirname(tmp), rel);
+enum { PATH_LEN = 256, FILE_LEN = 4096 };
+
+static const char *face_names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+static const char *const unit_words[] = {"reduced", "SI", NULL}; /* index = si */
+static const char *const model_words[] = {"chosen",      "darcy", "threshold",
+                                          "forchheimer", "power", NULL};
+
+static void join(char *out, size_t len, const char *path, const char *key) {
+  snprintf(out, len, "%s%s%s", path, *path ? "." : "", key);
 }
 
-/* One law: {law: NAME, params...} or {fit: FILE.json, model: chosen|NAME}. Extra keys allowed by
- * the caller (e.g. "cells" in a layer) are passed in `extra`. */
-static int parse_law(ydoc *y, const yaml_node_t *n, const char *what, darcy_config *c,
+/* A file name at node n (key path `path`), relative to the config file's folder unless absolute. */
+static int file_name(ytree_t *t, yaml_node_t *n, const char *path, char *out, size_t len) {
+  char rel[FILE_LEN], tmp[FILE_LEN];
+  TRY(yt_string(t, n, path, rel, sizeof rel));
+  snprintf(tmp, sizeof tmp, "%s", t->file);
+  const char *dir = rel[0] == '/' ? "" : dirname(tmp);
+  size_t nd = strlen(dir);
+  const size_t nr = strlen(rel);
+  if (nd + nr + 2 > len)
+    return yt_error(t, n, path,
+                    "expected a path of at most %zu characters with the config's folder (got %zu)",
+                    len - 1, nd + 1 + nr);
+  memcpy(out, dir, nd);
+  if (nd) out[nd++] = '/';
+  memcpy(out + nd, rel, nr + 1);
+  return 0;
+}
+
+/* A required number map.key (full path path.key). */
+static int need_number(ytree_t *t, yaml_node_t *map, const char *path, const char *key, double *v) {
+  char sub[PATH_LEN];
+  join(sub, sizeof sub, path, key);
+  yaml_node_t *n = yt_need(t, map, key, sub, "a number");
+  return n ? yt_double(t, n, sub, v) : -1;
+}
+
+/* A required text value map.key into out. */
+static int need_string(ytree_t *t, yaml_node_t *map, const char *path, const char *key,
+                       const char *what, char *out, int len) {
+  char sub[PATH_LEN];
+  join(sub, sizeof sub, path, key);
+  yaml_node_t *n = yt_need(t, map, key, sub, what);
+  return n ? yt_string(t, n, sub, out, len) : -1;
+}
+
+/* The law fitted by `mdpore fit`: {fit: FILE.json, model: chosen|NAME}. */
+static int parse_fit_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_config *c,
+                         flow_law *law) {
+  char fpath[PATH_LEN], mpath[PATH_LEN], full[FILE_LEN];
+  join(fpath, sizeof fpath, path, "fit");
+  join(mpath, sizeof mpath, path, "model");
+  yaml_node_t *fn = yt_get(t, n, "fit"), *mn = yt_get(t, n, "model");
+  TRY(file_name(t, fn, fpath, full, sizeof full));
+  int m = mn ? yt_enum(t, mn, mpath, model_words) : 0;
+  if (m < 0) return -1;
+  int si;
+  fluid_props ff;
+  if (fit_json_law(full, model_words[m], law, &si, &ff, t->quiet))
+    return yt_error(t, fn, fpath,
+                    "expected a usable `mdpore fit` JSON file (got '%s': see the message above)",
+                    full);
+  if (si != c->si)
+    return yt_error(t, fn, fpath, "expected a fit in %s units like this config (got '%s' in %s)",
+                    c->si ? "SI" : "reduced", full, si ? "SI" : "reduced");
+  if (fabs(ff.mu - c->problem.fluid.mu) > 1e-9 * ff.mu)
+    yt_warn(t, fn, fpath, "fit '%s' used viscosity %g, the config has %g (the config's is used)",
+            full, ff.mu, c->problem.fluid.mu);
+  return 0;
+}
+
+/* One law at `path`: {law: NAME, params...} or {fit: FILE.json, model: chosen|NAME}. An extra key
+ * allowed by the caller (e.g. "cells" in a layer) is passed in `extra`. */
+static int parse_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_config *c,
                      const char *extra, flow_law *law) {
-  if (!ydoc_is_map(n))
-    return ydoc_fail(y, n, "%s: expected a law mapping like {law: darcy, k: 1e-15}", what);
+  char b[64], sub[PATH_LEN], why[160];
+  if (!n || n->type != YAML_MAPPING_NODE)
+    return yt_error(t, n, path, "expected a law mapping like {law: darcy, k: 1e-15} (got %s)",
+                    yt_describe(n, b, sizeof b));
   memset(law, 0, sizeof *law);
-  char why[160];
-  if (ydoc_get(y, n, "fit")) {
+  if (yt_get(t, n, "fit")) {
     const char *keys[] = {"fit", "model", extra, NULL};
-    if (ydoc_only_keys(y, n, what, keys)) return -1;
-    const char *file = ydoc_string(y, n, "fit");
-    yaml_node_t *mn = ydoc_get(y, n, "model");
-    const char *model = mn ? ydoc_string(y, n, "model") : "chosen";
-    if (!file || !model) return -1;
-    char full[4096], err[1024];
-    resolve(y->path, file, full, sizeof full);
-    int si;
-    fluid_props ff;
-    if (fit_json_law(full, model, law, &si, &ff, err, sizeof err))
-      return ydoc_fail(y, n, "%s: fit file: %s", what, err);
-    if (si != c->si)
-      return ydoc_fail(y, n, "%s: fit file '%s' is in %s units but this config is in %s units",
-                       what, full, si ? "SI" : "reduced", c->si ? "SI" : "reduced");
-    if (fabs(ff.mu - c->problem.fluid.mu) > 1e-9 * ff.mu)
-      fprintf(stderr, "mdpore darcy: warning: %s:%d: fit '%s' used viscosity %g, config has %g\n",
-              y->path, ydoc_line(n), full, ff.mu, c->problem.fluid.mu);
+    TRY(yt_check_keys(t, n, path, keys));
+    TRY(parse_fit_law(t, n, path, c, law));
   } else {
-    const char *name = ydoc_string(y, n, "law");
-    if (!name) return -1;
-    int kind = flow_law_from_name(name);
-    if (kind < 0)
-      return ydoc_fail(y, ydoc_get(y, n, "law"),
-                       "%s: key 'law': expected darcy, threshold, forchheimer or power, got '%s'",
-                       what, name);
-    static const char *keys[LAW_COUNT][3] = {
-        {"k", NULL, NULL}, {"k", "G0", NULL}, {"k", "beta", NULL}, {"K", "n", NULL}};
-    const char *allowed[] = {"law", keys[kind][0], keys[kind][1], extra, NULL};
-    if (!keys[kind][1]) allowed[2] = extra, allowed[3] = NULL;
-    if (ydoc_only_keys(y, n, what, allowed)) return -1;
+    join(sub, sizeof sub, path, "law");
+    yaml_node_t *ln = yt_need(t, n, "law", sub, "a law: darcy, threshold, forchheimer or power");
+    const int kind = ln ? yt_enum(t, ln, sub, flow_law_names) : -1;
+    if (kind < 0) return -1;
+    static const char *pk[LAW_COUNT][2] = {{"k", NULL}, {"k", "G0"}, {"k", "beta"}, {"K", "n"}};
+    const char *allowed[] = {"law", pk[kind][0], pk[kind][1], extra, NULL};
+    if (!pk[kind][1]) allowed[2] = extra, allowed[3] = NULL;
+    TRY(yt_check_keys(t, n, path, allowed));
     law->kind = kind;
     double v0 = 0, v1 = 0;
-    if (ydoc_number(y, n, keys[kind][0], &v0)) return -1;
-    if (keys[kind][1] && ydoc_number(y, n, keys[kind][1], &v1)) return -1;
+    TRY(need_number(t, n, path, pk[kind][0], &v0));
+    if (pk[kind][1]) TRY(need_number(t, n, path, pk[kind][1], &v1));
     if (kind == LAW_POWER)
       law->K = v0, law->n = v1;
     else
@@ -75,73 +121,88 @@ static int parse_law(ydoc *y, const yaml_node_t *n, const char *what, darcy_conf
     if (kind == LAW_THRESHOLD) law->g0 = v1;
     if (kind == LAW_FORCHHEIMER) law->beta = v1;
   }
-  if (flow_law_check(law, why, sizeof why)) return ydoc_fail(y, n, "%s: %s", what, why);
+  if (flow_law_check(law, why, sizeof why))
+    return yt_error(t, n, path, "expected the parameters of a valid law (%s)", why);
   return 0;
 }
 
-static int read_number_list(ydoc *y, const yaml_node_t *map, const char *key, double *v,
-                            int *count) {
-  yaml_node_t *s = ydoc_get(y, map, key);
-  if (!s) return ydoc_fail(y, map, "missing key '%s' (a list of 2 or 3 numbers)", key);
-  int n = ydoc_seq_len(s);
-  if (!ydoc_is_seq(s) || n < 2 || n > 3)
-    return ydoc_fail(y, s, "key '%s': expected a list of 2 or 3 numbers", key);
+/* A required list of 2 or 3 numbers map.key; the item nodes go to `at` (for later messages). */
+static int need_number_list(ytree_t *t, yaml_node_t *map, const char *path, const char *key,
+                            double v[3], yaml_node_t *at[3], int *count) {
+  char sub[PATH_LEN], item[PATH_LEN + 8], b[64];
+  join(sub, sizeof sub, path, key);
+  yaml_node_t *s = yt_need(t, map, key, sub, "a list of 2 or 3 numbers");
+  if (!s) return -1;
+  const int n = s->type == YAML_SEQUENCE_NODE ? yt_seq_size(s) : 0;
+  if (s->type != YAML_SEQUENCE_NODE)
+    return yt_error(t, s, sub, "expected a list of 2 or 3 numbers (got %s)",
+                    yt_describe(s, b, sizeof b));
+  if (n < 2 || n > 3)
+    return yt_error(t, s, sub, "expected a list of 2 or 3 numbers (got a list of %d)", n);
   for (int i = 0; i < n; i++) {
-    char what[64];
-    snprintf(what, sizeof what, "key '%s' item %d", key, i + 1);
-    if (ydoc_node_number(y, ydoc_seq_item(y, s, i), what, &v[i])) return -1;
+    snprintf(item, sizeof item, "%s[%d]", sub, i);
+    at[i] = yt_seq_item(t, s, i);
+    TRY(yt_double(t, at[i], item, &v[i]));
   }
   *count = n;
   return 0;
 }
 
-static int parse_grid(ydoc *y, const yaml_node_t *g, darcy_config *c) {
-  static const char *keys[] = {"cells", "size", NULL};
-  if (!g) return ydoc_fail(y, NULL, "missing section 'grid'");
-  if (ydoc_only_keys(y, g, "grid", keys)) return -1;
+static int parse_grid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
+  static const char *const keys[] = {"cells", "size", NULL};
+  yaml_node_t *g = yt_need(t, root, "grid", "grid", "a mapping {cells: [...], size: [...]}");
+  if (!g) return -1;
+  TRY(yt_check_keys(t, g, "grid", keys));
   double cells[3], size[3];
+  yaml_node_t *cn[3], *sn[3];
   int nc, ns;
-  if (read_number_list(y, g, "cells", cells, &nc) || read_number_list(y, g, "size", size, &ns))
-    return -1;
-  if (nc != ns) return ydoc_fail(y, g, "grid: 'cells' has %d entries but 'size' has %d", nc, ns);
+  TRY(need_number_list(t, g, "grid", "cells", cells, cn, &nc));
+  TRY(need_number_list(t, g, "grid", "size", size, sn, &ns));
+  if (nc != ns)
+    return yt_error(t, yt_get(t, g, "size"), "grid.size",
+                    "expected %d entries like grid.cells (got %d)", nc, ns);
   darcy_problem *p = &c->problem;
   p->dim = nc;
   for (int a = 0; a < 3; a++) {
+    char sub[32];
     if (a >= nc) {
       p->n[a] = 1;
       p->h[a] = 1.0; /* 2D: unit depth */
       continue;
     }
+    snprintf(sub, sizeof sub, "grid.cells[%d]", a);
     if (cells[a] < 1 || cells[a] != floor(cells[a]) || cells[a] > 1e5)
-      return ydoc_fail(y, ydoc_get(y, g, "cells"),
-                       "grid: 'cells' entry %d: expected a positive integer", a + 1);
+      return yt_error(t, cn[a], sub, "expected a positive integer up to 100000 (got %g)", cells[a]);
+    snprintf(sub, sizeof sub, "grid.size[%d]", a);
     if (!(size[a] > 0))
-      return ydoc_fail(y, ydoc_get(y, g, "size"),
-                       "grid: 'size' entry %d: expected a positive length", a + 1);
+      return yt_error(t, sn[a], sub, "expected a positive length (got %g)", size[a]);
     p->n[a] = (int)cells[a];
     p->h[a] = size[a] / cells[a];
   }
-  if (darcy_nblocks(p) > 50000000L) return ydoc_fail(y, g, "grid: more than 5e7 blocks");
+  if (darcy_nblocks(p) > 50000000L)
+    return yt_error(t, yt_get(t, g, "cells"), "grid.cells", "expected at most 5e7 blocks (got %ld)",
+                    darcy_nblocks(p));
   return 0;
 }
 
-static int parse_boundary(ydoc *y, const yaml_node_t *b, darcy_config *c) {
+static int parse_boundary(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   darcy_problem *p = &c->problem;
-  if (!b)
-    return ydoc_fail(y, NULL,
-                     "missing section 'boundary' (at least one face with a fixed pressure)");
+  yaml_node_t *b = yt_need(t, root, "boundary", "boundary",
+                           "at least one face with a fixed pressure, like {x-: {pressure: P}}");
+  if (!b) return -1;
   const char *keys[7] = {"x-", "x+", "y-", "y+", NULL, NULL, NULL};
   if (p->dim == 3) keys[4] = "z-", keys[5] = "z+";
-  if (ydoc_only_keys(y, b, "boundary", keys)) return -1;
+  TRY(yt_check_keys(t, b, "boundary", keys));
   int any = 0;
   for (int f = 0; f < 2 * p->dim; f++) {
-    yaml_node_t *fn = ydoc_get(y, b, face_names[f]);
+    yaml_node_t *fn = yt_get(t, b, face_names[f]);
     if (!fn) continue;
-    static const char *fk[] = {"pressure", NULL};
-    char what[32];
-    snprintf(what, sizeof what, "boundary '%s'", face_names[f]);
+    static const char *const fk[] = {"pressure", NULL};
+    char path[32];
+    join(path, sizeof path, "boundary", face_names[f]);
     double v;
-    if (ydoc_only_keys(y, fn, what, fk) || ydoc_number(y, fn, "pressure", &v)) return -1;
+    TRY(yt_check_keys(t, fn, path, fk));
+    TRY(need_number(t, fn, path, "pressure", &v));
     long n = darcy_face_count(p, f);
     p->fixed[f] = 1;
     p->bc_p[f] = malloc(n * sizeof(double));
@@ -149,32 +210,38 @@ static int parse_boundary(ydoc *y, const yaml_node_t *b, darcy_config *c) {
     any = 1;
   }
   if (!any)
-    return ydoc_fail(y, b,
-                     "boundary: no face has a fixed pressure (the pressure would be undetermined)");
+    return yt_error(t, b, "boundary",
+                    "expected at least one face with a fixed pressure (got none: the pressure "
+                    "would be undetermined)");
   return 0;
 }
 
-static int parse_sources(ydoc *y, const yaml_node_t *s, darcy_config *c) {
+static int parse_sources(ytree_t *t, yaml_node_t *s, darcy_config *c) {
   darcy_problem *p = &c->problem;
+  char b[64];
   if (!s) return 0;
-  if (!ydoc_is_seq(s))
-    return ydoc_fail(y, s, "sources: expected a list of {block: [i, j(, k)], rate: Q}");
+  if (s->type != YAML_SEQUENCE_NODE)
+    return yt_error(t, s, "sources", "expected a list of {block: [i, j(, k)], rate: Q} (got %s)",
+                    yt_describe(s, b, sizeof b));
   p->source = calloc(darcy_nblocks(p), sizeof(double));
-  for (int i = 0; i < ydoc_seq_len(s); i++) {
-    yaml_node_t *it = ydoc_seq_item(y, s, i);
-    static const char *keys[] = {"block", "rate", NULL};
-    char what[48];
-    snprintf(what, sizeof what, "sources item %d", i + 1);
+  for (int i = 0; i < yt_seq_size(s); i++) {
+    yaml_node_t *it = yt_seq_item(t, s, i), *at[3];
+    static const char *const keys[] = {"block", "rate", NULL};
+    char path[32], sub[64];
+    snprintf(path, sizeof path, "sources[%d]", i);
     double idx[3] = {0, 0, 0}, rate;
     int ni;
-    if (ydoc_only_keys(y, it, what, keys) || read_number_list(y, it, "block", idx, &ni) ||
-        ydoc_number(y, it, "rate", &rate))
-      return -1;
-    if (ni != p->dim) return ydoc_fail(y, it, "%s: 'block' needs %d indices", what, p->dim);
+    TRY(yt_check_keys(t, it, path, keys));
+    TRY(need_number_list(t, it, path, "block", idx, at, &ni));
+    TRY(need_number(t, it, path, "rate", &rate));
+    join(sub, sizeof sub, path, "block");
+    if (ni != p->dim)
+      return yt_error(t, yt_get(t, it, "block"), sub, "expected %d indices (got %d)", p->dim, ni);
     for (int a = 0; a < ni; a++)
-      if (idx[a] < 0 || idx[a] >= p->n[a] || idx[a] != floor(idx[a]))
-        return ydoc_fail(y, it, "%s: block index %d must be an integer in [0, %d)", what, a + 1,
-                         p->n[a]);
+      if (idx[a] < 0 || idx[a] >= p->n[a] || idx[a] != floor(idx[a])) {
+        snprintf(sub, sizeof sub, "%s.block[%d]", path, a);
+        return yt_error(t, at[a], sub, "expected an integer in [0, %d) (got %g)", p->n[a], idx[a]);
+      }
     p->source[darcy_index(p, (int)idx[0], (int)idx[1], (int)idx[2])] += rate;
   }
   return 0;
@@ -182,13 +249,14 @@ static int parse_sources(ydoc *y, const yaml_node_t *s, darcy_config *c) {
 
 /* HDF5 dataset of Darcy permeabilities, shape (ny, nx) or (nz, ny, nx), C order = our block order.
  */
-static int read_k_dataset(ydoc *y, const yaml_node_t *n, darcy_config *c) {
-  static const char *keys[] = {"file", "dataset", NULL};
-  if (ydoc_only_keys(y, n, "laws: hdf5", keys)) return -1;
-  const char *file = ydoc_string(y, n, "file"), *dset = ydoc_string(y, n, "dataset");
-  if (!file || !dset) return -1;
-  char full[4096];
-  resolve(y->path, file, full, sizeof full);
+static int read_k_dataset(ytree_t *t, yaml_node_t *n, darcy_config *c) {
+  static const char *const keys[] = {"file", "dataset", NULL};
+  char dset[PATH_LEN], full[FILE_LEN];
+  TRY(yt_check_keys(t, n, "laws.hdf5", keys));
+  yaml_node_t *fn = yt_need(t, n, "file", "laws.hdf5.file", "an HDF5 file name");
+  if (!fn || file_name(t, fn, "laws.hdf5.file", full, sizeof full)) return -1;
+  TRY(need_string(t, n, "laws.hdf5", "dataset", "a dataset name", dset, sizeof dset));
+  yaml_node_t *dn = yt_get(t, n, "dataset");
   darcy_problem *p = &c->problem;
   long nb = darcy_nblocks(p);
   double *k = malloc(nb * sizeof(double));
@@ -199,34 +267,41 @@ static int read_k_dataset(ydoc *y, const yaml_node_t *n, darcy_config *c) {
   H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
   hid_t f = H5Fopen(full, H5F_ACC_RDONLY, H5P_DEFAULT), d = -1, sp = -1;
   if (f < 0) {
-    ydoc_fail(y, n, "laws: hdf5: cannot open '%s'", full);
+    yt_error(t, fn, "laws.hdf5.file", "expected a readable HDF5 file (got '%s')", full);
     goto out;
   }
   d = H5Dopen2(f, dset, H5P_DEFAULT);
   if (d < 0) {
-    ydoc_fail(y, n, "laws: hdf5: no dataset '%s' in '%s'", dset, full);
+    yt_error(t, dn, "laws.hdf5.dataset", "expected a dataset of '%s' (got '%s': no such dataset)",
+             full, dset);
     goto out;
   }
   sp = H5Dget_space(d);
   hsize_t dims[3] = {0, 0, 0};
   int rank = H5Sget_simple_extent_ndims(sp);
-  H5Sget_simple_extent_dims(sp, dims, NULL);
   int ok = rank == p->dim;
+  if (ok) H5Sget_simple_extent_dims(sp, dims, NULL);
   for (int a = 0; a < rank && ok; a++) ok = (long)dims[a] == p->n[rank - 1 - a];
   if (!ok) {
-    ydoc_fail(y, n, "laws: hdf5: dataset '%s' must have shape %s(%d, %d) to match grid.cells", dset,
-              p->dim == 3 ? "(nz, ny, nx) = " : "(ny, nx) = ", p->dim == 3 ? p->n[2] : p->n[1],
-              p->dim == 3 ? p->n[1] : p->n[0]);
+    if (p->dim == 3)
+      yt_error(t, dn, "laws.hdf5.dataset",
+               "expected a dataset of shape (nz, ny, nx) = (%d, %d, %d) to match grid.cells (got "
+               "rank %d)",
+               p->n[2], p->n[1], p->n[0], rank);
+    else
+      yt_error(t, dn, "laws.hdf5.dataset",
+               "expected a dataset of shape (ny, nx) = (%d, %d) to match grid.cells (got rank %d)",
+               p->n[1], p->n[0], rank);
     goto out;
   }
   if (H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) < 0) {
-    ydoc_fail(y, n, "laws: hdf5: cannot read '%s' as numbers", dset);
+    yt_error(t, dn, "laws.hdf5.dataset", "expected a dataset of numbers (cannot read '%s')", dset);
     goto out;
   }
   for (long b = 0; b < nb; b++) {
     if (!(k[b] > 0 && isfinite(k[b]))) {
-      ydoc_fail(y, n, "laws: hdf5: dataset '%s' element %ld is %g; permeabilities must be > 0",
-                dset, b, k[b]);
+      yt_error(t, dn, "laws.hdf5.dataset",
+               "expected permeabilities > 0 (got element %ld of '%s' = %g)", b, dset, k[b]);
       goto out;
     }
     p->laws[b] = (flow_law){.kind = LAW_DARCY, .k = k[b]};
@@ -241,167 +316,188 @@ out:
   return rc;
 }
 
-static int parse_laws(ydoc *y, const yaml_node_t *l, darcy_config *c) {
+/* layers: {axis: x|y|z, list: [LAW + {cells: N}, ...]} */
+static int parse_layers(ytree_t *t, yaml_node_t *n, darcy_config *c) {
+  static const char *const keys[] = {"axis", "list", NULL};
+  static const char *const axes3[] = {"x", "y", "z", NULL}, *const axes2[] = {"x", "y", NULL};
   darcy_problem *p = &c->problem;
-  static const char *keys[] = {"uniform", "layers", "blocks", "hdf5", NULL};
-  if (!l) return ydoc_fail(y, NULL, "missing section 'laws'");
-  if (ydoc_only_keys(y, l, "laws", keys)) return -1;
-  if (l->data.mapping.pairs.top - l->data.mapping.pairs.start != 1)
-    return ydoc_fail(y, l, "laws: give exactly one of uniform, layers, blocks, hdf5");
+  char b[64];
+  TRY(yt_check_keys(t, n, "laws.layers", keys));
+  yaml_node_t *an = yt_need(t, n, "axis", "laws.layers.axis", "x, y or z");
+  const int axis = an ? yt_enum(t, an, "laws.layers.axis", p->dim == 3 ? axes3 : axes2) : -1;
+  if (axis < 0) return -1;
+  const char *ax = axes3[axis];
+  yaml_node_t *list = yt_need(t, n, "list", "laws.layers.list", "a list of laws with 'cells'");
+  if (!list) return -1;
+  if (list->type != YAML_SEQUENCE_NODE || !yt_seq_size(list))
+    return yt_error(t, list, "laws.layers.list",
+                    "expected a non-empty list of laws with 'cells' (got %s)",
+                    yt_describe(list, b, sizeof b));
+  int start = 0;
+  for (int i = 0; i < yt_seq_size(list); i++) {
+    yaml_node_t *it = yt_seq_item(t, list, i);
+    char path[48], sub[64];
+    snprintf(path, sizeof path, "laws.layers.list[%d]", i);
+    join(sub, sizeof sub, path, "cells");
+    flow_law law;
+    long cells;
+    TRY(parse_law(t, it, path, c, "cells", &law));
+    yaml_node_t *cn = yt_need(t, it, "cells", sub, "a number of cells along the axis");
+    if (!cn || yt_long(t, cn, sub, &cells)) return -1;
+    if (cells < 1 || start + cells > p->n[axis])
+      return yt_error(t, cn, sub,
+                      "expected 1 to %d cells (got %ld: overruns the %d cells along %s after "
+                      "%d)",
+                      p->n[axis] - start, cells, p->n[axis], ax, start);
+    for (int k = 0; k < p->n[2]; k++)
+      for (int j = 0; j < p->n[1]; j++)
+        for (int ii = 0; ii < p->n[0]; ii++) {
+          int c3[3] = {ii, j, k};
+          if (c3[axis] >= start && c3[axis] < start + cells)
+            p->laws[darcy_index(p, ii, j, k)] = law;
+        }
+    start += (int)cells;
+  }
+  if (start != p->n[axis])
+    return yt_error(t, list, "laws.layers.list",
+                    "expected layers adding up to the %d cells of the grid along %s (got layers "
+                    "that cover %d cells)",
+                    p->n[axis], ax, start);
+  return 0;
+}
+
+static int parse_laws(ytree_t *t, yaml_node_t *root, darcy_config *c) {
+  darcy_problem *p = &c->problem;
+  static const char *const keys[] = {"uniform", "layers", "blocks", "hdf5", NULL};
+  char b[64];
+  yaml_node_t *l = yt_need(t, root, "laws", "laws", "one of uniform, layers, blocks, hdf5");
+  if (!l) return -1;
+  TRY(yt_check_keys(t, l, "laws", keys));
+  if (yt_map_size(l) != 1)
+    return yt_error(t, l, "laws", "expected exactly one of uniform, layers, blocks, hdf5 (got %d)",
+                    yt_map_size(l));
   long nb = darcy_nblocks(p);
   p->laws = calloc(nb, sizeof(flow_law));
   p->k_lin = calloc(nb, sizeof(double));
   yaml_node_t *n;
-  if ((n = ydoc_get(y, l, "uniform"))) {
+  if ((n = yt_get(t, l, "uniform"))) {
     flow_law law;
-    if (parse_law(y, n, "laws: uniform", c, NULL, &law)) return -1;
-    for (long b = 0; b < nb; b++) p->laws[b] = law;
-  } else if ((n = ydoc_get(y, l, "layers"))) {
-    static const char *lk[] = {"axis", "list", NULL};
-    if (ydoc_only_keys(y, n, "laws: layers", lk)) return -1;
-    const char *ax = ydoc_string(y, n, "axis");
-    if (!ax) return -1;
-    int axis = !strcmp(ax, "x") ? 0 : !strcmp(ax, "y") ? 1 : !strcmp(ax, "z") ? 2 : -1;
-    if (axis < 0 || axis >= p->dim)
-      return ydoc_fail(y, ydoc_get(y, n, "axis"), "laws: layers: 'axis' must be x, y%s, got '%s'",
-                       p->dim == 3 ? " or z" : "", ax);
-    yaml_node_t *list = ydoc_get(y, n, "list");
-    if (!ydoc_is_seq(list) || !ydoc_seq_len(list))
-      return ydoc_fail(y, list ? list : n,
-                       "laws: layers: 'list' must be a list of laws with 'cells'");
-    int start = 0;
-    for (int i = 0; i < ydoc_seq_len(list); i++) {
-      yaml_node_t *it = ydoc_seq_item(y, list, i);
-      char what[48];
-      snprintf(what, sizeof what, "laws: layers item %d", i + 1);
-      flow_law law;
-      long cells;
-      if (parse_law(y, it, what, c, "cells", &law) || ydoc_int(y, it, "cells", &cells)) return -1;
-      if (cells < 1 || start + cells > p->n[axis])
-        return ydoc_fail(y, it, "%s: 'cells' = %ld overruns the %d cells along %s", what, cells,
-                         p->n[axis], ax);
-      for (int k = 0; k < p->n[2]; k++)
-        for (int j = 0; j < p->n[1]; j++)
-          for (int ii = 0; ii < p->n[0]; ii++) {
-            int c3[3] = {ii, j, k};
-            if (c3[axis] >= start && c3[axis] < start + cells)
-              p->laws[darcy_index(p, ii, j, k)] = law;
-          }
-      start += cells;
+    TRY(parse_law(t, n, "laws.uniform", c, NULL, &law));
+    for (long i = 0; i < nb; i++) p->laws[i] = law;
+  } else if ((n = yt_get(t, l, "layers"))) {
+    TRY(parse_layers(t, n, c));
+  } else if ((n = yt_get(t, l, "blocks"))) {
+    if (n->type != YAML_SEQUENCE_NODE || yt_seq_size(n) != nb) {
+      if (n->type == YAML_SEQUENCE_NODE) snprintf(b, sizeof b, "a list of %d", yt_seq_size(n));
+      return yt_error(t, n, "laws.blocks",
+                      "expected a list of %ld laws, one per block, x fastest (got %s)", nb,
+                      n->type == YAML_SEQUENCE_NODE ? b : yt_describe(n, b, sizeof b));
     }
-    if (start != p->n[axis])
-      return ydoc_fail(y, list,
-                       "laws: layers: the layers cover %d cells but the grid has %d along %s",
-                       start, p->n[axis], ax);
-  } else if ((n = ydoc_get(y, l, "blocks"))) {
-    if (!ydoc_is_seq(n) || ydoc_seq_len(n) != nb)
-      return ydoc_fail(
-          y, n, "laws: blocks: expected a list of %ld laws (one per block, x fastest), got %d", nb,
-          ydoc_seq_len(n));
-    for (long b = 0; b < nb; b++) {
-      char what[48];
-      snprintf(what, sizeof what, "laws: blocks item %ld", b + 1);
-      if (parse_law(y, ydoc_seq_item(y, n, (int)b), what, c, NULL, &p->laws[b])) return -1;
+    for (long i = 0; i < nb; i++) {
+      char path[48];
+      snprintf(path, sizeof path, "laws.blocks[%ld]", i);
+      TRY(parse_law(t, yt_seq_item(t, n, (int)i), path, c, NULL, &p->laws[i]));
     }
-  } else if (read_k_dataset(y, ydoc_get(y, l, "hdf5"), c))
-    return -1;
-  return 0;
-}
-
-static int parse_output(ydoc *y, const yaml_node_t *o, darcy_config *c) {
-  static const char *keys[] = {"hdf5", "json", "json_blocks", NULL};
-  if (!o) return ydoc_fail(y, NULL, "missing section 'output' (hdf5: FILE and/or json: FILE)");
-  if (ydoc_only_keys(y, o, "output", keys)) return -1;
-  const char *h = ydoc_get(y, o, "hdf5") ? ydoc_string(y, o, "hdf5") : NULL;
-  const char *j = ydoc_get(y, o, "json") ? ydoc_string(y, o, "json") : NULL;
-  if (y->failed) return -1;
-  if (!h && !j) return ydoc_fail(y, o, "output: name an 'hdf5' and/or a 'json' file");
-  if (h) resolve(y->path, h, c->hdf5_path, sizeof c->hdf5_path);
-  if (j) resolve(y->path, j, c->json_path, sizeof c->json_path);
-  c->json_blocks = darcy_nblocks(&c->problem) <= 10000;
-  yaml_node_t *jb = ydoc_get(y, o, "json_blocks");
-  if (jb) {
-    const char *s = ydoc_string(y, o, "json_blocks");
-    if (!s || (strcmp(s, "true") && strcmp(s, "false")))
-      return ydoc_fail(y, jb, "output: 'json_blocks': expected true or false");
-    c->json_blocks = !strcmp(s, "true");
+  } else {
+    TRY(read_k_dataset(t, yt_get(t, l, "hdf5"), c));
   }
   return 0;
 }
 
-static int parse_solver(ydoc *y, const yaml_node_t *s, darcy_config *c) {
-  static const char *keys[] = {"rtol", "max_iterations", "power_law_linear_below", NULL};
+static int parse_output(ytree_t *t, yaml_node_t *root, darcy_config *c) {
+  static const char *const keys[] = {"hdf5", "json", "json_blocks", NULL};
+  yaml_node_t *o = yt_need(t, root, "output", "output", "a mapping {hdf5: FILE, json: FILE}"), *n;
+  if (!o) return -1;
+  TRY(yt_check_keys(t, o, "output", keys));
+  if ((n = yt_get(t, o, "hdf5")))
+    TRY(file_name(t, n, "output.hdf5", c->hdf5_path, sizeof c->hdf5_path));
+  if ((n = yt_get(t, o, "json")))
+    TRY(file_name(t, n, "output.json", c->json_path, sizeof c->json_path));
+  if (!c->hdf5_path[0] && !c->json_path[0])
+    return yt_error(t, o, "output", "expected an 'hdf5' and/or a 'json' file name (got neither)");
+  c->json_blocks = darcy_nblocks(&c->problem) <= 10000;
+  if ((n = yt_get(t, o, "json_blocks"))) TRY(yt_bool(t, n, "output.json_blocks", &c->json_blocks));
+  return 0;
+}
+
+/* An optional number of solver in the open interval (0, 1). */
+static int fraction(ytree_t *t, yaml_node_t *s, const char *key, double *v) {
+  char sub[64];
+  join(sub, sizeof sub, "solver", key);
+  yaml_node_t *n = yt_get(t, s, key);
+  if (!n) return 0;
+  TRY(yt_double(t, n, sub, v));
+  if (!(*v > 0 && *v < 1)) return yt_error(t, n, sub, "expected a number in (0, 1) (got %g)", *v);
+  return 0;
+}
+
+static int parse_solver(ytree_t *t, yaml_node_t *s, darcy_config *c) {
+  static const char *const keys[] = {"rtol", "max_iterations", "power_law_linear_below", NULL};
   c->problem.rtol = 1e-10;
   c->problem.max_it = 50;
   c->g_lin_fraction = 1e-6;
   if (!s) return 0;
-  if (ydoc_only_keys(y, s, "solver", keys)) return -1;
-  if (ydoc_get(y, s, "rtol") && (ydoc_number(y, s, "rtol", &c->problem.rtol) ||
-                                 !(c->problem.rtol > 0 && c->problem.rtol < 1)))
-    return ydoc_fail(y, ydoc_get(y, s, "rtol"), "solver: 'rtol': expected a number in (0, 1)");
-  long it;
-  if (ydoc_get(y, s, "max_iterations")) {
-    if (ydoc_int(y, s, "max_iterations", &it) || it < 1)
-      return ydoc_fail(y, ydoc_get(y, s, "max_iterations"),
-                       "solver: 'max_iterations': expected >= 1");
+  TRY(yt_check_keys(t, s, "solver", keys));
+  TRY(fraction(t, s, "rtol", &c->problem.rtol));
+  TRY(fraction(t, s, "power_law_linear_below", &c->g_lin_fraction));
+  yaml_node_t *n = yt_get(t, s, "max_iterations");
+  if (n) {
+    long it;
+    TRY(yt_long(t, n, "solver.max_iterations", &it));
+    if (it < 1 || it > 1000000)
+      return yt_error(t, n, "solver.max_iterations", "expected 1 to 1000000 iterations (got %ld)",
+                      it);
     c->problem.max_it = (int)it;
   }
-  if (ydoc_get(y, s, "power_law_linear_below") &&
-      (ydoc_number(y, s, "power_law_linear_below", &c->g_lin_fraction) ||
-       !(c->g_lin_fraction > 0 && c->g_lin_fraction < 1)))
-    return ydoc_fail(y, ydoc_get(y, s, "power_law_linear_below"),
-                     "solver: 'power_law_linear_below': expected a fraction in (0, 1)");
   return 0;
 }
 
-int darcy_config_read(const char *path, darcy_config *c, char *err, int errlen) {
-  memset(c, 0, sizeof *c);
-  ydoc y;
-  yaml_node_t *root = ydoc_load(&y, path, err, errlen);
-  if (!root) return -1;
-  static const char *keys[] = {"units", "grid",   "fluid",  "boundary", "sources",
-                               "laws",  "solver", "output", NULL};
-  static const char *fk[] = {"viscosity", "density", NULL};
+static int parse_fluid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
+  static const char *const keys[] = {"viscosity", "density", NULL};
+  fluid_props *fl = &c->problem.fluid;
+  yaml_node_t *f = yt_need(t, root, "fluid", "fluid", "a mapping {viscosity: MU, density: RHO}");
+  if (!f) return -1;
+  TRY(yt_check_keys(t, f, "fluid", keys));
+  TRY(need_number(t, f, "fluid", "viscosity", &fl->mu));
+  if (!(fl->mu > 0))
+    return yt_error(t, yt_get(t, f, "viscosity"), "fluid.viscosity",
+                    "expected a viscosity > 0 (got %g)", fl->mu);
+  fl->rho = 0.0;
+  yaml_node_t *d = yt_get(t, f, "density");
+  return d ? yt_double(t, d, "fluid.density", &fl->rho) : 0;
+}
+
+static int parse_document(ytree_t *t, darcy_config *c) {
+  static const char *const keys[] = {"units", "grid",   "fluid",  "boundary", "sources",
+                                     "laws",  "solver", "output", NULL};
   darcy_problem *p = &c->problem;
-  int rc = -1;
-  if (ydoc_only_keys(&y, root, "top level", keys)) goto done;
-  const char *units = ydoc_string(&y, root, "units");
-  if (!units) goto done;
-  if (strcmp(units, "SI") && strcmp(units, "reduced")) {
-    ydoc_fail(&y, ydoc_get(&y, root, "units"), "key 'units': expected SI or reduced, got '%s'",
-              units);
-    goto done;
-  }
-  c->si = !strcmp(units, "SI");
-  yaml_node_t *fl = ydoc_get(&y, root, "fluid");
-  if (!fl) {
-    ydoc_fail(&y, root, "missing section 'fluid' (viscosity, density)");
-    goto done;
-  }
-  if (ydoc_only_keys(&y, fl, "fluid", fk) || ydoc_number(&y, fl, "viscosity", &p->fluid.mu))
-    goto done;
-  if (!(p->fluid.mu > 0)) {
-    ydoc_fail(&y, fl, "fluid: 'viscosity' must be > 0");
-    goto done;
-  }
-  p->fluid.rho = 0.0;
-  if (ydoc_get(&y, fl, "density") && ydoc_number(&y, fl, "density", &p->fluid.rho)) goto done;
-  if (parse_grid(&y, ydoc_get(&y, root, "grid"), c) ||
-      parse_boundary(&y, ydoc_get(&y, root, "boundary"), c) ||
-      parse_sources(&y, ydoc_get(&y, root, "sources"), c) ||
-      parse_laws(&y, ydoc_get(&y, root, "laws"), c) ||
-      parse_solver(&y, ydoc_get(&y, root, "solver"), c) ||
-      parse_output(&y, ydoc_get(&y, root, "output"), c))
-    goto done;
+  yaml_node_t *root = yt_root(t), *n;
+  TRY(yt_check_keys(t, root, "", keys));
+  if (!(n = yt_need(t, root, "units", "units", "SI or reduced"))) return -1;
+  if ((c->si = yt_enum(t, n, "units", unit_words)) < 0) return -1;
+  TRY(parse_fluid(t, root, c));
+  TRY(parse_grid(t, root, c));
+  TRY(parse_boundary(t, root, c));
+  TRY(parse_sources(t, yt_get(t, root, "sources"), c));
+  TRY(parse_laws(t, root, c));
+  TRY(parse_solver(t, yt_get(t, root, "solver"), c));
+  TRY(parse_output(t, root, c));
   for (long b = 0; b < darcy_nblocks(p); b++)
     if (p->laws[b].kind == LAW_FORCHHEIMER && p->laws[b].beta > 0 && !(p->fluid.rho > 0)) {
-      ydoc_fail(&y, fl, "fluid: Forchheimer laws need 'density' > 0");
-      goto done;
+      yaml_node_t *f = yt_get(t, root, "fluid"), *d = yt_get(t, f, "density");
+      return yt_error(t, d ? d : f, "fluid.density",
+                      "expected a density > 0 for the Forchheimer laws (got %g)", p->fluid.rho);
     }
   darcy_problem_linearise(p, c->g_lin_fraction);
-  rc = 0;
-done:
-  if (rc) darcy_problem_free(p);
-  ydoc_free(&y);
+  return 0;
+}
+
+int darcy_config_read(const char *path, darcy_config *c, int quiet) {
+  memset(c, 0, sizeof *c);
+  ytree_t t;
+  if (yt_load(&t, path, quiet)) return -1;
+  const int rc = parse_document(&t, c);
+  if (rc) darcy_problem_free(&c->problem);
+  yt_free(&t);
   return rc;
 }

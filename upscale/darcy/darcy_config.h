@@ -14,7 +14,8 @@ typedef struct {
 } darcy_config;
 
 /* Reads and validates the file; laws that reference fit JSON or HDF5 files are resolved relative to
- * the config file's folder. Returns 0, or -1 with "FILE:LINE: key ...: expected ..." in err. */
-int darcy_config_read(const char *path, darcy_config *c, char *err, int errlen);
+ * the config file's folder. Returns 0, or -1 after printing "FILE:LINE:COL: key 'a.b': expected ...
+ * (got ...)" to stderr (nothing printed when quiet, e.g. on ranks other than 0). */
+int darcy_config_read(const char *path, darcy_config *c, int quiet);
 
 #endif

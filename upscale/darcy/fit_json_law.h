@@ -6,8 +6,9 @@
 #include "law/flow_law.h"
 
 /* model: "chosen" or a law name. Fills law, the fit's unit system (1 SI, 0 reduced) and fluid.
- * Returns 0, or -1 with "FILE:LINE: ..." in err. */
+ * Returns 0, or -1 after printing "FILE:LINE:COL: key 'k': expected ... (got ...)" to stderr
+ * (nothing printed when quiet). */
 int fit_json_law(const char *path, const char *model, flow_law *law, int *si,
-                 fluid_props *fit_fluid, char *err, int errlen);
+                 fluid_props *fit_fluid, int quiet);
 
 #endif

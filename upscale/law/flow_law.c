@@ -5,15 +5,16 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *names[LAW_COUNT] = {"darcy", "threshold", "forchheimer", "power"};
+const char *const flow_law_names[LAW_COUNT + 1] = {"darcy", "threshold", "forchheimer", "power",
+                                                   NULL};
 
 const char *flow_law_name(flow_law_kind kind) {
-  return (kind >= 0 && kind < LAW_COUNT) ? names[kind] : "unknown";
+  return (kind >= 0 && kind < LAW_COUNT) ? flow_law_names[kind] : "unknown";
 }
 
 int flow_law_from_name(const char *name) {
   for (int i = 0; i < LAW_COUNT; i++)
-    if (!strcmp(name, names[i])) return i;
+    if (!strcmp(name, flow_law_names[i])) return i;
   return -1;
 }
 

@@ -27,6 +27,8 @@ typedef struct {
   double rho; /* mass density (Forchheimer inertia) */
 } fluid_props;
 
+/* The law names in kind order, NULL-terminated (for keyword checks). */
+extern const char *const flow_law_names[LAW_COUNT + 1];
 const char *flow_law_name(flow_law_kind kind);
 /* Returns the kind for a name ("darcy", "threshold", "forchheimer", "power"), or -1. */
 int flow_law_from_name(const char *name);

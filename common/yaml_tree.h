@@ -1,9 +1,10 @@
-/* Typed, position-aware reading of a YAML document (libyaml's document API) for the scene parser.
+/* Typed, position-aware reading of a YAML (or JSON) document over libyaml's document API, shared by
+ * the scene parser (meso/io), the `mdpore darcy` config and fit-JSON readers (upscale/darcy).
  * Every getter takes the dotted key path of the node it reads and, on a mistake, prints
  *   FILE:LINE:COL: key 'path.to.key': expected WHAT (got WHAT)
  * to stderr and returns -1, so callers can stop at the first error. */
-#ifndef MESO_IO_YAML_TREE_H
-#define MESO_IO_YAML_TREE_H
+#ifndef MDPORE_COMMON_YAML_TREE_H
+#define MDPORE_COMMON_YAML_TREE_H
 
 #include <yaml.h>
 
@@ -36,6 +37,10 @@ int yt_expect_seq(const ytree_t *t, yaml_node_t *n, const char *path);
 int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path, const char *const *allowed);
 /* Value node of a key in a mapping, or NULL when absent. */
 yaml_node_t *yt_get(ytree_t *t, yaml_node_t *map, const char *key);
+/* Value node of a key that must be present; NULL after "key 'PATH': expected WHAT (the key is
+ * missing)" at the mapping's position. `path` is the key's full path, `what` e.g. "a number". */
+yaml_node_t *yt_need(ytree_t *t, yaml_node_t *map, const char *key, const char *path,
+                     const char *what);
 /* Mapping iteration: number of pairs, i-th key string (scalar keys only) and value node. */
 int yt_map_size(const yaml_node_t *map);
 const char *yt_map_key(ytree_t *t, yaml_node_t *map, int i, yaml_node_t **key_node);

@@ -1,5 +1,5 @@
 /* Typed, position-aware reading of a libyaml document (see yaml_tree.h). */
-#include "io/yaml_tree.h"
+#include "common/yaml_tree.h"
 
 #include <errno.h>
 #include <math.h>
@@ -15,7 +15,8 @@ int yt_load(ytree_t *t, const char *path, int quiet) {
   t->quiet = quiet;
   FILE *fp = fopen(path, "rb");
   if (!fp) {
-    if (!quiet) fprintf(stderr, "%s: cannot open scene file: %s\n", path, strerror(errno));
+    if (!quiet)
+      fprintf(stderr, "%s: cannot open: %s (expected a readable file)\n", path, strerror(errno));
     return -1;
   }
   yaml_parser_t parser;
@@ -34,8 +35,7 @@ int yt_load(ytree_t *t, const char *path, int quiet) {
   fclose(fp);
   if (!ok) return -1;
   if (!yaml_document_get_root_node(&t->doc)) {
-    if (!quiet)
-      fprintf(stderr, "%s:1:1: the scene file is empty (expected a mapping of keys)\n", path);
+    if (!quiet) fprintf(stderr, "%s:1:1: the file is empty (expected a mapping of keys)\n", path);
     yaml_document_delete(&t->doc);
     return -1;
   }
@@ -168,6 +168,13 @@ yaml_node_t *yt_get(ytree_t *t, yaml_node_t *map, const char *key) {
     if (k && !strcmp(k, key)) return yt_map_value(t, map, i);
   }
   return NULL;
+}
+
+yaml_node_t *yt_need(ytree_t *t, yaml_node_t *map, const char *key, const char *path,
+                     const char *what) {
+  yaml_node_t *v = yt_get(t, map, key);
+  if (!v) yt_error(t, map, path, "expected %s (the key is missing)", what);
+  return v;
 }
 
 static const char *scalar(const yaml_node_t *n) {
