@@ -1,12 +1,13 @@
 /* GPU throughput benchmark (issue 5, item 5; not a test): particle-steps per second, ns per
- * particle-step and device bytes per particle of the CUDA path for
- *   bulk K    : periodic mDPD fluid, rho = 6.2, cubic box of side K
- *   porous K  : the paper's homogeneous porous medium (physics.md section 7), K x K quasi-2D cells
- *               Lx = Lz = 16, Ly = 2; a ring of frozen wall particles (radii 6..7, density 8) and
- *               fluid at density 6.2 outside it; even rows of cells shifted by Lx/2; A = -40 for
- * all pairs, B = 25, rd = 0.75, gamma = 4.5, g_z = 0.02 on the fluid, dt = 0.01. usage: gpu_bench
- * bulk|porous K [steps] [warmup] [cpu|cuda] Particles start at random positions (fixed seed); the
- * warm-up steps relax the overlaps. */
+ * particle-step and device bytes per particle of the CUDA path.
+ *   bulk K   : periodic mDPD fluid, rho = 6.2, cubic box of side K
+ *   porous K : the paper's homogeneous porous medium (physics.md section 7), K x K quasi-2D cells
+ *              Lx = Lz = 16, Ly = 2; a ring of frozen wall particles (radii 6..7, density 8),
+ *              fluid at density 6.2 outside it; even rows of cells shifted by Lx/2; A = -40 for
+ *              all pairs, B = 25, rd = 0.75, gamma = 4.5, g_z = 0.02 on the fluid, dt = 0.01.
+ * usage: [mpiexec -n R] gpu_bench bulk|porous K [steps] [warmup] [cpu|cuda]
+ * On R ranks (one GPU each) the box is R times longer along x and split along x: weak scaling.
+ * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps. */
 #include "engine/sim.h"
 #include "engine/sim_internal.h"
 #ifdef MDPORE_HAVE_CUDA
@@ -77,13 +78,13 @@ static long fill_bulk(sim_t *sim, const scene_t *s) {
 
 /* One cell of the porous medium centred on its ring (cx, cz): wall particles in 6 <= r < 7 at
  * density 8, fluid at r >= 7 at density 6.2 within the 16 x 16 square around the centre. */
-static long fill_porous(sim_t *sim, const scene_t *s, int k) {
+static long fill_porous(sim_t *sim, const scene_t *s, int kx, int k) {
   const double c = 16.0, ly = 2.0, pi = 3.14159265358979323846;
   const long n_wall = lround(8.0 * pi * (49.0 - 36.0) * ly);
   const long n_fluid = lround(6.2 * (c * c - pi * 49.0) * ly);
   long id = 0;
   for (int iz = 0; iz < k && id >= 0; iz++)
-    for (int ix = 0; ix < k && id >= 0; ix++) {
+    for (int ix = 0; ix < kx && id >= 0; ix++) {
       const double cx = c * ix + c / 2 + (iz % 2 == 0 ? c / 2 : 0.0), cz = c * iz + c / 2;
       for (long w = 0; w < n_wall && id >= 0;) {
         const double dx = 14.0 * uniform() - 7.0, dz = 14.0 * uniform() - 7.0;
@@ -111,24 +112,32 @@ int main(int argc, char **argv) {
   const int porous = !strcmp(argv[1], "porous"), k = atoi(argv[2]);
   const int steps = argc > 3 ? atoi(argv[3]) : 100, warm = argc > 4 ? atoi(argv[4]) : 50;
   const char *backend = argc > 5 ? argv[5] : "cuda";
+  int nranks = 1, rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   scene_t *s = malloc(sizeof *s);
   if (porous) {
-    scene_base(s, 16.0 * k, 2.0, 16.0 * k, 2);
+    scene_base(s, 16.0 * k * nranks, 2.0, 16.0 * k, 2);
+    s->procs[0] = nranks; /* split along x only */
+    s->procs[1] = s->procs[2] = 1;
     s->effect[EFFECT_BODY_FORCE] = 1;
     s->body_force[0][2] = 0.02;
   } else {
-    scene_base(s, k, k, k, 1);
+    scene_base(s, (double)k * nranks, k, k, 1);
+    s->procs[0] = nranks;
+    s->procs[1] = s->procs[2] = 1;
   }
   char err[512];
-  if (sim_backend_choose(backend, 1, &s->backend, err, sizeof err)) {
+  if (sim_backend_choose(backend, nranks, &s->backend, err, sizeof err)) {
     fprintf(stderr, "gpu_bench: %s\n", err);
     return 1;
   }
   sim_t *sim = sim_create(s, MPI_COMM_WORLD);
-  const long n = sim ? (porous ? fill_porous(sim, s, k) : fill_bulk(sim, s)) : -1;
+  const long n = sim ? (porous ? fill_porous(sim, s, k * nranks, k) : fill_bulk(sim, s)) : -1;
   if (n < 0 || sim_setup(sim)) return 1;
   for (int i = 0; i < warm; i++)
     if (sim_step(sim)) return 1;
+  MPI_Barrier(MPI_COMM_WORLD);
   const double t0 = MPI_Wtime();
   for (int i = 0; i < steps; i++)
     if (sim_step(sim)) return 1;
@@ -144,10 +153,11 @@ int main(int argc, char **argv) {
   }
 #endif
   const double mps = (double)n * steps / t;
-  printf("case=%s K=%d particles=%ld steps=%d device=\"%s\" seconds=%.3f MPS=%.4g "
-         "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f T=%.4f\n",
-         porous ? "porous" : "bulk", k, n, steps, device, t, mps / 1e6, 1e9 / mps, bytes,
-         th.temperature);
+  if (rank == 0)
+    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" seconds=%.3f MPS=%.4g "
+           "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f T=%.4f\n",
+           porous ? "porous" : "bulk", k, nranks, n, steps, device, t, mps / 1e6, 1e9 / mps,
+           bytes * nranks, th.temperature);
   sim_destroy(sim);
   free(s);
   MPI_Finalize();

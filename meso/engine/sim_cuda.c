@@ -3,6 +3,8 @@
  * on the device; the host copy is refreshed only when an output asks (sim_particles). */
 #include "sim_internal.h"
 
+#include "particle_store.h"
+
 #include <string.h>
 
 #ifdef MDPORE_HAVE_CUDA
@@ -21,8 +23,8 @@ int sim_backend_choose(const char *name, int nranks, int *backend, char *err, si
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (gpus > 0 && nranks > 1 && rank == 0)
       fprintf(stderr,
-              "mdpore: %d MPI ranks: running the CPU path (the CUDA path runs on one rank in "
-              "this version)\n",
+              "mdpore: %d MPI ranks: running the CPU path (--backend cuda runs one GPU per "
+              "rank)\n",
               nranks);
     return 0;
   }
@@ -38,13 +40,6 @@ int sim_backend_choose(const char *name, int nranks, int *backend, char *err, si
     snprintf(err, errlen, "--backend cuda: no GPU available: %s", why);
     return -1;
   }
-  if (nranks > 1) {
-    snprintf(err, errlen,
-             "--backend cuda: %d MPI ranks: this version runs the CUDA path on one rank only "
-             "(use one rank, or --backend cpu)",
-             nranks);
-    return -1;
-  }
   *backend = SCENE_BACKEND_CUDA;
   return 0;
 }
@@ -52,20 +47,18 @@ int sim_backend_choose(const char *name, int nranks, int *backend, char *err, si
 #ifdef MDPORE_HAVE_CUDA
 
 int sim_cuda_create(sim_t *sim) {
-  if (sim->dc.nranks > 1) {
-    snprintf(sim->err, sizeof sim->err,
-             "%s: CUDA backend: %d ranks: one rank only in this version (use --backend cpu)",
-             sim->scene.file, sim->dc.nranks);
-    return -1;
-  }
-  sim->gpu = cuda_sim_create(&sim->plan, &sim->scene, sim->err, sizeof sim->err);
+  sim->gpu = cuda_sim_create(&sim->plan, &sim->scene, sim->dc.lo, sim->dc.hi, sim->dc.dims,
+                             sim->err, sizeof sim->err);
   if (!sim->gpu) return -1;
-  printf("mdpore: backend cuda on %s (%s-precision pair math)\n", cuda_sim_device_name(sim->gpu),
-         cuda_sim_double_precision() ? "double" : "single");
+  if (sim->dc.rank == 0)
+    printf("mdpore: backend cuda on %s (%s-precision pair math), %d rank(s)\n",
+           cuda_sim_device_name(sim->gpu), cuda_sim_double_precision() ? "double" : "single",
+           sim->dc.nranks);
   return 0;
 }
 
 void sim_cuda_destroy(sim_t *sim) {
+  sim_cuda_halo_free(sim);
   cuda_sim_destroy(sim->gpu);
   sim->gpu = NULL;
 }
@@ -79,11 +72,12 @@ static int check(sim_t *sim, int rc, const cuda_problem_t *cp) {
     if (cp->kind == CUDA_NONFINITE) pr.field = cp->at_drift ? "velocity or position" : "force";
     if (cp->kind == CUDA_LOST) pr.value = (double)cp->count;
   }
-  return step_check_collective(&pr, sim->dc.cart, sim->step, sim->p.n_local, sim->n_total, sim->err,
-                               sizeof sim->err);
+  return step_check_collective(&pr, sim->dc.cart, sim->step, cuda_sim_count(sim->gpu), sim->n_total,
+                               sim->err, sizeof sim->err);
 }
 
 int sim_cuda_setup(sim_t *sim) {
+  if (sim->dc.nranks > 1) return sim_cuda_halo_setup(sim);
   cuda_problem_t cp;
   memset(&cp, 0, sizeof cp);
   int rc = cuda_sim_upload(sim->gpu, &sim->p);
@@ -94,6 +88,7 @@ int sim_cuda_setup(sim_t *sim) {
 }
 
 int sim_cuda_step(sim_t *sim) {
+  if (sim->dc.nranks > 1) return sim_cuda_halo_step(sim);
   cuda_problem_t cp;
   memset(&cp, 0, sizeof cp);
   sim->step++;
@@ -108,7 +103,9 @@ int sim_cuda_thermo_sums(sim_t *sim, double sums[17]) {
 
 void sim_cuda_sync_host(sim_t *sim) {
   if (!sim->gpu || !sim->host_stale) return;
-  if (cuda_sim_download(sim->gpu, &sim->p) == 0) sim->host_stale = 0;
+  if (pstore_reserve(&sim->p, cuda_sim_count(sim->gpu) + 1) == 0 &&
+      cuda_sim_download(sim->gpu, &sim->p) == 0)
+    sim->host_stale = 0;
 }
 
 #else

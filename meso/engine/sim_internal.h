@@ -30,6 +30,12 @@ struct sim {
   char err[2048];       /* last error message on this rank */
   struct cuda_sim *gpu; /* CUDA backend state (scene.backend == SCENE_BACKEND_CUDA), else NULL */
   int host_stale;       /* the device holds a newer state than p */
+  /* CUDA on several ranks (sim_cuda_halo.c): host copies of the boundary set + its ghosts, of the
+   * leavers/arrivals, and the densities of the boundary set + ghosts. */
+  particles_t halo_b, halo_m;
+  decomp_t halo_dc; /* dc without the self-exchange along axes not cut between ranks */
+  double *halo_rho;
+  int halo_rho_cap, halo_ready;
 };
 
 /* CUDA backend glue (sim_cuda.c; errors when the build has no CUDA). 0 or -1 (message in err). */
@@ -39,6 +45,10 @@ int sim_cuda_setup(sim_t *sim);
 int sim_cuda_step(sim_t *sim);
 int sim_cuda_thermo_sums(sim_t *sim, double sums[17]);
 void sim_cuda_sync_host(sim_t *sim);
+/* Several ranks: setup and step with the halo through the host (sim_cuda_halo.c). */
+int sim_cuda_halo_setup(sim_t *sim);
+int sim_cuda_halo_step(sim_t *sim);
+void sim_cuda_halo_free(sim_t *sim);
 
 /* Ghosts, densities, pair and particle forces at the current positions for step index sim->step. */
 int sim_compute_forces(sim_t *sim);

@@ -40,7 +40,8 @@ typedef struct {
 int cuda_device_count(char *why, size_t len);
 
 /* Device state for the scene's box. NULL with a message in err. */
-cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *scene, char *err, size_t len);
+cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *scene, const double sub_lo[3],
+                            const double sub_hi[3], const int dims[3], char *err, size_t len);
 void cuda_sim_destroy(cuda_sim_t *g);
 
 /* Copy the n_local owned particles of p (id, species, x, v, f) to the device. 0 or -1. */
@@ -57,6 +58,25 @@ int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, int want_vi
                           cuda_problem_t *pr);
 /* One velocity-Verlet step; step is the index after the step (keys the random numbers). */
 int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_problem_t *pr);
+
+/* Several ranks (one GPU each; cuda_halo.cu, cuda_step.cu), in step order: kick-drift; sort the
+ * owned particles by bin with the leavers last (*n_stay = first leaver); take the leavers out into
+ * `out` (host); add the arrivals; sort again; predict; boundary set into hb (host: id, species, x,
+ * thermostat velocity in v); ghosts of hb (after ghosts_build) to the device; densities; boundary
+ * densities out (field[0..n_boundary)), ghost densities in (host ghost order); forces (+ kick). */
+int cuda_halo_kick_drift(cuda_sim_t *g);
+int cuda_halo_sort_owned(cuda_sim_t *g, int *n_stay);
+int cuda_halo_take_leavers(cuda_sim_t *g, int n_stay, particles_t *out);
+int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in);
+int cuda_halo_resort(cuda_sim_t *g);
+int cuda_halo_predict(cuda_sim_t *g, int setup);
+int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb);
+int cuda_halo_set_ghosts(cuda_sim_t *g, const particles_t *hb);
+int cuda_halo_density(cuda_sim_t *g);
+int cuda_halo_rho_out(cuda_sim_t *g, double *field);
+int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho);
+int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces, int kick,
+                     cuda_problem_t *pr);
 
 /* Local sums for sim_thermo in double, in the CPU path's order of quantities: N_mobile, KE, px, py,
  * pz, sum m v_a v_b (6), pair virial (6). 0 or -1. */

@@ -12,15 +12,20 @@ __device__ __forceinline__ int bin_of(double x, double lo, double inv, int nb) {
   return b < nb ? b : nb - 1;
 }
 
+/* Bin of each particle; with sentinel (several ranks, owned particles) a particle outside this
+ * rank's subdomain gets bin ncell, so the stable sort puts the leavers last. */
 __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict__ x,
                             const double *__restrict__ y, const double *__restrict__ z,
-                            uint32_t *key, int *iota) {
+                            uint32_t *key, int *iota, int sentinel) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const int bx = bin_of(x[i], q.lo[0], q.inv_bin[0], q.nb[0]);
   const int by = bin_of(y[i], q.lo[1], q.inv_bin[1], q.nb[1]);
   const int bz = bin_of(z[i], q.lo[2], q.inv_bin[2], q.nb[2]);
   key[i] = (uint32_t)(bx + q.nb[0] * (by + q.nb[1] * bz));
+  if (sentinel && !(x[i] >= q.sub_lo[0] && x[i] < q.sub_hi[0] && y[i] >= q.sub_lo[1] &&
+                    y[i] < q.sub_hi[1] && z[i] >= q.sub_lo[2] && z[i] < q.sub_hi[2]))
+    key[i] = (uint32_t)q.ncell;
   iota[i] = i;
 }
 
@@ -52,25 +57,51 @@ __global__ void k_cell_start(int n, int ncell, const uint32_t *__restrict__ key,
     for (int b = c + 1; b <= ncell; b++) start[b] = n;
 }
 
-int cuda_sort_cells(struct cuda_sim *g) {
-  const int n = g->n;
+static struct dev_fields shifted(struct dev_fields f, int off) {
+  f.id += off;
+  f.species += off;
+  for (int d = 0; d < 3; d++) {
+    f.x[d] += off;
+    f.v[d] += off;
+    f.f[d] += off;
+    if (f.vpred[d]) f.vpred[d] += off;
+  }
+  return f;
+}
+
+/* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start. */
+static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct dev_fields src,
+                      struct dev_fields dst, int *start) {
   const struct dev_params *q = &g->prm;
-  if (n == 0) return cuda_check(cudaMemset(g->cell_start, 0, (q->ncell + 1) * sizeof(int)), "sort");
+  if (n == 0) return cuda_check(cudaMemset(start, 0, (q->ncell + 1) * sizeof(int)), "sort");
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota);
+  src = shifted(src, off);
+  k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, src.x[0], src.x[1], src.x[2], g->key + off,
+                                      g->iota + off, sentinel);
   int end_bit = 1;
-  while (end_bit < 32 && (1u << end_bit) < (unsigned)q->ncell) end_bit++;
+  while (end_bit < 32 && (1u << end_bit) <= (unsigned)q->ncell) end_bit++; /* keys 0..ncell */
   size_t tmp = g->sort_tmp_bytes;
-  if (cuda_check(cub::DeviceRadixSort::SortPairs(g->sort_tmp, tmp, g->key, g->key_sorted, g->iota,
-                                                 g->perm, n, 0, end_bit),
+  if (cuda_check(cub::DeviceRadixSort::SortPairs(g->sort_tmp, tmp, g->key + off,
+                                                 g->key_sorted + off, g->iota + off, g->perm + off,
+                                                 n, 0, end_bit),
                  "cell sort"))
     return -1;
-  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm, g->a, g->b, q->use_vpred);
+  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off), q->use_vpred);
+  k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted + off, start);
+  return cuda_check(cudaGetLastError(), "cell sort kernels");
+}
+
+int cuda_sort_cells(struct cuda_sim *g) {
+  if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start)) return -1;
   struct dev_fields t = g->a;
   g->a = g->b;
   g->b = t;
-  k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted, g->cell_start);
-  return cuda_check(cudaGetLastError(), "cell sort kernels");
+  return 0;
+}
+
+/* Ghosts uploaded into b's slots [n, n + n_ghost) go into a's, in bin order (multi). */
+int cuda_sort_ghosts(struct cuda_sim *g) {
+  return sort_range(g, g->n, g->n_ghost, 0, g->b, g->a, g->gcell_start);
 }
 
 __global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
@@ -98,7 +129,8 @@ __global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
 }
 
 void cuda_pack(struct cuda_sim *g) {
-  if (g->n == 0) return;
-  k_pack<<<(g->n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, g->n, g->a, g->key_sorted,
-                                                               g->pos, g->vel, g->prm.use_vpred);
+  const int n = g->n + g->n_ghost;
+  if (n == 0) return;
+  k_pack<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, n, g->a, g->key_sorted, g->pos,
+                                                            g->vel, g->prm.use_vpred);
 }

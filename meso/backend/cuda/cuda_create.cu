@@ -21,15 +21,28 @@ static void fill_coef(struct dev_coef *d, const pair_coef_t *c) {
   d->cut2 = (meso_real)c->cut2;
 }
 
-static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s, char *err,
+static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s,
+                      const double sub_lo[3], const double sub_hi[3], const int dims[3], char *err,
                       size_t len) {
+  const int multi = dims[0] * dims[1] * dims[2] > 1;
   const double rcut = plan->rcut > 0 ? plan->rcut : 1.0;
   q->ncell = 1;
+  q->multi = multi;
+  q->rcut = rcut;
   for (int d = 0; d < 3; d++) {
-    q->lo[d] = s->box_lo[d];
-    q->hi[d] = s->box_hi[d];
-    q->L[d] = s->box_hi[d] - s->box_lo[d];
-    q->periodic[d] = s->periodic[d];
+    q->box_lo[d] = s->box_lo[d];
+    q->box_hi[d] = s->box_hi[d];
+    q->box_len[d] = s->box_hi[d] - s->box_lo[d];
+    q->box_periodic[d] = s->periodic[d];
+    q->sub_lo[d] = sub_lo[d];
+    q->sub_hi[d] = sub_hi[d];
+    /* An axis cut between ranks: the subdomain plus the ghost layer, no wrap (ghosts carry the
+     * images). Any other axis: the whole box, wrapping when periodic (as on one rank). */
+    q->split[d] = dims[d] > 1;
+    q->lo[d] = q->split[d] ? sub_lo[d] - rcut : s->box_lo[d];
+    q->hi[d] = q->split[d] ? sub_hi[d] + rcut : s->box_hi[d];
+    q->L[d] = q->hi[d] - q->lo[d];
+    q->periodic[d] = q->split[d] ? 0 : s->periodic[d];
     int nb = (int)(q->L[d] / rcut);
     if (nb < 1) nb = 1;
     if (q->periodic[d] && nb < 2 && plan->pair_terms) {
@@ -52,7 +65,8 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   return 0;
 }
 
-extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, char *err,
+extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, const double sub_lo[3],
+                                       const double sub_hi[3], const int dims[3], char *err,
                                        size_t len) {
   char why[256];
   if (cuda_device_count(why, sizeof why) < 1) {
@@ -93,14 +107,27 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, cha
   }
   q->rev_axis = plan->named[EFFECT_BODY_FORCE] ? s->body_force_reverse_axis : -1;
   q->centre = q->rev_axis >= 0 ? 0.5 * (s->box_lo[q->rev_axis] + s->box_hi[q->rev_axis]) : 0.0;
-  if (fill_cells(q, plan, s, err, len)) {
+  if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, err, len)) {
+    free(g);
+    return NULL;
+  }
+  /* One GPU per rank: the ranks of a node take the visible GPUs in turn (local rank from the MPI
+   * launcher, else 0). */
+  const int ngpu = cuda_device_count(why, sizeof why);
+  const char *lr = getenv("OMPI_COMM_WORLD_LOCAL_RANK");
+  if (!lr) lr = getenv("SLURM_LOCALID");
+  const int dev = (lr ? atoi(lr) : 0) % ngpu;
+  if (cuda_check(cudaSetDevice(dev), "cudaSetDevice")) {
+    snprintf(err, len, "CUDA backend: cannot use GPU %d", dev);
     free(g);
     return NULL;
   }
   cudaDeviceProp prop;
-  if (cudaGetDeviceProperties(&prop, 0) == cudaSuccess)
+  if (cudaGetDeviceProperties(&prop, dev) == cudaSuccess)
     snprintf(g->device_name, sizeof g->device_name, "%s", prop.name);
   if (cuda_alloc(g, (void **)&g->cell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->gcell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->counter, sizeof(int)) ||
       cuda_alloc(g, (void **)&g->thermo_part, (size_t)THERMO_SUMS * (THERMO_BLOCKS + 1) * 8) ||
       cuda_alloc(g, (void **)&g->problem, sizeof(struct dev_problem)) ||
       cuda_alloc(g, (void **)&g->nbr_most, sizeof(int))) {

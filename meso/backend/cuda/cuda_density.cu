@@ -12,9 +12,9 @@
 template <int KERNEL, int DENSITY>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_density(const struct dev_params q, int n, int cap, int stride, const int *__restrict__ start,
-              const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ key,
-              meso_real *__restrict__ rho, uint32_t *__restrict__ nbr, int *__restrict__ count,
-              int *most) {
+              const int *__restrict__ gstart, const struct dev_pos *__restrict__ pos,
+              const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
+              uint32_t *__restrict__ nbr, int *__restrict__ count, int *most) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const struct dev_pos pi = pos[i];
@@ -22,7 +22,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   meso_real sum = MESO_R(0.0);
   int m = 0;
   dev_for_each_neighbour(
-      q, start, pos, pi, key[i],
+      q, start, gstart, n, pos, pi, key[i],
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= q.cut2_max || t == i) return; /* most candidates */
@@ -42,9 +42,9 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
 
 template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g) {
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  k_density<KERNEL, DENSITY><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->nbr_stride,
-                                                     g->cell_start, g->pos, g->key_sorted, g->rho,
-                                                     g->nbr, g->nbr_count, g->nbr_most);
+  k_density<KERNEL, DENSITY><<<blocks, CUDA_BLOCK>>>(
+      g->prm, g->n, g->cap, g->nbr_stride, g->cell_start, g->prm.multi ? g->gcell_start : NULL,
+      g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most);
 }
 
 /* Densities and lists; a list longer than the room it had grows the room and runs the pass again

@@ -1,11 +1,12 @@
 /* Device force pass: the fused pair kernel of the CUDA path (physics.md section 1, paper eq. 1),
- *   F_ij = [A w_c + B (rho_i + rho_j) w_d] e - gamma w_R^2 (e . v~_ij) e + sigma w_R xi_ij / sqrt(dt) e
- * with the pair functions of meso/physics/pair_forces.h and xi_ij of pair_random.h (the same numbers
- * as the CPU path draws). One thread per particle over its neighbour list of this step (written by
- * the density pass, cuda_density.cu; full traversal, each pair from both sides with exactly negated
- * separation and velocity difference). Bin-relative positions and the pair math in meso_real (float
- * unless MDPORE_DOUBLE), the sum per particle in meso_real, the pair virial per block in double.
- * The term set is a template parameter, so unused terms cost nothing (as in backend/cpu). */
+ *   F_ij = [A w_c + B (rho_i + rho_j) w_d] e - gamma w_R^2 (e . v~_ij) e + sigma w_R xi_ij /
+ * sqrt(dt) e with the pair functions of meso/physics/pair_forces.h and xi_ij of pair_random.h (the
+ * same numbers as the CPU path draws). One thread per particle over its neighbour list of this step
+ * (written by the density pass, cuda_density.cu; full traversal, each pair from both sides with
+ * exactly negated separation and velocity difference). Bin-relative positions and the pair math in
+ * meso_real (float unless MDPORE_DOUBLE), the sum per particle in meso_real, the pair virial per
+ * block in double. The term set is a template parameter, so unused terms cost nothing (as in
+ * backend/cpu). */
 #include "cuda_neighbours.cuh"
 #include "physics/pair_forces.h"
 #include "physics/pair_random.h"

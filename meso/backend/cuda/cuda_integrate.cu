@@ -30,24 +30,24 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
     }
   }
   for (int d = 0; d < 3; d++) {
-    if (q.periodic[d]) {
+    if (q.box_periodic[d]) {
       /* decomp_wrap */
-      if (isfinite(x[d]) && (x[d] < q.lo[d] || x[d] >= q.hi[d])) {
-        x[d] = q.lo[d] + fmod(x[d] - q.lo[d], q.L[d]);
-        if (x[d] < q.lo[d]) x[d] += q.L[d];
-        if (x[d] >= q.hi[d]) x[d] = nextafter(q.hi[d], q.lo[d]);
+      if (isfinite(x[d]) && (x[d] < q.box_lo[d] || x[d] >= q.box_hi[d])) {
+        x[d] = q.box_lo[d] + fmod(x[d] - q.box_lo[d], q.box_len[d]);
+        if (x[d] < q.box_lo[d]) x[d] += q.box_len[d];
+        if (x[d] >= q.box_hi[d]) x[d] = nextafter(q.box_hi[d], q.box_lo[d]);
       }
     } else if (q.walls) {
       /* specular reflection (box_walls) */
-      if (x[d] < q.lo[d]) {
-        x[d] = 2.0 * q.lo[d] - x[d];
+      if (x[d] < q.box_lo[d]) {
+        x[d] = 2.0 * q.box_lo[d] - x[d];
         v[d] = -v[d];
-      } else if (x[d] >= q.hi[d]) {
-        x[d] = 2.0 * q.hi[d] - x[d];
+      } else if (x[d] >= q.box_hi[d]) {
+        x[d] = 2.0 * q.box_hi[d] - x[d];
         v[d] = -v[d];
-        if (x[d] >= q.hi[d]) x[d] = nextafter(q.hi[d], q.lo[d]);
+        if (x[d] >= q.box_hi[d]) x[d] = nextafter(q.box_hi[d], q.box_lo[d]);
       }
-      if (!(x[d] >= q.lo[d] && x[d] < q.hi[d]))
+      if (!(x[d] >= q.box_lo[d] && x[d] < q.box_hi[d]))
         dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
     }
   }

@@ -34,12 +34,14 @@ __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const
   *dz = dev_nearest(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
 }
 
-/* Call f(t, code, pj, dx, dy, dz) for every slot t of the bins around particle i (slot i, packed
+/* (gstart: the ghosts' bin starts, relative to slot goff, with several ranks; else NULL.)
+ * Call f(t, code, pj, dx, dy, dz) for every slot t of the bins around particle i (slot i, packed
  * position pi, bin key ci), i itself included (callers skip it); d = r_i - r_j of the nearest
  * image. */
 template <class F>
 __device__ __forceinline__ void
 dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start,
+                       const int *__restrict__ gstart, int goff,
                        const struct dev_pos *__restrict__ pos, const struct dev_pos &pi,
                        uint32_t ci, F &&f) {
   const int bx = (int)ci % q.nb[0], by = ((int)ci / q.nb[0]) % q.nb[1],
@@ -58,11 +60,15 @@ dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start
         const meso_real sx = pi.x - (meso_real)ox * q.bin_w[0];
         const int c = cx + q.nb[0] * (cy + q.nb[1] * cz);
         const int code = (ox + 1) + 3 * (oy + 1) + 9 * (oz + 1);
-        const int t1 = start[c + 1];
-        for (int t = start[c]; t < t1; t++) {
-          const struct dev_pos pj = pos[t];
-          f(t, code, pj, dev_nearest(q, 0, sx - pj.x), dev_nearest(q, 1, sy - pj.y),
-            dev_nearest(q, 2, sz - pj.z));
+        for (int range = 0; range < (gstart ? 2 : 1); range++) {
+          /* owned slots of the bin, then (several ranks) its ghosts */
+          const int t0 = range ? goff + gstart[c] : start[c];
+          const int t1 = range ? goff + gstart[c + 1] : start[c + 1];
+          for (int t = t0; t < t1; t++) {
+            const struct dev_pos pj = pos[t];
+            f(t, code, pj, dev_nearest(q, 0, sx - pj.x), dev_nearest(q, 1, sy - pj.y),
+              dev_nearest(q, 2, sz - pj.z));
+          }
         }
       }
     }

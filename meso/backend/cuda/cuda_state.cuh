@@ -7,7 +7,9 @@
 #include "cuda_backend.h"
 #include "physics/hd.h"
 
+#include <cub/device/device_radix_sort.cuh>
 #include <cuda_runtime.h>
+#include <stdio.h>
 #include <stdint.h>
 
 #define CUDA_BLOCK 128
@@ -31,8 +33,17 @@ struct dev_params {
   double g[SCENE_MAX_SPECIES][3]; /* body force per species (0 when body_force is not named) */
   int rev_axis;                   /* reverse-Poiseuille axis or -1 */
   double centre;                  /* box centre along rev_axis */
+  /* The box (periodic wrap and walls in the integration). */
+  double box_lo[3], box_hi[3], box_len[3];
+  int box_periodic[3];
+  /* The cell grid: origin lo, extent L; periodic[d]: bins wrap (one rank). With several ranks
+   * (multi) the grid covers the subdomain plus the ghost layer and never wraps (ghosts carry the
+   * images); particles of this rank outside [sub_lo, sub_hi) get the sentinel bin ncell. */
   double lo[3], hi[3], L[3];
   int periodic[3];
+  int multi;    /* several ranks */
+  int split[3]; /* axis cut between ranks: ghosts along it; other axes wrap on the device */
+  double sub_lo[3], sub_hi[3], rcut;
   /* Cells: nb[d] bins of width >= the cutoff; periodic axes wrap. An axis with fewer than 3 bins
    * visits each bin once and takes the nearest image (minimum image; the box is >= 2 cutoffs). */
   int nb[3], ncell;
@@ -94,9 +105,14 @@ struct cuda_sim {
   int virial_cap;
   uint32_t *key, *key_sorted; /* cell of each particle */
   int *iota, *perm;
-  int *cell_start;     /* [ncell + 1] */
-  struct dev_pos *pos; /* [cap] packed positions (cell order) */
-  struct dev_vel *vel; /* [cap] packed thermostat velocities (thermostat only) */
+  int *cell_start;      /* [ncell + 1] */
+  int *gcell_start;     /* [ncell + 1] ghosts (multi), slots relative to n */
+  int n_ghost;          /* ghosts after the n owned particles (multi) */
+  int n_boundary;       /* owned particles sent out as ghosts: slots perm[0..n_boundary) (multi) */
+  int *counter;         /* [1] device counter (boundary selection) */
+  meso_real *rho_stage; /* [cap] densities on their way to or from the host (multi) */
+  struct dev_pos *pos;  /* [cap] packed positions (cell order) */
+  struct dev_vel *vel;  /* [cap] packed thermostat velocities (thermostat only) */
   /* Per-step neighbour lists written by the density pass (cuda_density.cu): entry k of particle i
    * at nbr[k * cap + i] (coalesced), slot | bin-offset code << NBR_SLOT_BITS, partners within the
    * largest cutoff in traversal order. */
@@ -123,6 +139,7 @@ int cuda_nbr_reserve(struct cuda_sim *g, int stride);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 int cuda_sort_cells(struct cuda_sim *g);
+int cuda_sort_ghosts(struct cuda_sim *g);
 /* Pack positions (bin-relative) and thermostat velocities for the pair passes (after the
  * prediction). */
 void cuda_pack(struct cuda_sim *g);

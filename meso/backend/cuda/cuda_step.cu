@@ -30,3 +30,27 @@ extern "C" int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_pro
   cuda_finish_forces(g, 1, 1);
   return finish(g, pr);
 }
+
+/* Pieces of the step for several ranks (sim_cuda_halo.c drives them around the host exchanges). */
+extern "C" int cuda_halo_kick_drift(cuda_sim_t *g) {
+  cuda_kick_drift(g);
+  return cuda_check(cudaGetLastError(), "kick-drift");
+}
+
+extern "C" int cuda_halo_predict(cuda_sim_t *g, int setup) {
+  cuda_predict(g, setup);
+  return cuda_check(cudaGetLastError(), "prediction");
+}
+
+extern "C" int cuda_halo_density(cuda_sim_t *g) {
+  cuda_pack(g);
+  return cuda_density_pass(g);
+}
+
+extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces,
+                                int kick, cuda_problem_t *pr) {
+  if (cuda_set_virial(g, want_virial)) return -1;
+  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+  cuda_finish_forces(g, !keep_forces, kick);
+  return finish(g, pr);
+}

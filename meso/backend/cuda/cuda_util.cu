@@ -65,6 +65,7 @@ int cuda_reserve(struct cuda_sim *g, int n) {
   cuda_free_ptr(g, (void **)&g->vel);
   cuda_free_ptr(g, (void **)&g->nbr);
   cuda_free_ptr(g, (void **)&g->nbr_count);
+  cuda_free_ptr(g, (void **)&g->rho_stage);
   g->nbr_stride = 0;
   g->virial_cap = 0;
   g->bytes = 0;
@@ -73,7 +74,8 @@ int cuda_reserve(struct cuda_sim *g, int n) {
             (1 << NBR_SLOT_BITS) - 4096);
     return -1;
   }
-  const int cap = n + n / 16 + 256;
+  /* Several ranks: room for the ghost layer too (up to twice the owned particles). */
+  const int cap = g->prm.multi ? 3 * n + 4096 : n + n / 16 + 256;
   const size_t c = (size_t)cap;
   const int blocks = (cap + CUDA_BLOCK - 1) / CUDA_BLOCK;
   size_t tmp = 0;
@@ -87,6 +89,8 @@ int cuda_reserve(struct cuda_sim *g, int n) {
       cuda_alloc(g, (void **)&g->perm, c * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->pos, c * sizeof(struct dev_pos)) ||
       cuda_alloc(g, (void **)&g->nbr_count, c * sizeof(int)) ||
+      (g->prm.multi && g->prm.density &&
+       cuda_alloc(g, (void **)&g->rho_stage, c * sizeof(meso_real))) ||
       ((g->prm.terms & PAIR_TERM_THERMOSTAT) &&
        cuda_alloc(g, (void **)&g->vel, c * sizeof(struct dev_vel))) ||
       cuda_alloc(g, &g->sort_tmp, tmp) ||
@@ -131,12 +135,16 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
   if (!g) return;
   free_fields(g, &g->a);
   free_fields(g, &g->b);
-  void **ptrs[] = {(void **)&g->rho,         (void **)&g->virial,  (void **)&g->key,
-                   (void **)&g->key_sorted,  (void **)&g->iota,    (void **)&g->perm,
-                   (void **)&g->cell_start,  &g->sort_tmp,         (void **)&g->block_virial,
-                   (void **)&g->thermo_part, (void **)&g->problem, (void **)&g->pos,
-                   (void **)&g->vel,         (void **)&g->nbr,     (void **)&g->nbr_count,
-                   (void **)&g->nbr_most};
+  void **ptrs[] = {(void **)&g->rho,          (void **)&g->virial,
+                   (void **)&g->key,          (void **)&g->key_sorted,
+                   (void **)&g->iota,         (void **)&g->perm,
+                   (void **)&g->cell_start,   &g->sort_tmp,
+                   (void **)&g->block_virial, (void **)&g->thermo_part,
+                   (void **)&g->problem,      (void **)&g->pos,
+                   (void **)&g->vel,          (void **)&g->nbr,
+                   (void **)&g->nbr_count,    (void **)&g->nbr_most,
+                   (void **)&g->gcell_start,  (void **)&g->counter,
+                   (void **)&g->rho_stage};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   free(g);
 }
