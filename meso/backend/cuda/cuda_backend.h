@@ -1,7 +1,8 @@
-/* The CUDA backend's C interface (used by meso/engine/sim_cuda.c). One GPU holds the particles of
- * one rank between steps; the host sees them only through cuda_sim_download (outputs, checkpoints).
+/* The CUDA backend's C interface (used by meso/engine/sim_cuda.c and sim_cuda_halo.c). One GPU
+ * holds the particles of one rank between steps; the host sees them only through cuda_sim_download
+ * (outputs, checkpoints) and, with several ranks, the boundary particles of the halo exchange.
  * Pair math comes from meso/physics (*.h), compiled for the device with MESO_REAL_FLOAT unless the
- * build sets MDPORE_DOUBLE. Cells wrap periodically on the device (one rank: no ghost copies). */
+ * build sets MDPORE_DOUBLE. On one rank the cells wrap periodically on the device (no ghosts). */
 #ifndef MESO_BACKEND_CUDA_BACKEND_H
 #define MESO_BACKEND_CUDA_BACKEND_H
 
