@@ -165,12 +165,13 @@ int profile_write(const profile_t *p, const char *path) {
   return atomic_commit(fp, tmp, path);
 }
 
-int profile_plateau_density(const profile_t *p, double *mean, double *err) {
+int profile_plateau_density(const profile_t *p, double *mean, double *err, int *interfaces) {
   *mean = *err = NAN;
+  *interfaces = 0;
   if (p->samples < 1) return 0;
   /* Mobile density per bin (all blocks), its maximum, and the plateau bins. */
   const int n = p->nbins * p->nf;
-  double *dens = calloc((size_t)p->nbins, sizeof *dens), mx = 0;
+  double *dens = calloc((size_t)p->nbins, sizeof *dens), mx = 0, mn = INFINITY;
   int *core = malloc((size_t)p->nbins * sizeof *core), nc = 0;
   for (int b = 0; b < p->nbins; b++) {
     double c = 0;
@@ -178,7 +179,11 @@ int profile_plateau_density(const profile_t *p, double *mean, double *err) {
       c += p->blocks[(size_t)k * n + (size_t)b * p->nf + F_MOBILE(p)];
     dens[b] = c / (p->samples * p->vbin);
     if (dens[b] > mx) mx = dens[b];
+    if (dens[b] < mn) mn = dens[b];
   }
+  /* A liquid-vapour (or vacuum) interface along the axis: some bins hold less than half the
+   * liquid density. Without one the profile is uniform and a "surface tension" means nothing. */
+  *interfaces = mn < 0.5 * mx;
   for (int b = 0; b < p->nbins; b++)
     if (dens[b] > 0.9 * mx) core[nc++] = b;
   /* Bins next to the interfaces sit on its shoulder: drop 20% at each end of the plateau. */

@@ -34,6 +34,6 @@ void profile_sample(profile_t *p, sim_t *sim);
 int profile_write(const profile_t *p, const char *path);
 /* Rank 0: density of the mobile species in the central plateau (bins above 0.9 of the maximum, 20%
  * trimmed at each end), with its block error. Returns the number of plateau bins used (0: none). */
-int profile_plateau_density(const profile_t *p, double *mean, double *err);
+int profile_plateau_density(const profile_t *p, double *mean, double *err, int *interfaces);
 
 #endif

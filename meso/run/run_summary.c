@@ -28,8 +28,9 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
   for (int k = 0; k < STAT_COUNT; k++) b[k] = block_average(st->s[k].x, st->s[k].n);
   const long samples = st->s[STAT_T].n;
   double rho = NAN, rho_err = NAN;
-  int plateau = 0;
-  if (prof && prof->samples > 0) plateau = profile_plateau_density(prof, &rho, &rho_err);
+  int plateau = 0, interfaces = 0;
+  if (prof && prof->samples > 0)
+    plateau = profile_plateau_density(prof, &rho, &rho_err, &interfaces);
   const double pss =
       st->loop_seconds > 0 ? (double)st->n_total * st->steps_done / st->loop_seconds : 0;
 
@@ -47,7 +48,11 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
     fprintf(out, "  Pxy = %.4f +- %.4f   Pxz = %.4f +- %.4f   Pyz = %.4f +- %.4f\n",
             b[STAT_PXY].mean, b[STAT_PXY].err, b[STAT_PXZ].mean, b[STAT_PXZ].err, b[STAT_PYZ].mean,
             b[STAT_PYZ].err);
-    if (st->gamma_axis >= 0)
+    if (st->gamma_axis >= 0 && !interfaces)
+      fprintf(out,
+              "  density = %.4g +- %.2g (uniform along %c: no interface, no surface tension)\n",
+              rho, rho_err, 'x' + st->gamma_axis);
+    else if (st->gamma_axis >= 0)
       fprintf(
           out,
           "  liquid density = %.4g +- %.2g   surface tension = %.4g +- %.2g (kT/rc^2, normal %c, "
@@ -92,12 +97,15 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
     json_num(fp, rho);
     fprintf(fp, ", \"err\": ");
     json_num(fp, rho_err);
-    fprintf(fp, ", \"plateau_bins\": %d},\n", plateau);
-    fprintf(fp, "  \"surface_tension\": {\"mean\": ");
-    json_num(fp, b[STAT_GAMMA].mean);
-    fprintf(fp, ", \"err\": ");
-    json_num(fp, b[STAT_GAMMA].err);
-    fprintf(fp, ", \"formula\": \"(L_n / 2) <P_nn - (P_t1 + P_t2) / 2>\"},\n");
+    fprintf(fp, ", \"plateau_bins\": %d, \"interfaces\": %s},\n", plateau,
+            interfaces ? "true" : "false");
+    if (interfaces) {
+      fprintf(fp, "  \"surface_tension\": {\"mean\": ");
+      json_num(fp, b[STAT_GAMMA].mean);
+      fprintf(fp, ", \"err\": ");
+      json_num(fp, b[STAT_GAMMA].err);
+      fprintf(fp, ", \"formula\": \"(L_n / 2) <P_nn - (P_t1 + P_t2) / 2>\"},\n");
+    }
   }
   fprintf(fp,
           "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "
