@@ -1,5 +1,5 @@
-/* The mdpore subcommands. Each takes argv with argv[0] = the subcommand's name and returns the exit code.
- * MPI is initialised by main() before any of them runs. */
+/* The mdpore subcommands. Each takes argv with argv[0] = the subcommand's name and returns the exit
+ * code. MPI is initialised by main() before any of them runs. */
 #ifndef MDPORE_APP_COMMANDS_H
 #define MDPORE_APP_COMMANDS_H
 

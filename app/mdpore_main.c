@@ -23,7 +23,8 @@ static const int n_commands = (int)(sizeof commands / sizeof commands[0]);
 
 static void usage(FILE *to) {
   fprintf(to, "usage: mdpore COMMAND [options]\n\ncommands:\n");
-  for (int i = 0; i < n_commands; i++) fprintf(to, "  %-8s %s\n", commands[i].name, commands[i].summary);
+  for (int i = 0; i < n_commands; i++)
+    fprintf(to, "  %-8s %s\n", commands[i].name, commands[i].summary);
   fprintf(to, "\n'mdpore COMMAND --help' describes one command.\n");
 }
 

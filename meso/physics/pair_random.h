@@ -1,7 +1,8 @@
 /* Counter-based, pairwise-symmetric random numbers for the DPD random force (physics.md section 1).
- * xi_ij = xi_ji is a pure function of (seed, step, min id, max id): every rank and every backend draws the
- * same number for the same pair and step, so runs do not depend on the decomposition. Philox4x32-10 from
- * Random123 (Salmon et al., SC'11) is the generator; it compiles for host and CUDA device code. */
+ * xi_ij = xi_ji is a pure function of (seed, step, min id, max id): every rank and every backend
+ * draws the same number for the same pair and step, so runs do not depend on the decomposition.
+ * Philox4x32-10 from Random123 (Salmon et al., SC'11) is the generator; it compiles for host and
+ * CUDA device code. */
 #ifndef MESO_PHYSICS_PAIR_RANDOM_H
 #define MESO_PHYSICS_PAIR_RANDOM_H
 
@@ -18,7 +19,8 @@ MESO_HD meso_real pair_random_xi(uint64_t seed, uint64_t step, int64_t id_i, int
   philox4x32_key_t key = {{(uint32_t)(seed ^ (seed >> 32)), (uint32_t)step}};
   philox4x32_ctr_t out = philox4x32(ctr, key);
   /* 32 random bits -> U(-1, 1) at the centres of 2^32 bins (never exactly +-1). */
-  const meso_real u = ((meso_real)out.v[0] + MESO_R(0.5)) * (meso_real)(2.0 / 4294967296.0) - MESO_R(1.0);
+  const meso_real u =
+      ((meso_real)out.v[0] + MESO_R(0.5)) * (meso_real)(2.0 / 4294967296.0) - MESO_R(1.0);
   return (meso_real)1.7320508075688772 * u;
 }
 
