@@ -47,14 +47,16 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--case", action="append", choices=list(CASES))
+    ap.add_argument("--gscale", type=float, default=1.0, help="scale the body force (shear-rate check)")
     args = ap.parse_args()
     production, tol, Ly, gscale = (3000, 0.08, 10.0, 4.0) if args.quick else (15000, 0.02, 20.0, 1.0)
     Lx, Lz, dt = 10.0, 10.0, 0.01
-    out = mdval.out_dir("viscosity" + ("_quick" if args.quick else ""))
+    out = mdval.out_dir("viscosity" + ("_quick" if args.quick else "") +
+                        (f"_g{args.gscale:g}" if args.gscale != 1.0 else ""))
     rows, ok, curves = [], True, {}
     for name in (args.case or list(CASES)):
         c = dict(CASES[name])
-        c["g"] *= gscale
+        c["g"] *= gscale * args.gscale
         tau = (Ly / (2 * np.pi)) ** 2 / (c["eta"] / c["rho"])
         equil = int(np.ceil(6 * tau / dt / 100.0)) * 100
         steps = equil + production
