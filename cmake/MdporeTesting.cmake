@@ -27,3 +27,15 @@ function(mdpore_add_test)
     set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}")
   endif()
 endfunction()
+
+# add_subdirectory() for each module folder (engine image foam upscale) that has a CMakeLists.txt;
+# upscale only when PETSc is enabled. Used by tests/ and validation/.
+macro(mdpore_add_module_dirs)
+  foreach(sub engine image foam upscale)
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${sub}/CMakeLists.txt)
+      if(NOT (sub STREQUAL "upscale" AND NOT MDPORE_PETSC_ENABLED))
+        add_subdirectory(${sub})
+      endif()
+    endif()
+  endforeach()
+endmacro()

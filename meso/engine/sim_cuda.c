@@ -63,9 +63,11 @@ void sim_cuda_destroy(sim_t *sim) {
   sim->gpu = NULL;
 }
 
-static int check(sim_t *sim, int rc, const cuda_problem_t *cp) {
+int sim_cuda_check(sim_t *sim, int rc, const cuda_problem_t *cp, const migrate_report_t *mr) {
   step_problem_t pr = {0};
   if (rc) step_problem_note(&pr, STEP_NO_MEMORY, -1, NULL, 0);
+  if (mr && mr->n_lost)
+    step_problem_note(&pr, STEP_LOST, mr->lost_id, mr->lost_x, (double)mr->n_lost);
   if (cp->kind) {
     step_problem_note(&pr, cp->kind, cp->id, cp->x, cp->value);
     if (cp->kind == CUDA_TOO_FAST) pr.limit = sim->plan.max_disp;
@@ -84,7 +86,7 @@ int sim_cuda_setup(sim_t *sim) {
   if (!rc)
     rc = cuda_sim_setup_forces(sim->gpu, sim->step, sim->forces_loaded, sim->want_virial, &cp);
   sim->host_stale = 1;
-  return check(sim, rc, &cp);
+  return sim_cuda_check(sim, rc, &cp, NULL);
 }
 
 int sim_cuda_step(sim_t *sim) {
@@ -94,7 +96,7 @@ int sim_cuda_step(sim_t *sim) {
   sim->step++;
   const int rc = cuda_sim_step(sim->gpu, sim->step, sim->want_virial, &cp);
   sim->host_stale = 1;
-  return check(sim, rc, &cp);
+  return sim_cuda_check(sim, rc, &cp, NULL);
 }
 
 int sim_cuda_thermo_sums(sim_t *sim, double sums[17]) {

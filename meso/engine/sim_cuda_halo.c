@@ -62,21 +62,6 @@ static int ghosts_and_density(sim_t *sim) {
   return rc || cuda_halo_rho_in(g, sim->halo_rho + hb->n_local) ? -1 : 0;
 }
 
-static int check(sim_t *sim, int rc, const cuda_problem_t *cp, const migrate_report_t *mr) {
-  step_problem_t pr = {0};
-  if (rc) step_problem_note(&pr, STEP_NO_MEMORY, -1, NULL, 0);
-  if (mr && mr->n_lost)
-    step_problem_note(&pr, STEP_LOST, mr->lost_id, mr->lost_x, (double)mr->n_lost);
-  if (cp->kind) {
-    step_problem_note(&pr, cp->kind, cp->id, cp->x, cp->value);
-    if (cp->kind == CUDA_TOO_FAST) pr.limit = sim->plan.max_disp;
-    if (cp->kind == CUDA_NONFINITE) pr.field = cp->at_drift ? "velocity or position" : "force";
-    if (cp->kind == CUDA_LOST) pr.value = (double)cp->count;
-  }
-  return step_check_collective(&pr, sim->dc.cart, sim->step, cuda_sim_count(sim->gpu), sim->n_total,
-                               sim->err, sizeof sim->err);
-}
-
 int sim_cuda_halo_setup(sim_t *sim) {
   cuda_problem_t cp;
   memset(&cp, 0, sizeof cp);
@@ -86,7 +71,7 @@ int sim_cuda_halo_setup(sim_t *sim) {
   rc |= ghosts_and_density(sim);
   if (!rc) rc = cuda_halo_forces(g, sim->step, sim->want_virial, sim->forces_loaded, 0, &cp);
   sim->host_stale = 1;
-  return check(sim, rc, &cp, NULL);
+  return sim_cuda_check(sim, rc, &cp, NULL);
 }
 
 int sim_cuda_halo_step(sim_t *sim) {
@@ -107,7 +92,7 @@ int sim_cuda_halo_step(sim_t *sim) {
   rc |= ghosts_and_density(sim);
   if (!rc) rc = cuda_halo_forces(g, sim->step, sim->want_virial, 0, 1, &cp);
   sim->host_stale = 1;
-  return check(sim, rc, &cp, &mr);
+  return sim_cuda_check(sim, rc, &cp, &mr);
 }
 
 #else

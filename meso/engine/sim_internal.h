@@ -45,6 +45,13 @@ int sim_cuda_setup(sim_t *sim);
 int sim_cuda_step(sim_t *sim);
 int sim_cuda_thermo_sums(sim_t *sim, double sums[17]);
 void sim_cuda_sync_host(sim_t *sim);
+#ifdef MDPORE_HAVE_CUDA
+#include "backend/cuda/cuda_backend.h"
+#include "migrate.h"
+/* Collective end-of-phase check of the CUDA path: allocation failure (rc), the device's problem
+ * report and, on several ranks, particles lost in the host-side migration (mr may be NULL). */
+int sim_cuda_check(sim_t *sim, int rc, const cuda_problem_t *cp, const migrate_report_t *mr);
+#endif
 /* Several ranks: setup and step with the halo through the host (sim_cuda_halo.c). */
 int sim_cuda_halo_setup(sim_t *sim);
 int sim_cuda_halo_step(sim_t *sim);
