@@ -5,8 +5,11 @@
  *              Lx = Lz = 16, Ly = 2; a ring of frozen wall particles (radii 6..7, density 8),
  *              fluid at density 6.2 outside it; even rows of cells shifted by Lx/2; A = -40 for
  *              all pairs, B = 25, rd = 0.75, gamma = 4.5, g_z = 0.02 on the fluid, dt = 0.01.
- * usage: [mpiexec -n R] gpu_bench bulk|porous K [steps] [warmup] [cpu|cuda]
+ * usage: [mpiexec -n R] gpu_bench bulk|porous K [steps] [warmup] [cpu|cuda] [SKIN[,SKIN...]]
  * On R ranks (one GPU each) the box is R times longer along x and split along x: weak scaling.
+ * SKIN: Verlet skins of the neighbour lists to time in turn (default: the backend's); each gets a
+ * fresh system. After the timed steps, 100 more steps with a thermo sample every 10 give <T> and
+ * <p>: a skin that missed a pair would show there (the skin changes no physics).
  * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps. */
 #include "engine/sim.h"
 #include "engine/sim_internal.h"
@@ -103,6 +106,52 @@ static long fill_porous(sim_t *sim, const scene_t *s, int kx, int k) {
   return id;
 }
 
+/* Build, warm up and time one system; one line of results on rank 0. 0 or 1. */
+static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int steps, int warm) {
+  sim_t *sim = sim_create(s, MPI_COMM_WORLD);
+  const long n = sim ? (porous ? fill_porous(sim, s, k * nranks, k) : fill_bulk(sim, s)) : -1;
+  if (n < 0 || sim_setup(sim)) return 1;
+  for (int i = 0; i < warm; i++)
+    if (sim_step(sim)) return 1;
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double t0 = MPI_Wtime();
+  for (int i = 0; i < steps; i++)
+    if (sim_step(sim)) return 1;
+  const double t = MPI_Wtime() - t0; /* each step ends with a device->host copy: synchronised */
+  long builds = 0, nsteps = 0;
+  double skin = 0;
+  const char *device = "cpu";
+  double bytes = 0;
+#ifdef MDPORE_HAVE_CUDA
+  if (sim->gpu) {
+    device = cuda_sim_device_name(sim->gpu);
+    bytes = (double)cuda_sim_bytes(sim->gpu) / (double)n;
+    cuda_sim_list_stats(sim->gpu, &builds, &nsteps, &skin);
+  }
+#endif
+  /* Statistics after the timing: <T>, <p> over 10 samples of the next 100 steps. */
+  double T = 0, p = 0;
+  thermo_t th;
+  for (int i = 1; i <= 100; i++) {
+    sim_announce_thermo(sim, i % 10 == 0);
+    if (sim_step(sim)) return 1;
+    if (i % 10) continue;
+    sim_thermo(sim, &th);
+    T += th.temperature / 10;
+    p += (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 30;
+  }
+  const double mps = (double)n * steps / t;
+  if (rank == 0)
+    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" skin=%.2f "
+           "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g ns_per_particle_step=%.4g "
+           "gpu_bytes_per_particle=%.1f T=%.4f p=%.4f\n",
+           porous ? "porous" : "bulk", k, nranks, n, steps, device, skin,
+           nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6, 1e9 / mps,
+           bytes * nranks, T, p);
+  sim_destroy(sim);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   if (argc < 3) {
@@ -132,33 +181,12 @@ int main(int argc, char **argv) {
     fprintf(stderr, "gpu_bench: %s\n", err);
     return 1;
   }
-  sim_t *sim = sim_create(s, MPI_COMM_WORLD);
-  const long n = sim ? (porous ? fill_porous(sim, s, k * nranks, k) : fill_bulk(sim, s)) : -1;
-  if (n < 0 || sim_setup(sim)) return 1;
-  for (int i = 0; i < warm; i++)
-    if (sim_step(sim)) return 1;
-  MPI_Barrier(MPI_COMM_WORLD);
-  const double t0 = MPI_Wtime();
-  for (int i = 0; i < steps; i++)
-    if (sim_step(sim)) return 1;
-  const double t = MPI_Wtime() - t0; /* each step ends with a device->host copy: synchronised */
-  thermo_t th;
-  sim_thermo(sim, &th);
-  const char *device = "cpu";
-  double bytes = 0;
-#ifdef MDPORE_HAVE_CUDA
-  if (sim->gpu) {
-    device = cuda_sim_device_name(sim->gpu);
-    bytes = (double)cuda_sim_bytes(sim->gpu) / (double)n;
+  char skins[256];
+  snprintf(skins, sizeof skins, "%s", argc > 6 ? argv[6] : "-1");
+  for (char *tok = strtok(skins, ","); tok; tok = strtok(NULL, ",")) {
+    s->neighbour_skin = atof(tok);
+    if (run_one(s, porous, k, nranks, rank, steps, warm)) return 1;
   }
-#endif
-  const double mps = (double)n * steps / t;
-  if (rank == 0)
-    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" seconds=%.3f MPS=%.4g "
-           "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f T=%.4f\n",
-           porous ? "porous" : "bulk", k, nranks, n, steps, device, t, mps / 1e6, 1e9 / mps,
-           bytes * nranks, th.temperature);
-  sim_destroy(sim);
   free(s);
   MPI_Finalize();
   return 0;

@@ -249,6 +249,14 @@ void sim_request_virial(sim_t *sim, int on) {
   }
 }
 
+void sim_announce_thermo(sim_t *sim, int on) {
+  if (sim->gpu) sim_cuda_want_pressure(sim, on);
+}
+
+void sim_rebuild_lists(sim_t *sim) {
+  if (sim->gpu) sim_cuda_rebuild_lists(sim);
+}
+
 void sim_forces_loaded(sim_t *sim) {
   sim->forces_loaded = 1;
 }

@@ -56,6 +56,13 @@ void sim_set_step_index(sim_t *sim, long step); /* restart */
 void sim_subdomain(const sim_t *sim, double lo[3], double hi[3]);
 void sim_request_virial(sim_t *sim, int on); /* per-particle virial in the next force passes */
 void sim_forces_loaded(sim_t *sim); /* restart: forces come from a checkpoint, not recomputed */
+/* Whether sim_thermo follows the next sim_step. The CUDA path sums the pair virial (the pressure)
+ * only on such steps; an unannounced sim_thermo is still right, it reruns the pair pass. */
+void sim_announce_thermo(sim_t *sim, int on);
+/* Sort the particles and rebuild the neighbour lists in the next step even when a Verlet skin would
+ * keep them (CUDA path; the CPU path rebuilds every step): the state after that step restarts
+ * bitwise identically. */
+void sim_rebuild_lists(sim_t *sim);
 
 /* Collective check that the global particle count still equals the one at sim_setup. 0, or non-zero
  * after printing "particle lost: ..." (rank 0). sim_step also checks it every step. */

@@ -18,14 +18,12 @@ int sim_backend_choose(const char *name, int nranks, int *backend, char *err, si
   gpus = cuda_device_count(why, sizeof why);
 #endif
   if (!name || !strcmp(name, "auto")) {
-    *backend = gpus > 0 && nranks == 1 ? SCENE_BACKEND_CUDA : SCENE_BACKEND_CPU;
-    int rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    if (gpus > 0 && nranks > 1 && rank == 0)
-      fprintf(stderr,
-              "mdpore: %d MPI ranks: running the CPU path (--backend cuda runs one GPU per "
-              "rank)\n",
-              nranks);
+    /* One GPU per rank: the ranks of a node share its GPUs in turn (cuda_create.cu); every rank
+     * must agree, so the choice is collective (a rank that sees no GPU makes all run on CPUs). */
+    int cuda = gpus > 0;
+    MPI_Allreduce(MPI_IN_PLACE, &cuda, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    *backend = cuda ? SCENE_BACKEND_CUDA : SCENE_BACKEND_CPU;
+    (void)nranks;
     return 0;
   }
   if (!strcmp(name, "cpu")) {
@@ -103,6 +101,14 @@ int sim_cuda_thermo_sums(sim_t *sim, double sums[17]) {
   return cuda_sim_thermo_sums(sim->gpu, sums);
 }
 
+void sim_cuda_want_pressure(sim_t *sim, int on) {
+  cuda_sim_want_pressure(sim->gpu, on);
+}
+
+void sim_cuda_rebuild_lists(sim_t *sim) {
+  cuda_sim_rebuild_lists(sim->gpu);
+}
+
 void sim_cuda_sync_host(sim_t *sim) {
   if (!sim->gpu || !sim->host_stale) return;
   if (pstore_reserve(&sim->p, cuda_sim_count(sim->gpu) + 1) == 0 &&
@@ -134,6 +140,13 @@ int sim_cuda_thermo_sums(sim_t *sim, double sums[17]) {
   return -1;
 }
 void sim_cuda_sync_host(sim_t *sim) {
+  (void)sim;
+}
+void sim_cuda_want_pressure(sim_t *sim, int on) {
+  (void)sim;
+  (void)on;
+}
+void sim_cuda_rebuild_lists(sim_t *sim) {
   (void)sim;
 }
 

@@ -45,6 +45,8 @@ int sim_cuda_setup(sim_t *sim);
 int sim_cuda_step(sim_t *sim);
 int sim_cuda_thermo_sums(sim_t *sim, double sums[17]);
 void sim_cuda_sync_host(sim_t *sim);
+void sim_cuda_want_pressure(sim_t *sim, int on);
+void sim_cuda_rebuild_lists(sim_t *sim);
 #ifdef MDPORE_HAVE_CUDA
 #include "backend/cuda/cuda_backend.h"
 #include "migrate.h"

@@ -114,6 +114,9 @@ typedef struct {
   char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */
   int backend; /* enum scene_backend: where the engine runs; set by mdpore run/forces --backend,
                   not read from the scene file (0 = cpu) */
+  double neighbour_skin; /* Verlet skin of the CUDA path's neighbour lists (rc units); < 0: the
+                            backend's default. Set by --skin, not read from the scene file: it
+                            changes the run time, not the physics (docs/engine-cuda.md) */
 } scene_t;
 
 /* Parse and validate a scene file. On error prints "FILE:LINE: key 'K': expected ..." to stderr and

@@ -537,6 +537,7 @@ static void set_defaults(scene_t *s) {
   s->body_force_reverse_axis = -1;
   s->seed = 12345;
   s->progress = 1;
+  s->neighbour_skin = -1.0; /* the backend's default (mdpore run --skin) */
   s->init.temperature = -1; /* -> kT after parsing */
   strcpy(s->summary_path, "summary.json");
 }

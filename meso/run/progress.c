@@ -12,7 +12,7 @@ void progress_start(progress_t *pr, int enabled, int rank, long first, long last
   pr->t0 = pr->last_print = MPI_Wtime();
 }
 
-void progress_update(progress_t *pr, long step, double T, double p) {
+void progress_update(progress_t *pr, long step, long sample_step, double T, double p) {
   if (!pr->on) return;
   const double now = MPI_Wtime();
   if (now - pr->last_print < 2.0 && step != pr->last) return;
@@ -20,8 +20,9 @@ void progress_update(progress_t *pr, long step, double T, double p) {
   const double done = (double)(step - pr->first), total = (double)(pr->last - pr->first);
   const double eta = done > 0 ? (now - pr->t0) * (total - done) / done : 0;
   fprintf(stderr,
-          "\rstep %ld / %ld (%3.0f%%)  T = %.4f  p = %.4g  elapsed %.0f s  ETA %02d:%02d:%02d   ",
-          step, pr->last, total > 0 ? 100 * done / total : 100.0, T, p, now - pr->t0,
+          "\rstep %ld / %ld (%3.0f%%)  T = %.4f  p = %.4g (step %ld)  elapsed %.0f s  ETA "
+          "%02d:%02d:%02d   ",
+          step, pr->last, total > 0 ? 100 * done / total : 100.0, T, p, sample_step, now - pr->t0,
           (int)(eta / 3600), (int)(eta / 60) % 60, (int)eta % 60);
   fflush(stderr);
 }

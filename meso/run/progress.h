@@ -11,7 +11,8 @@ typedef struct {
 } progress_t;
 
 void progress_start(progress_t *pr, int enabled, int rank, long first, long last);
-void progress_update(progress_t *pr, long step, double T, double p);
+/* step: the step just done; T and p: the latest thermo sample, taken at sample_step. */
+void progress_update(progress_t *pr, long step, long sample_step, double T, double p);
 void progress_end(progress_t *pr);
 
 #endif

@@ -98,6 +98,12 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   for (long step = first + 1; step <= last && !err; step++) {
     const int sample = s->profile.nbins > 0 && profile_wants(&prof, step);
     if (sample) sim_request_virial(sim, 1);
+    const int log_row = due(&s->thermo, step), stat = run_stats_wants(&st, step);
+    sim_announce_thermo(sim, log_row || stat);
+    /* A checkpoint after this step: build the neighbour lists in this step, as a restart from it
+     * will, so that the restarted run sums the forces in the same order (bitwise restarts). */
+    if (s->checkpoint.every > 0 && (due(&s->checkpoint, step) || step == last))
+      sim_rebuild_lists(sim);
     MPI_Barrier(comm);
     const double t0 = MPI_Wtime();
     if (sim_step(sim)) {
@@ -111,14 +117,15 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       profile_sample(&prof, sim);
       if (!profile_wants(&prof, step + 1)) sim_request_virial(sim, 0);
     }
-    const int log_row = due(&s->thermo, step), stat = run_stats_wants(&st, step);
-    if (log_row || stat || pr.on) {
+    /* sim_thermo is collective: only on steps every rank knows (the progress line on rank 0 shows
+     * the latest sample rather than asking for one). */
+    if (log_row || stat) {
       sim_thermo(sim, &th);
       if (log_row) thermo_log_row(&log, &th);
       if (stat && rank == 0) run_stats_add(&st, &th);
-      progress_update(&pr, step, th.temperature,
-                      (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3);
     }
+    progress_update(&pr, step, th.step, th.temperature,
+                    (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3);
     err = write_outputs(sim, step, !restart, step == last, &snaps, &dump_started);
     if (!err && s->profile.nbins > 0 && s->checkpoint.every > 0 && due(&s->checkpoint, step) &&
         rank == 0)

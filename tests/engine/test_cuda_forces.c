@@ -7,6 +7,9 @@
  * 1e-4. Skipped (exit 77) without a GPU. */
 #include "test_cuda_common.h"
 
+#include "backend/cuda/cuda_backend.h"
+#include "engine/sim_internal.h"
+
 static sim_t *build(scene_t *s, int backend, int n) {
   s->backend = backend;
   sim_t *sim = sim_create(s, MPI_COMM_WORLD);
@@ -35,47 +38,70 @@ int main(int argc, char **argv) {
   s.body_force[0][0] = 0.3;
   s.body_force_reverse_axis = 2;
   const int n = 2016; /* density 6 */
-  sim_t *cpu = build(&s, SCENE_BACKEND_CPU, n), *gpu = build(&s, SCENE_BACKEND_CUDA, n);
-  CHECK(cpu && gpu, "building the CPU and CUDA simulations");
-  test_state_t a, b;
-  CHECK(!test_state_get(cpu, n, &a) && !test_state_get(gpu, n, &b), "reading the states");
-  double fscale = 0, df = 0, drho = 0;
-  for (int k = 0; k < 3 * n; k++) {
-    fscale = fmax(fscale, fabs(a.f[k]));
-    df = fmax(df, fabs(a.f[k] - b.f[k]));
-  }
-  for (int i = 0; i < n; i++) drho = fmax(drho, fabs(a.rho[i] - b.rho[i]) / fmax(a.rho[i], 1.0));
-  printf("setup: largest force component %.4g; max |f_gpu - f_cpu| = %.3e (%.3e of it); max "
-         "relative rho difference %.3e\n",
-         fscale, df, df / fscale, drho);
-  CHECK(df <= 2e-5 * fscale, "forces differ by %.3e of the force scale (bound 2e-5)", df / fscale);
-  CHECK(drho <= 2e-6, "densities differ by %.3e relative (bound 2e-6)", drho);
-  thermo_t ta, tb;
+  sim_t *cpu = build(&s, SCENE_BACKEND_CPU, n);
+  CHECK(cpu, "building the CPU simulation");
+  test_state_t a0, a5, b;
+  thermo_t ta;
+  CHECK(!test_state_get(cpu, n, &a0), "reading the CPU state");
   sim_thermo(cpu, &ta);
-  sim_thermo(gpu, &tb);
-  printf("setup thermo: T %.9f / %.9f, Pxx %.6f / %.6f, Pxz %.6f / %.6f\n", ta.temperature,
-         tb.temperature, ta.pressure[0], tb.pressure[0], ta.pressure[4], tb.pressure[4]);
-  CHECK(fabs(ta.temperature - tb.temperature) < 1e-12 * ta.temperature, "temperature differs");
-  CHECK(fabs(ta.pressure[0] - tb.pressure[0]) < 1e-4 * fabs(ta.pressure[0]) + 1e-3,
-        "pressure Pxx differs");
-  test_state_free(&a);
-  test_state_free(&b);
-  for (int k = 0; k < 5; k++) CHECK(!sim_step(cpu) && !sim_step(gpu), "step %d", k);
-  CHECK(!test_state_get(cpu, n, &a) && !test_state_get(gpu, n, &b), "reading the states");
-  double dx = 0, dv = 0;
-  const double L[3] = {8.0, 6.0, 7.0};
-  for (int i = 0; i < n; i++)
-    for (int d = 0; d < 3; d++) {
-      dx = fmax(dx, fabs(min_image(a.x[3 * i + d] - b.x[3 * i + d], L[d])));
-      dv = fmax(dv, fabs(a.v[3 * i + d] - b.v[3 * i + d]));
-      CHECK(b.x[3 * i + d] >= 0 && b.x[3 * i + d] < L[d], "GPU particle %d outside the box", i);
+  for (int k = 0; k < 5; k++) CHECK(!sim_step(cpu), "CPU step %d", k);
+  CHECK(!test_state_get(cpu, n, &a5), "reading the CPU state");
+  /* The GPU with lists rebuilt every step (skin 0), with a skin so small that they are rebuilt
+   * every few steps, and with the default skin (kept over all 5 steps): the same physics. */
+  const double skins[3] = {0.0, 0.1, -1.0};
+  for (int variant = 0; variant < 3; variant++) {
+    s.neighbour_skin = skins[variant];
+    sim_t *gpu = build(&s, SCENE_BACKEND_CUDA, n);
+    CHECK(gpu, "building the CUDA simulation (skin %g)", skins[variant]);
+    CHECK(!test_state_get(gpu, n, &b), "reading the GPU state");
+    double fscale = 0, df = 0, drho = 0;
+    for (int k = 0; k < 3 * n; k++) {
+      fscale = fmax(fscale, fabs(a0.f[k]));
+      df = fmax(df, fabs(a0.f[k] - b.f[k]));
     }
-  printf("after 5 steps: max |x_gpu - x_cpu| = %.3e, max |v_gpu - v_cpu| = %.3e\n", dx, dv);
-  CHECK(dx <= 1e-6 && dv <= 1e-4, "trajectories differ: dx %.3e dv %.3e", dx, dv);
-  test_state_free(&a);
-  test_state_free(&b);
+    for (int i = 0; i < n; i++)
+      drho = fmax(drho, fabs(a0.rho[i] - b.rho[i]) / fmax(a0.rho[i], 1.0));
+    printf("skin %g, setup: largest force component %.4g; max |f_gpu - f_cpu| = %.3e (%.3e of "
+           "it); max relative rho difference %.3e\n",
+           skins[variant], fscale, df, df / fscale, drho);
+    CHECK(df <= 2e-5 * fscale, "forces differ by %.3e of the force scale (bound 2e-5)",
+          df / fscale);
+    CHECK(drho <= 2e-6, "densities differ by %.3e relative (bound 2e-6)", drho);
+    thermo_t tb;
+    sim_thermo(gpu, &tb);
+    printf("setup thermo: T %.9f / %.9f, Pxx %.6f / %.6f, Pxz %.6f / %.6f\n", ta.temperature,
+           tb.temperature, ta.pressure[0], tb.pressure[0], ta.pressure[4], tb.pressure[4]);
+    CHECK(fabs(ta.temperature - tb.temperature) < 1e-12 * ta.temperature, "temperature differs");
+    CHECK(fabs(ta.pressure[0] - tb.pressure[0]) < 1e-4 * fabs(ta.pressure[0]) + 1e-3,
+          "pressure Pxx differs");
+    test_state_free(&b);
+    for (int k = 0; k < 5; k++) CHECK(!sim_step(gpu), "GPU step %d", k);
+    CHECK(!test_state_get(gpu, n, &b), "reading the GPU state");
+    double dx = 0, dv = 0;
+    const double L[3] = {8.0, 6.0, 7.0};
+    for (int i = 0; i < n; i++)
+      for (int d = 0; d < 3; d++) {
+        dx = fmax(dx, fabs(min_image(a5.x[3 * i + d] - b.x[3 * i + d], L[d])));
+        dv = fmax(dv, fabs(a5.v[3 * i + d] - b.v[3 * i + d]));
+        CHECK(b.x[3 * i + d] >= 0 && b.x[3 * i + d] < L[d], "GPU particle %d outside the box", i);
+      }
+    long builds = 0, steps = 0;
+    double skin = 0;
+    cuda_sim_list_stats(gpu->gpu, &builds, &steps, &skin);
+    printf("skin %.2f: after 5 steps (%ld list builds): max |x_gpu - x_cpu| = %.3e, max |v_gpu - "
+           "v_cpu| = %.3e\n",
+           skin, builds, dx, dv);
+    CHECK(dx <= 1e-6 && dv <= 1e-4, "trajectories differ: dx %.3e dv %.3e", dx, dv);
+    /* The test must exercise what it names: every step, some steps, one build. */
+    if (variant == 0) CHECK(builds == 6, "skin 0: %ld list builds in setup + 5 steps", builds);
+    if (variant == 1) CHECK(builds > 1 && builds < 6, "skin 0.1: %ld list builds", builds);
+    if (variant == 2) CHECK(builds == 1, "default skin: %ld list builds", builds);
+    test_state_free(&b);
+    sim_destroy(gpu);
+  }
+  test_state_free(&a0);
+  test_state_free(&a5);
   sim_destroy(cpu);
-  sim_destroy(gpu);
   MPI_Finalize();
   return 0;
 }

@@ -38,6 +38,7 @@ static inline double test_rng_uniform(uint64_t *s) {
  * with one species "liquid", box [0, L). Effects: none named; callers set scene->effect[...]. */
 static inline void test_scene_mdpd(scene_t *s, double lx, double ly, double lz) {
   memset(s, 0, sizeof *s);
+  s->neighbour_skin = -1.0; /* the backend's default, as scene_load sets it */
   snprintf(s->file, sizeof s->file, "(test scene)");
   snprintf(s->name, sizeof s->name, "test");
   const double L[3] = {lx, ly, lz};

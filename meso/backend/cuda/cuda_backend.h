@@ -79,6 +79,14 @@ int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho);
 int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces, int kick,
                      cuda_problem_t *pr);
 
+/* Announce whether the next steps end in a thermo sample: only then does the force pass sum the
+ * pair virial (a sample after a step without it reruns the pair pass for the virial alone). */
+void cuda_sim_want_pressure(cuda_sim_t *g, int on);
+/* Sort and rebuild the lists in the next step (before a checkpoint: bitwise restarts). */
+void cuda_sim_rebuild_lists(cuda_sim_t *g);
+/* List builds and steps since creation, the Verlet skin in use (rc units). */
+void cuda_sim_list_stats(const cuda_sim_t *g, long *builds, long *steps, double *skin);
+
 /* Local sums for sim_thermo in double, in the CPU path's order of quantities: N_mobile, KE, px, py,
  * pz, sum m v_a v_b (6), pair virial (6). 0 or -1. */
 int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[17]);

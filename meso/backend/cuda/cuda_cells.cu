@@ -92,6 +92,7 @@ static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct d
 }
 
 int cuda_sort_cells(struct cuda_sim *g) {
+  g->lists_valid = 0;
   if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start)) return -1;
   struct dev_fields t = g->a;
   g->a = g->b;
@@ -104,19 +105,41 @@ int cuda_sort_ghosts(struct cuda_sim *g) {
   return sort_range(g, g->n, g->n_ghost, 0, g->b, g->a, g->gcell_start);
 }
 
+/* Position relative to the lower corner of the bin the particle was sorted into. With a skin the
+ * particle may have left that bin, or crossed a periodic face, since the sort: along a wrapping
+ * axis the nearest image of the offset is taken, so the packed value stays continuous. */
+__device__ __forceinline__ meso_real rel_to_bin(const struct dev_params &q, int d, double x,
+                                                int b) {
+  double r = x - (q.lo[d] + b * (q.L[d] / q.nb[d]));
+  if (q.periodic[d]) {
+    if (r > 0.5 * q.L[d])
+      r -= q.L[d];
+    else if (r < -0.5 * q.L[d])
+      r += q.L[d];
+  }
+  return (meso_real)r;
+}
+
+/* Packed positions and thermostat velocities; with pos0 (skin > 0) a particle that moved more than
+ * skin / 2 since the lists were built raises *rebuild. */
 __global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
                        const uint32_t *__restrict__ key, struct dev_pos *pos, struct dev_vel *vel,
-                       int use_vpred) {
+                       int use_vpred, const struct dev_pos *__restrict__ pos0, int *rebuild) {
   const int k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const int c = (int)key[k];
   const int b[3] = {c % q.nb[0], (c / q.nb[0]) % q.nb[1], c / (q.nb[0] * q.nb[1])};
   struct dev_pos r;
-  r.x = (meso_real)(p.x[0][k] - (q.lo[0] + b[0] * (q.L[0] / q.nb[0])));
-  r.y = (meso_real)(p.x[1][k] - (q.lo[1] + b[1] * (q.L[1] / q.nb[1])));
-  r.z = (meso_real)(p.x[2][k] - (q.lo[2] + b[2] * (q.L[2] / q.nb[2])));
+  r.x = rel_to_bin(q, 0, p.x[0][k], b[0]);
+  r.y = rel_to_bin(q, 1, p.x[1][k], b[1]);
+  r.z = rel_to_bin(q, 2, p.x[2][k], b[2]);
   r.species = p.species[k];
   pos[k] = r;
+  if (pos0) {
+    const struct dev_pos o = pos0[k];
+    const meso_real dx = r.x - o.x, dy = r.y - o.y, dz = r.z - o.z;
+    if (!(dx * dx + dy * dy + dz * dz <= q.half_skin2)) *rebuild = 1; /* NaN rebuilds too */
+  }
   if (vel) {
     double *const *v = use_vpred ? p.vpred : p.v;
     struct dev_vel u;
@@ -128,9 +151,26 @@ __global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
   }
 }
 
-void cuda_pack(struct cuda_sim *g) {
+static void pack(struct cuda_sim *g, const struct dev_pos *pos0) {
   const int n = g->n + g->n_ghost;
   if (n == 0) return;
-  k_pack<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, n, g->a, g->key_sorted, g->pos,
-                                                            g->vel, g->prm.use_vpred);
+  k_pack<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(
+      g->prm, n, g->a, g->key_sorted, g->pos, g->vel, g->prm.use_vpred, pos0, g->rebuild);
+}
+
+void cuda_pack(struct cuda_sim *g) {
+  pack(g, NULL);
+}
+
+int cuda_pack_check(struct cuda_sim *g) {
+  if (g->prm.skin <= 0.0 || !g->pos0 || !g->lists_valid) {
+    pack(g, NULL);
+    return 1;
+  }
+  if (cuda_check(cudaMemsetAsync(g->rebuild, 0, sizeof(int)), "pack")) return -1;
+  pack(g, g->pos0);
+  int h = 1;
+  if (cuda_check(cudaMemcpy(&h, g->rebuild, sizeof(int), cudaMemcpyDeviceToHost), "pack"))
+    return -1;
+  return h != 0;
 }

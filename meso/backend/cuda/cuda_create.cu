@@ -26,6 +26,14 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
                       size_t len) {
   const int multi = dims[0] * dims[1] * dims[2] > 1;
   const double rcut = plan->rcut > 0 ? plan->rcut : 1.0;
+  /* Several ranks rebuild the ghosts, and with them the lists, every step: no skin there. */
+  const double skin = multi || !plan->pair_terms ? 0.0
+                      : s->neighbour_skin >= 0   ? s->neighbour_skin
+                                                 : CUDA_DEFAULT_SKIN;
+  const double list_cut = sqrt((double)q->cut2_max) + skin;
+  q->skin = skin;
+  q->list_cut2 = skin > 0.0 ? (meso_real)(list_cut * list_cut) : q->cut2_max;
+  q->half_skin2 = (meso_real)(0.25 * skin * skin);
   q->ncell = 1;
   q->multi = multi;
   q->rcut = rcut;
@@ -43,9 +51,10 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     q->hi[d] = q->split[d] ? sub_hi[d] + rcut : s->box_hi[d];
     q->L[d] = q->hi[d] - q->lo[d];
     q->periodic[d] = q->split[d] ? 0 : s->periodic[d];
-    int nb = (int)(q->L[d] / rcut);
+    /* Bins at least as wide as the list cutoff (the cutoff plus the skin). */
+    int nb = (int)(q->L[d] / (q->split[d] ? rcut : rcut + skin));
     if (nb < 1) nb = 1;
-    if (q->periodic[d] && nb < 2 && plan->pair_terms) {
+    if (q->periodic[d] && q->L[d] < 2.0 * rcut && plan->pair_terms) {
       snprintf(err, len,
                "%s: CUDA backend: periodic box length %g along %c is shorter than twice the "
                "cutoff %g (use --backend cpu)",
@@ -130,7 +139,8 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
       cuda_alloc(g, (void **)&g->counter, sizeof(int)) ||
       cuda_alloc(g, (void **)&g->thermo_part, (size_t)THERMO_SUMS * (THERMO_BLOCKS + 1) * 8) ||
       cuda_alloc(g, (void **)&g->problem, sizeof(struct dev_problem)) ||
-      cuda_alloc(g, (void **)&g->nbr_most, sizeof(int))) {
+      cuda_alloc(g, (void **)&g->nbr_most, sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->rebuild, sizeof(int))) {
     snprintf(err, len, "CUDA backend: out of device memory");
     cuda_sim_destroy(g);
     return NULL;

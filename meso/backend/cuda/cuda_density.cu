@@ -3,7 +3,9 @@
  * thread per particle; with one rank there are no ghosts, so no rho sync is needed.
  * The same bin scan writes each particle's neighbour list (partners within the largest cutoff, in
  * traversal order) for the force pass: the force kernel then runs only over partners in range, so a
- * warp does not pay the pair body for the ~85% of bin candidates that are out of range. */
+ * warp does not pay the pair body for the ~85% of bin candidates that are out of range. With a
+ * Verlet skin (one GPU) the lists hold the partners within the cutoff plus the skin and serve
+ * several steps: between builds the densities come from the lists (k_density_list). */
 #include "cuda_neighbours.cuh"
 #include "physics/density_kernels.h"
 
@@ -25,7 +27,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       q, start, gstart, n, pos, pi, key[i],
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
-        if (r2 >= q.cut2_max || t == i) return; /* most candidates */
+        if (r2 >= q.list_cut2 || t == i) return; /* most candidates */
         if (m < stride) nbr[(size_t)m * cap + i] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
         m++;
         if (!DENSITY || r2 >= q.rd2_max) return;
@@ -47,6 +49,57 @@ template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g) {
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most);
 }
 
+/* Densities over the lists of the last build: the same kernel sums as the bin scan, partners in
+ * list order (= the traversal order of the build). */
+template <int KERNEL>
+__global__ void __launch_bounds__(CUDA_BLOCK)
+    k_density_list(const struct dev_params q, int n, int cap,
+                   const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ nbr,
+                   const int *__restrict__ count, meso_real *__restrict__ rho) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const struct dev_pos pi = pos[i];
+  const struct dev_coef *row = q.coef[pi.species];
+  meso_real sum = MESO_R(0.0);
+  const int m = count[i];
+  for (int k = 0; k < m; k++) {
+    const uint32_t e = nbr[(size_t)k * cap + i];
+    const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
+    meso_real dx, dy, dz;
+    dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+    const meso_real r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 >= q.rd2_max) continue;
+    const struct dev_coef &c = row[pj.species];
+    if (r2 >= c.rd2) continue;
+    const meso_real r = meso_sqrt(r2);
+    sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
+                                      : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
+  }
+  rho[i] = sum;
+}
+
+void cuda_density_from_lists(struct cuda_sim *g) {
+  if (!g->prm.density || g->n == 0) return;
+  const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  if (g->prm.kernel == MESO_KERNEL_LUCY)
+    k_density_list<MESO_KERNEL_LUCY>
+        <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho);
+  else
+    k_density_list<MESO_KERNEL_WARREN>
+        <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho);
+}
+
+__global__ void k_rho_to_vel(int n, const meso_real *__restrict__ rho, struct dev_vel *vel) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) vel[i].pad = rho[i];
+}
+
+void cuda_rho_to_vel(struct cuda_sim *g) {
+  const int n = g->n + g->n_ghost;
+  if (!g->prm.density || !g->vel || n == 0) return;
+  k_rho_to_vel<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(n, g->rho, g->vel);
+}
+
 /* Densities and lists; a list longer than the room it had grows the room and runs the pass again
  * (one small device-to-host copy per step tells). */
 int cuda_density_pass(struct cuda_sim *g) {
@@ -64,7 +117,16 @@ int cuda_density_pass(struct cuda_sim *g) {
     if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
                    "density pass"))
       return -1;
-    if (most == 0) return 0;
-    if (cuda_nbr_reserve(g, most + most / 4 + 8)) return -1;
+    if (most == 0) break;
+    if (cuda_nbr_reserve(g, most + most / 8 + 8)) return -1;
   }
+  g->n_builds++;
+  if (g->prm.skin <= 0.0 || g->prm.multi) return 0;
+  /* Positions at this build: the pack kernel measures the displacement from them. */
+  if (!g->pos0 && cuda_alloc(g, (void **)&g->pos0, (size_t)g->cap * sizeof(struct dev_pos)))
+    return -1;
+  g->lists_valid = 1;
+  return cuda_check(cudaMemcpyAsync(g->pos0, g->pos, (size_t)g->n * sizeof(struct dev_pos),
+                                    cudaMemcpyDeviceToDevice),
+                    "density pass");
 }

@@ -26,7 +26,21 @@ struct force_args {
   int n, write_f;
 };
 
-template <int TERMS, int VIRIAL>
+/* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
+__device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *block_virial) {
+  typedef cub::BlockReduce<double, CUDA_BLOCK> reduce_t;
+  __shared__ typename reduce_t::TempStorage tmp;
+  for (int k = 0; k < 6; k++) {
+    const double s = reduce_t(tmp).Sum((double)w[k]);
+    if (threadIdx.x == 0) block_virial[6 * blockIdx.x + k] = s;
+    __syncthreads();
+  }
+}
+
+/* TERMS: the pair terms; VIRIAL: per-particle virial (stress profiles); PV: block sums of the pair
+ * virial (the pressure of a thermo sample; skipped on the other steps). With the thermostat the
+ * partner's density travels in its packed velocity (vel.pad, cuda_rho_to_vel): one load less. */
+template <int TERMS, int VIRIAL, int PV>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -34,9 +48,11 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   if (i < a.n) {
     const struct dev_pos pi = a.pos[i];
     const struct dev_coef *row = q.coef[pi.species];
-    const meso_real rho_i = (TERMS & PAIR_TERM_MANYBODY) ? a.rho[i] : MESO_R(0.0);
     struct dev_vel vi = {0, 0, 0, 0};
     if (TERMS & PAIR_TERM_THERMOSTAT) vi = a.vel[i];
+    const meso_real rho_i = !(TERMS & PAIR_TERM_MANYBODY)    ? MESO_R(0.0)
+                            : (TERMS & PAIR_TERM_THERMOSTAT) ? vi.pad
+                                                             : a.rho[i];
     const int64_t id_i = a.id[i];
     meso_real sfx = 0, sfy = 0, sfz = 0;
     const int m = a.count[i];
@@ -50,14 +66,16 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       const struct dev_coef &c = row[pj.species];
       if (r2 >= c.cut2 || r2 == MESO_R(0.0)) continue;      /* r2 == 0: coincident, no direction */
       const meso_real inv_r = rsqrt(r2), dist = r2 * inv_r; /* no division */
+      struct dev_vel vj = {0, 0, 0, 0};
+      if (TERMS & PAIR_TERM_THERMOSTAT) vj = a.vel[t];
       meso_real fp = 0;
       if ((TERMS & PAIR_TERM_CONSERVATIVE) && r2 < c.rc2)
         fp += pair_conservative_inv(c.A, dist, c.inv_rc);
       if ((TERMS & PAIR_TERM_MANYBODY) && r2 < c.rd2)
-        fp += pair_manybody_inv(c.B, rho_i + a.rho[t], dist, c.inv_rd);
+        fp += pair_manybody_inv(c.B, rho_i + ((TERMS & PAIR_TERM_THERMOSTAT) ? vj.pad : a.rho[t]),
+                                dist, c.inv_rd);
       if ((TERMS & PAIR_TERM_THERMOSTAT) && r2 < c.rc2) {
         const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
-        const struct dev_vel vj = a.vel[t];
         const meso_real e_dot_v =
             (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
         const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
@@ -67,6 +85,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       sfx += s * dx;
       sfy += s * dy;
       sfz += s * dz;
+      if (!PV && !VIRIAL) continue;
       const meso_real hs = MESO_R(0.5) * s; /* each pair is seen from both sides */
       w[0] += hs * dx * dx;
       w[1] += hs * dy * dy;
@@ -83,56 +102,56 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     if (VIRIAL)
       for (int k = 0; k < 6; k++) a.virial[6 * (size_t)i + k] = w[k];
   }
-  /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
-  typedef cub::BlockReduce<double, CUDA_BLOCK> reduce_t;
-  __shared__ typename reduce_t::TempStorage tmp;
-  for (int k = 0; k < 6; k++) {
-    const double s = reduce_t(tmp).Sum((double)w[k]);
-    if (threadIdx.x == 0) a.block_virial[6 * blockIdx.x + k] = s;
-    __syncthreads();
-  }
+  if (PV) block_virial_sums(w, a.block_virial);
 }
 
 template <int T>
-static void launch(const struct dev_params &q, const struct force_args &a, int blocks, int virial) {
+static void launch(const struct dev_params &q, const struct force_args &a, int blocks, int virial,
+                   int pv) {
   if (virial)
-    k_force<T, 1><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 1, 1><<<blocks, CUDA_BLOCK>>>(q, a);
+  else if (pv)
+    k_force<T, 0, 1><<<blocks, CUDA_BLOCK>>>(q, a);
   else
-    k_force<T, 0><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 0, 0><<<blocks, CUDA_BLOCK>>>(q, a);
 }
 
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
   const int n = g->n, blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   g->n_force_blocks = n > 0 ? blocks : 0;
+  const int pv = g->want_pressure || want_virial;
+  g->pressure_valid = pv;
+  g->last_force_step = step;
   if (n == 0) return;
+  if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g);
   struct force_args a = {g->nbr,    g->nbr_count,    g->cap,    g->pos,    g->vel,
                          g->a.id,   g->rho,          g->a.f[0], g->a.f[1], g->a.f[2],
                          g->virial, g->block_virial, step,      n,         !keep_forces};
   const int virial = want_virial && g->virial != NULL;
   switch (g->prm.terms & 7) {
   case 0:
-    launch<0>(g->prm, a, blocks, virial);
+    launch<0>(g->prm, a, blocks, virial, pv);
     break;
   case 1:
-    launch<1>(g->prm, a, blocks, virial);
+    launch<1>(g->prm, a, blocks, virial, pv);
     break;
   case 2:
-    launch<2>(g->prm, a, blocks, virial);
+    launch<2>(g->prm, a, blocks, virial, pv);
     break;
   case 3:
-    launch<3>(g->prm, a, blocks, virial);
+    launch<3>(g->prm, a, blocks, virial, pv);
     break;
   case 4:
-    launch<4>(g->prm, a, blocks, virial);
+    launch<4>(g->prm, a, blocks, virial, pv);
     break;
   case 5:
-    launch<5>(g->prm, a, blocks, virial);
+    launch<5>(g->prm, a, blocks, virial, pv);
     break;
   case 6:
-    launch<6>(g->prm, a, blocks, virial);
+    launch<6>(g->prm, a, blocks, virial, pv);
     break;
   default:
-    launch<7>(g->prm, a, blocks, virial);
+    launch<7>(g->prm, a, blocks, virial, pv);
     break;
   }
 }

@@ -13,6 +13,9 @@
 #include <stdint.h>
 
 #define CUDA_BLOCK 128
+/* Verlet skin of the lists on one GPU when --skin is not given (rc units; bench/RESULTS.md has the
+ * time-vs-skin curve this was chosen from). */
+#define CUDA_DEFAULT_SKIN 0.3
 #define NBR_SLOT_BITS 27 /* slots < 2^27 particles per GPU; 5 bits for the 27 bin offsets */
 
 /* Constants of one species pair in the pair math's precision (plan.h pair_coef_t). */
@@ -50,6 +53,11 @@ struct dev_params {
   double inv_bin[3];
   meso_real bin_w[3], box_L[3], inv_box_L[3]; /* in the pair math's precision */
   meso_real cut2_max, rd2_max; /* largest squared cutoffs of any pair (tested before the table) */
+  /* Verlet skin (one rank only): lists hold the partners within list_cut2 = (cutoff + skin)^2 and
+   * are kept until some particle has moved more than skin / 2 since they were built (then no pair
+   * within the cutoff can be missing). skin = 0: lists rebuilt every step. */
+  double skin;
+  meso_real list_cut2, half_skin2;
   int off_lo[3], off_hi[3], min_image[3];
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
 };
@@ -119,10 +127,18 @@ struct cuda_sim {
   uint32_t *nbr;
   int *nbr_count, *nbr_most; /* [cap]; [1] the longest list of the last pass */
   int nbr_stride;
+  struct dev_pos *pos0;   /* [cap] packed positions when the lists were built (skin > 0) */
+  int *rebuild;           /* [1] set by the pack kernel: a particle moved more than skin / 2 */
+  int lists_valid;        /* the lists were built for the current particle order (cleared by a
+                             sort, an upload or arrivals) */
+  long n_builds, n_steps; /* list builds and steps since creation (reported by the benchmark) */
   void *sort_tmp;
   size_t sort_tmp_bytes;
   double *block_virial; /* [6 * blocks] pair virial per force block (reduced in cuda_thermo.cu) */
   int block_virial_cap, n_force_blocks;
+  int want_pressure;  /* the next force passes fill block_virial (a thermo sample follows) */
+  int pressure_valid; /* block_virial belongs to the last force pass */
+  uint64_t last_force_step;
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;
@@ -143,9 +159,16 @@ int cuda_sort_ghosts(struct cuda_sim *g);
 /* Pack positions (bin-relative) and thermostat velocities for the pair passes (after the
  * prediction). */
 void cuda_pack(struct cuda_sim *g);
+/* Pack and, with a skin, check the displacement since the last build: 1 when the lists must be
+ * rebuilt (always 1 without a skin), 0 when they still hold, -1 on a CUDA error. */
+int cuda_pack_check(struct cuda_sim *g);
 
 /* cuda_density.cu (densities + neighbour lists; 0 or -1) / cuda_force.cu */
 int cuda_density_pass(struct cuda_sim *g);
+/* Densities over the lists of the last build (skin > 0, lists still valid). */
+void cuda_density_from_lists(struct cuda_sim *g);
+/* Copy rho into the thermostat velocity's spare lane (vel[i].pad) for the force pass. */
+void cuda_rho_to_vel(struct cuda_sim *g);
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
 
 /* cuda_integrate.cu */

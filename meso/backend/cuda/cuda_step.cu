@@ -19,16 +19,42 @@ extern "C" int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, 
   return finish(g, pr);
 }
 
+/* Packed positions and densities of this step. With a skin the lists of the last build serve
+ * until a particle has moved more than skin / 2; then (and always without a skin) the particles are
+ * sorted by cell again and the bin scan builds new lists. */
+static int pack_and_densities(struct cuda_sim *g) {
+  if (g->prm.skin > 0.0 && g->lists_valid) {
+    const int r = cuda_pack_check(g);
+    if (r < 0) return -1;
+    if (r == 0) {
+      cuda_density_from_lists(g);
+      return 0;
+    }
+  }
+  if (cuda_sort_cells(g)) return -1;
+  cuda_pack(g);
+  return cuda_density_pass(g);
+}
+
 extern "C" int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_problem_t *pr) {
   if (cuda_set_virial(g, want_virial)) return -1;
+  g->n_steps++;
   cuda_kick_drift(g);
-  if (cuda_sort_cells(g)) return -1;
-  cuda_predict(g, 0);
-  cuda_pack(g);
-  if (cuda_density_pass(g)) return -1;
+  cuda_predict(g, 0); /* per particle: independent of the slot order */
+  if (pack_and_densities(g)) return -1;
   cuda_force_pass(g, (uint64_t)step, want_virial, 0);
   cuda_finish_forces(g, 1, 1);
   return finish(g, pr);
+}
+
+extern "C" void cuda_sim_rebuild_lists(cuda_sim_t *g) {
+  g->lists_valid = 0;
+}
+
+extern "C" void cuda_sim_list_stats(const cuda_sim_t *g, long *builds, long *steps, double *skin) {
+  *builds = g->n_builds;
+  *steps = g->n_steps;
+  *skin = g->prm.skin;
 }
 
 /* Pieces of the step for several ranks (sim_cuda_halo.c drives them around the host exchanges). */

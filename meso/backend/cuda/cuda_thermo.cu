@@ -49,7 +49,19 @@ __global__ void __launch_bounds__(256) k_thermo_final(int rows, double *part) {
   }
 }
 
+extern "C" void cuda_sim_want_pressure(cuda_sim_t *g, int on) {
+  g->want_pressure = on != 0;
+}
+
 extern "C" int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[THERMO_SUMS]) {
+  if (!g->pressure_valid && g->n_force_blocks > 0) {
+    /* The last force pass skipped the pair virial (no sample was announced): run it again for the
+     * virial only; the forces are kept, and the same step keys the same random numbers. */
+    const int w = g->want_pressure;
+    g->want_pressure = 1;
+    cuda_force_pass(g, g->last_force_step, 0, 1);
+    g->want_pressure = w;
+  }
   k_thermo_part<<<THERMO_BLOCKS, 256>>>(g->prm, g->n, g->a, g->n_force_blocks, g->block_virial,
                                         g->thermo_part);
   k_thermo_final<<<1, 256>>>(THERMO_BLOCKS, g->thermo_part);

@@ -66,6 +66,8 @@ int cuda_reserve(struct cuda_sim *g, int n) {
   cuda_free_ptr(g, (void **)&g->nbr);
   cuda_free_ptr(g, (void **)&g->nbr_count);
   cuda_free_ptr(g, (void **)&g->rho_stage);
+  cuda_free_ptr(g, (void **)&g->pos0);
+  g->lists_valid = 0;
   g->nbr_stride = 0;
   g->virial_cap = 0;
   g->bytes = 0;
@@ -144,7 +146,8 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->vel,          (void **)&g->nbr,
                    (void **)&g->nbr_count,    (void **)&g->nbr_most,
                    (void **)&g->gcell_start,  (void **)&g->counter,
-                   (void **)&g->rho_stage};
+                   (void **)&g->rho_stage,    (void **)&g->pos0,
+                   (void **)&g->rebuild};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   free(g);
 }
