@@ -26,6 +26,9 @@ static void usage(FILE *to) {
       "whole cross-section, solid included. Prints JSON.\n"
       "  --axis x|y|z          flow direction (required)\n"
       "  --refine R            R^3 hex cells per voxel (default 1)\n"
+      "  --walls staircase|smooth  voxel faces as walls (default), or sub-voxel walls: the wall\n"
+      "                        points move onto the 0.5 iso-surface of the solid fraction\n"
+      "                        averaged over the 2x2x2 voxels at each corner (flat walls stay)\n"
       "  --drive pressure|periodic  pressure drop between inlet and outlet faces (default), or\n"
       "                        cyclic inlet/outlet with a body force (needs matching end slices)\n"
       "  --sides symmetry|wall the four box faces parallel to the flow (default symmetry)\n"
@@ -159,7 +162,10 @@ int cmd_foam(int argc, char **argv) {
       bad = (o.axis = axis_of(v)) < 0;
     else if (!strcmp(a, "--refine"))
       bad = (o.refine = atoi(v)) < 1;
-    else if (!strcmp(a, "--drive")) {
+    else if (!strcmp(a, "--walls")) {
+      o.smooth_walls = !strcmp(v, "smooth");
+      bad = !o.smooth_walls && strcmp(v, "staircase");
+    } else if (!strcmp(a, "--drive")) {
       o.periodic = !strcmp(v, "periodic");
       bad = !o.periodic && strcmp(v, "pressure");
     } else if (!strcmp(a, "--sides")) {
@@ -270,36 +276,43 @@ int cmd_foam(int argc, char **argv) {
   const double vbox = (double)img.nx * img.ny * img.nz, area = vbox / dim[o.axis];
   const double q = res.int_u[o.axis] / vbox, k_vox = q / o.gradient;
   const double dx = mdp_image_voxel_size_m(&img);
-  char json[4096], kphys[256] = "null", kmd[64] = "null";
+  char json[4096], kphys[256] = "null", kmd[64] = "null", walls[768] = "\"staircase\"";
+  if (o.smooth_walls) /* mesh porosity: the pore volume of the moved mesh over the box */
+    snprintf(walls, sizeof walls,
+             "\"smooth\", \"mesh_porosity\": %.8f, \"wall_points\": %lld, \"moved_wall_points\": "
+             "%lld, \"held_back_wall_points\": %lld, \"max_wall_move\": %.4f, \"mesh_check\": "
+             "\"%s\"",
+             res.smooth.mesh_volume / vbox, res.smooth.wall_points, res.smooth.moved_points,
+             res.smooth.limited_points, res.smooth.max_move, res.smooth.mesh_check);
   if (dx > 0) {
     snprintf(kphys, sizeof kphys, "%.8e", k_vox * dx * dx);
     snprintf(kmd, sizeof kmd, "%.8e", k_vox * dx * dx / 9.869233e-16);
   }
-  snprintf(
-      json, sizeof json,
-      "{\"image\": \"%s\", \"axis\": \"%c\", \"dims\": [%d, %d, %d], \"refine\": %d, "
-      "\"cells\": %d, \"drive\": \"%s\", \"sides\": \"%s\", \"ranks\": %d, \"solver\": \"%s\", "
-      "\"pseudo_dt\": %.6g, \"restarts\": %d,\n"
-      " \"voxel_size\": %.10g, \"unit\": \"%s\", \"porosity\": %.8f, "
-      "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld,\n"
-      " \"permeability_voxel2\": %.10e, \"permeability_m2\": %s, \"permeability_mD\": %s,\n"
-      " \"convention\": \"k = mu q L / dp, q = Q / A_total: superficial (Darcy) velocity over "
-      "the whole cross-section including solid\",\n"
-      " \"model_units\": \"lengths in voxels, nu = 1, kinematic pressure gradient %.6g\",\n"
-      " \"flow_rate\": %.10e, \"superficial_velocity\": %.10e, \"mean_pore_velocity\": %.10e, "
-      "\"tortuosity\": %.8f,\n"
-      " \"converged\": %s, \"iterations\": %d, \"residual_p\": %.3e, \"residual_U\": %.3e, "
-      "\"flux_change\": %.3e, \"flux_error_estimate\": %.3e, \"tol_residual\": %.3g, "
-      "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
-      "\"case\": %s%s%s}\n",
-      path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells,
-      o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
-      o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts, img.voxel_size,
-      img.unit, st.porosity, st.connected_porosity[o.axis], dropped, k_vox, kphys, kmd, o.gradient,
-      q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
-      res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
-      res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "", keep ? dir : "null",
-      keep ? "\"" : "");
+  snprintf(json, sizeof json,
+           "{\"image\": \"%s\", \"axis\": \"%c\", \"dims\": [%d, %d, %d], \"refine\": %d, "
+           "\"cells\": %d, \"walls\": %s, \"drive\": \"%s\", \"sides\": \"%s\", \"ranks\": %d, "
+           "\"solver\": \"%s\", "
+           "\"pseudo_dt\": %.6g, \"restarts\": %d,\n"
+           " \"voxel_size\": %.10g, \"unit\": \"%s\", \"porosity\": %.8f, "
+           "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld,\n"
+           " \"permeability_voxel2\": %.10e, \"permeability_m2\": %s, \"permeability_mD\": %s,\n"
+           " \"convention\": \"k = mu q L / dp, q = Q / A_total: superficial (Darcy) velocity over "
+           "the whole cross-section including solid\",\n"
+           " \"model_units\": \"lengths in voxels, nu = 1, kinematic pressure gradient %.6g\",\n"
+           " \"flow_rate\": %.10e, \"superficial_velocity\": %.10e, \"mean_pore_velocity\": %.10e, "
+           "\"tortuosity\": %.8f,\n"
+           " \"converged\": %s, \"iterations\": %d, \"residual_p\": %.3e, \"residual_U\": %.3e, "
+           "\"flux_change\": %.3e, \"flux_error_estimate\": %.3e, \"tol_residual\": %.3g, "
+           "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
+           "\"case\": %s%s%s}\n",
+           path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells, walls,
+           o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
+           o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts,
+           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, k_vox,
+           kphys, kmd, o.gradient, q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
+           res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
+           res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "",
+           keep ? dir : "null", keep ? "\"" : "");
   fputs(json, stdout);
   rc = res.converged ? 0 : EXIT_NOT_CONVERGED;
   if (!res.converged)

@@ -30,7 +30,17 @@ typedef struct {
   int max_iter;         /* iterations (time steps) before giving up */
   int chunk;            /* iterations (time steps) per solver run between convergence checks */
   int verbose;
+  int smooth_walls; /* 1: move the wall points onto the sub-voxel interface (foam_smooth_walls.c) */
 } mdp_foam_opts_t;
+
+/* What --walls smooth did to the mesh. */
+typedef struct {
+  long long wall_points, moved_points; /* points on the walls patch; those that moved */
+  long long limited_points;            /* wall points held back to keep every cell valid */
+  double max_move;                     /* largest displacement along one axis (voxels) */
+  double mesh_volume;                  /* checkMesh "Total volume" (voxel units) */
+  char mesh_check[256];                /* "ok" or checkMesh's failed checks */
+} mdp_foam_smooth_t;
 
 typedef struct {
   int iterations, converged, cells;
@@ -42,6 +52,7 @@ typedef struct {
   double int_u[3];     /* volume integral of U over the pore space (voxel units) */
   double int_mag_u;    /* volume integral of |U| */
   double wall_s;
+  mdp_foam_smooth_t smooth; /* --walls smooth only */
 } mdp_foam_result_t;
 
 /* Path of the OpenFOAM environment script, or NULL when OpenFOAM is not installed. */
@@ -63,6 +74,11 @@ int mdp_foam_write_control(const char *dir, const mdp_foam_opts_t *o, int start,
 int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
                  mdp_foam_result_t *res, char *err);
 
+/* --walls smooth: move the wall points of the subset mesh in constant/polyMesh/points onto the 0.5
+ * iso-surface of the corner-averaged solid fraction (foam_smooth_walls.c). */
+int mdp_foam_smooth_walls(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t *o,
+                          mdp_foam_smooth_t *st, char *err);
+
 /* Parsing (foam_parse.c). */
 /* Last "Time =" value, the initial residuals of the last step's first p solve and of U along the
  * axis, and whether simpleFoam reported convergence. */
@@ -70,5 +86,8 @@ int mdp_foam_parse_log(const char *log, int axis, double *last_time, double *res
                        int *solver_converged);
 /* Read every postProcessing/flow/<start>/volFieldValue.dat; rows of (iter, int U xyz, int |U|). */
 int mdp_foam_read_flow(const char *dir, double **rows, int *n_rows, char *err);
+/* checkMesh log: "Total volume", the failed checks ("ok" when none) and whether one of them makes
+ * the mesh unusable (inverted or open cells). */
+int mdp_foam_parse_checkmesh(const char *log, double *volume, char *failed, size_t len, int *fatal);
 
 #endif

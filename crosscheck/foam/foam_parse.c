@@ -2,6 +2,7 @@
 #include "foam_case.h"
 
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,4 +80,33 @@ int mdp_foam_read_flow(const char *dir, double **rows, int *n_rows, char *err) {
   *n_rows = n;
   if (!n) snprintf(err, MDP_FOAM_ERR_LEN, "%.1500s: no rows of volume integrals", base);
   return n == 0;
+}
+
+int mdp_foam_parse_checkmesh(const char *log, double *volume, char *failed, size_t len,
+                             int *fatal) {
+  FILE *f = fopen(log, "r");
+  if (!f) return 1;
+  char line[1024];
+  *volume = NAN, *fatal = 0;
+  snprintf(failed, len, "ok");
+  int n_failed = 0;
+  while (fgets(line, sizeof line, f)) {
+    char *s = strstr(line, "Total volume = ");
+    if (s) *volume = atof(s + 15);
+    if (!(s = strstr(line, "***"))) continue;
+    /* a cell that is inverted, open or not closed makes the mesh unusable; quality warnings (high
+     * non-orthogonality, skewness) do not */
+    if (strstr(s, "negative") || strstr(s, "Error") || strstr(s, "open") ||
+        strstr(s, "ncorrectly oriented") || strstr(s, "not closed"))
+      *fatal = 1;
+    s[strcspn(s, "\r\n")] = 0;
+    for (char *c = s; *c; c++) /* the text goes into a JSON string */
+      if (*c == '"' || *c == '\\' || (unsigned char)*c < 32) *c = '\'';
+    size_t used = n_failed ? strlen(failed) : 0;
+    if (used + strlen(s) + 3 < len)
+      snprintf(failed + used, len - used, "%s%s", n_failed ? "; " : "", s + 3);
+    n_failed++;
+  }
+  fclose(f);
+  return 0;
 }

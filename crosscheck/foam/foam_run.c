@@ -145,6 +145,28 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
   if ((st = run_tool(dir, "subsetMesh poreCells -patch walls -overwrite", "log.subsetMesh",
                      o->verbose)))
     return tool_failed(dir, "subsetMesh", "log.subsetMesh", st, err);
+  if (o->smooth_walls) {
+    if (mdp_foam_smooth_walls(dir, img, o, &res->smooth, err)) return 1;
+    if ((st = run_tool(dir, "checkMesh -constant", "log.checkMesh", o->verbose)) < 0)
+      return tool_failed(dir, "checkMesh", "log.checkMesh", st, err);
+    char path[4200];
+    int fatal = 0;
+    snprintf(path, sizeof path, "%s/log.checkMesh", dir);
+    if (mdp_foam_parse_checkmesh(path, &res->smooth.mesh_volume, res->smooth.mesh_check,
+                                 sizeof res->smooth.mesh_check, &fatal) ||
+        fatal || !isfinite(res->smooth.mesh_volume)) {
+      snprintf(err, MDP_FOAM_ERR_LEN,
+               "--walls smooth: the moved mesh fails checkMesh (%s); see %.900s",
+               res->smooth.mesh_check, path);
+      return 1;
+    }
+    if (o->verbose)
+      fprintf(stderr,
+              "mdpore foam: smooth walls: %lld of %lld wall points moved (max %.3f voxel), %lld "
+              "held back; checkMesh: %s\n",
+              res->smooth.moved_points, res->smooth.wall_points, res->smooth.max_move,
+              res->smooth.limited_points, res->smooth.mesh_check);
+  }
   if (mdp_foam_write_fields(dir, o, err)) return 1;
   res->cells = (int)cells;
   const char *app = o->simple ? "simpleFoam" : "pimpleFoam";
