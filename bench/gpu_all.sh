@@ -2,10 +2,10 @@
 # Everything the GPU path is checked and measured with, in one call (the device machines are lent by
 # the half hour): CUDA tests, the two ceilings, the throughput table with its skin sweep, an ncu
 # profile of one step. usage: bench/gpu_all.sh BUILD_DIR [OUTDIR]   (logs in OUTDIR, default ./gpu-out)
-#   GPU_ALL_PARTS="tests ceilings sweep big ncu" picks parts (default: all of them).
+#   GPU_ALL_PARTS="tests ceilings sweep big ncu multi" picks parts (default: all of them).
 set -u
 B=$1; O=${2:-gpu-out}; mkdir -p "$O"
-parts=${GPU_ALL_PARTS:-"tests ceilings sweep big ncu"}
+parts=${GPU_ALL_PARTS:-"tests ceilings sweep big ncu multi"}
 has() { case " $parts " in *" $1 "*) return 0 ;; esac; return 1; }
 nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv | tee "$O/gpu.txt"
 if has tests; then
@@ -28,4 +28,15 @@ if has ncu && command -v ncu > /dev/null; then
       --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,sm__throughput.avg.pct_of_peak_sustained_elapsed,gpu__compute_memory_throughput.avg.pct_of_peak_sustained_elapsed,l1tex__throughput.avg.pct_of_peak_sustained_active,lts__throughput.avg.pct_of_peak_sustained_elapsed,sm__inst_executed_pipe_fma.avg.pct_of_peak_sustained_active,sm__inst_executed_pipe_alu.avg.pct_of_peak_sustained_active,sm__pipe_fma_cycles_active.avg.pct_of_peak_sustained_active,sm__sass_thread_inst_executed_op_ffma_pred_on.sum,sm__sass_thread_inst_executed_op_fadd_pred_on.sum,sm__sass_thread_inst_executed_op_fmul_pred_on.sum,sm__warps_active.avg.pct_of_peak_sustained_active,smsp__thread_inst_executed_per_inst_executed.ratio \
       --csv "$B/bin/gpu_bench" porous 33 30 20 cuda -1 > "$O/ncu.csv" 2> "$O/ncu.err"
   echo "ncu: $(wc -l < "$O/ncu.csv") lines in $O/ncu.csv"
+fi
+if has multi; then
+  # Weak scaling on every visible GPU (one per rank) with and without the overlap of interior passes
+  # and host exchanges; the one-GPU figures of the same sizes in the same run.
+  G=$(nvidia-smi -L | wc -l)
+  MPIRUN="mpiexec --allow-run-as-root --oversubscribe --bind-to none -n $G"
+  for c in "porous 72 50 20" "porous 33 100 20" "bulk 70 100 20"; do
+    "$B/bin/gpu_bench" $c cuda
+    $MPIRUN "$B/bin/gpu_bench" $c cuda
+    MDPORE_CUDA_OVERLAP=0 $MPIRUN -x MDPORE_CUDA_OVERLAP "$B/bin/gpu_bench" $c cuda
+  done 2>&1 | grep -v "backend cuda on" | tee "$O/multi.txt"
 fi

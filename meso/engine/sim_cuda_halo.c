@@ -3,8 +3,10 @@
  * cutoff of a face) come to the host, where the CPU path's own exchanges run on them: migration
  * (migrate.c), the 3-stage ghost build with periodic images (ghosts.c) and the density halo
  * (ghosts_sync_scalar). So the images, stages and messages are the CPU path's; the ghosts go back
- * to the device after the owned particles (docs/engine-cuda.md). Halo data is staged in host memory
- * (Open MPI 4.1 on the GPU machines is not CUDA-aware). */
+ * to the device after the owned particles (docs/engine-cuda.md). Halo data is staged through pinned
+ * host buffers: the ghost build itself runs on the host, so it needs the boundary set there even
+ * with a CUDA-aware MPI (Open MPI 4.1 on the GPU machines is not one). While the host exchanges,
+ * the GPU computes the interior particles (cuda_step.cu). */
 #include "sim_internal.h"
 
 #include "migrate.h"
@@ -16,6 +18,21 @@
 #ifdef MDPORE_HAVE_CUDA
 #include "backend/cuda/cuda_backend.h"
 
+#if defined(OPEN_MPI) && OPEN_MPI
+#include <mpi-ext.h> /* MPIX_Query_cuda_support */
+#endif
+
+/* Whether the MPI library says it is CUDA-aware: "yes", "no" or "unknown" (not Open MPI). */
+static const char *mpi_cuda_aware(void) {
+#if defined(MPIX_CUDA_AWARE_SUPPORT) && MPIX_CUDA_AWARE_SUPPORT
+  return MPIX_Query_cuda_support() ? "yes" : "no";
+#elif defined(MPIX_CUDA_AWARE_SUPPORT)
+  return "no";
+#else
+  return "unknown";
+#endif
+}
+
 static int ready(sim_t *sim) {
   if (sim->halo_ready) return 0;
   if (pstore_init(&sim->halo_b, 0, 0) || pstore_init(&sim->halo_m, 0, 0)) return -1;
@@ -24,6 +41,10 @@ static int ready(sim_t *sim) {
   for (int d = 0; d < 3; d++)
     if (sim->dc.dims[d] == 1) sim->halo_dc.nbr[d][0] = sim->halo_dc.nbr[d][1] = MPI_PROC_NULL;
   sim->halo_ready = 1;
+  if (sim->dc.rank == 0)
+    printf("mdpore: GPU halo staged through pinned host memory (MPI CUDA-aware: %s); interior "
+           "passes overlap the exchanges: %s\n",
+           mpi_cuda_aware(), cuda_sim_overlap(sim->gpu) ? "yes" : "no (MDPORE_CUDA_OVERLAP=0)");
   return 0;
 }
 
@@ -36,17 +57,20 @@ void sim_cuda_halo_free(sim_t *sim) {
   sim->halo_ready = 0;
 }
 
-/* Boundary set -> host, ghosts (CPU path's stages), ghosts -> device; densities with their halo.
- * Collective. 0 or -1. */
-static int ghosts_and_density(sim_t *sim) {
+/* Boundary set -> host, ghosts (CPU path's stages), ghosts -> device; densities with their halo;
+ * the interior forces are launched before the density halo. The interior passes run on the GPU
+ * while the host does the exchanges (cuda_step.cu). Collective. 0 or -1. */
+static int ghosts_and_density(sim_t *sim, int keep_forces) {
   cuda_sim_t *g = sim->gpu;
   particles_t *hb = &sim->halo_b;
-  int rc = pstore_reserve(hb, cuda_sim_count(g) + 1) || cuda_halo_boundary(g, hb);
+  int rc = pstore_reserve(hb, cuda_sim_count(g) + 1) || cuda_halo_boundary(g, hb) ||
+           cuda_halo_density_early(g);
   if (rc) hb->n_local = hb->n_ghost = 0;
   /* ghosts_build is collective: every rank enters it even after a local failure. */
   rc |= ghosts_build(&sim->ghosts, &sim->halo_dc, hb, sim->plan.rcut, sim->plan.ghost_v);
   rc = rc || cuda_halo_set_ghosts(g, hb) || cuda_halo_density(g);
-  if (!sim->plan.density) return rc ? -1 : 0;
+  if (!sim->plan.density)
+    return rc || cuda_halo_forces_early(g, sim->step, sim->want_virial, keep_forces) ? -1 : 0;
   const int nh = hb->n_local + hb->n_ghost;
   if (nh + 1 > sim->halo_rho_cap) {
     double *f = realloc(sim->halo_rho, (size_t)(nh + 1) * sizeof(double));
@@ -58,6 +82,7 @@ static int ghosts_and_density(sim_t *sim) {
     }
   }
   if (!rc) rc = cuda_halo_rho_out(g, sim->halo_rho);
+  if (!rc) rc = cuda_halo_forces_early(g, sim->step, sim->want_virial, keep_forces);
   rc |= ghosts_sync_scalar(&sim->ghosts, &sim->halo_dc, sim->halo_rho); /* collective */
   return rc || cuda_halo_rho_in(g, sim->halo_rho + hb->n_local) ? -1 : 0;
 }
@@ -68,7 +93,7 @@ int sim_cuda_halo_setup(sim_t *sim) {
   cuda_sim_t *g = sim->gpu;
   int rc =
       ready(sim) || cuda_sim_upload(g, &sim->p) || cuda_halo_resort(g) || cuda_halo_predict(g, 1);
-  rc |= ghosts_and_density(sim);
+  rc |= ghosts_and_density(sim, sim->forces_loaded);
   if (!rc) rc = cuda_halo_forces(g, sim->step, sim->want_virial, sim->forces_loaded, 0, &cp);
   sim->host_stale = 1;
   return sim_cuda_check(sim, rc, &cp, NULL);
@@ -89,7 +114,7 @@ int sim_cuda_halo_step(sim_t *sim) {
   migrate_particles(&sim->dc, m, &sim->sbuf, &sim->rbuf, &mr); /* collective */
   rc = rc || mr.out_of_memory || cuda_halo_add_owned(g, m) || cuda_halo_resort(g) ||
        cuda_halo_predict(g, 0);
-  rc |= ghosts_and_density(sim);
+  rc |= ghosts_and_density(sim, 0);
   if (!rc) rc = cuda_halo_forces(g, sim->step, sim->want_virial, 0, 1, &cp);
   sim->host_stale = 1;
   return sim_cuda_check(sim, rc, &cp, &mr);

@@ -73,7 +73,12 @@ int cuda_halo_resort(cuda_sim_t *g);
 int cuda_halo_predict(cuda_sim_t *g, int setup);
 int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb);
 int cuda_halo_set_ghosts(cuda_sim_t *g, const particles_t *hb);
+/* Overlap: launch the interior densities before ghosts_build, the interior forces before the
+ * density halo (no-ops when MDPORE_CUDA_OVERLAP=0); cuda_halo_density / cuda_halo_forces then do
+ * the boundary particles (or everything, without overlap). */
+int cuda_halo_density_early(cuda_sim_t *g);
 int cuda_halo_density(cuda_sim_t *g);
+int cuda_halo_forces_early(cuda_sim_t *g, long step, int want_virial, int keep_forces);
 int cuda_halo_rho_out(cuda_sim_t *g, double *field);
 int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho);
 int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces, int kick,
@@ -91,6 +96,8 @@ void cuda_sim_list_stats(const cuda_sim_t *g, long *builds, long *steps, double 
  * pz, sum m v_a v_b (6), pair virial (6). 0 or -1. */
 int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[17]);
 
+/* 1 when the halo steps overlap interior work with the host exchanges. */
+int cuda_sim_overlap(const cuda_sim_t *g);
 /* Bytes of device memory this state holds. */
 size_t cuda_sim_bytes(const cuda_sim_t *g);
 /* 1 when the pair math was built in double (MDPORE_DOUBLE), 0 for single precision. */

@@ -1,7 +1,7 @@
 /* Cell sort of the device particles: bin index per particle, stable radix sort of (bin, index),
  * gather of every field into bin order, and the first slot of each bin (cell_start). The sort is
  * stable, so an already sorted set keeps its order and the traversal order is deterministic. */
-#include "cuda_state.cuh"
+#include "cuda_neighbours.cuh"
 
 #include <cub/device/device_radix_sort.cuh>
 
@@ -122,10 +122,10 @@ __device__ __forceinline__ meso_real rel_to_bin(const struct dev_params &q, int 
 
 /* Packed positions and thermostat velocities; with pos0 (skin > 0) a particle that moved more than
  * skin / 2 since the lists were built raises *rebuild. */
-__global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
+__global__ void k_pack(const struct dev_params q, int k0, int n, struct dev_fields p,
                        const uint32_t *__restrict__ key, struct dev_pos *pos, struct dev_vel *vel,
                        int use_vpred, const struct dev_pos *__restrict__ pos0, int *rebuild) {
-  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  const int k = k0 + blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const int c = (int)key[k];
   const int b[3] = {c % q.nb[0], (c / q.nb[0]) % q.nb[1], c / (q.nb[0] * q.nb[1])};
@@ -137,7 +137,10 @@ __global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
   pos[k] = r;
   if (pos0) {
     const struct dev_pos o = pos0[k];
-    const meso_real dx = r.x - o.x, dy = r.y - o.y, dz = r.z - o.z;
+    /* Along an axis of fewer than 3 bins the packed value may jump by the box length when the
+     * particle crosses the periodic face (the traversal takes the nearest image there anyway). */
+    const meso_real dx = dev_nearest(q, 0, r.x - o.x), dy = dev_nearest(q, 1, r.y - o.y),
+                    dz = dev_nearest(q, 2, r.z - o.z);
     if (!(dx * dx + dy * dy + dz * dz <= q.half_skin2)) *rebuild = 1; /* NaN rebuilds too */
   }
   if (vel) {
@@ -151,24 +154,27 @@ __global__ void k_pack(const struct dev_params q, int n, struct dev_fields p,
   }
 }
 
-static void pack(struct cuda_sim *g, const struct dev_pos *pos0) {
-  const int n = g->n + g->n_ghost;
-  if (n == 0) return;
-  k_pack<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(
-      g->prm, n, g->a, g->key_sorted, g->pos, g->vel, g->prm.use_vpred, pos0, g->rebuild);
+static void pack(struct cuda_sim *g, int i0, int i1, const struct dev_pos *pos0) {
+  if (i1 <= i0) return;
+  k_pack<<<(i1 - i0 + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(
+      g->prm, i0, i1, g->a, g->key_sorted, g->pos, g->vel, g->prm.use_vpred, pos0, g->rebuild);
 }
 
 void cuda_pack(struct cuda_sim *g) {
-  pack(g, NULL);
+  pack(g, 0, g->n + g->n_ghost, NULL);
+}
+
+void cuda_pack_range(struct cuda_sim *g, int i0, int i1) {
+  pack(g, i0, i1, NULL);
 }
 
 int cuda_pack_check(struct cuda_sim *g) {
   if (g->prm.skin <= 0.0 || !g->pos0 || !g->lists_valid) {
-    pack(g, NULL);
+    pack(g, 0, g->n, NULL);
     return 1;
   }
   if (cuda_check(cudaMemsetAsync(g->rebuild, 0, sizeof(int)), "pack")) return -1;
-  pack(g, g->pos0);
+  pack(g, 0, g->n, g->pos0);
   int h = 1;
   if (cuda_check(cudaMemcpy(&h, g->rebuild, sizeof(int), cudaMemcpyDeviceToHost), "pack"))
     return -1;

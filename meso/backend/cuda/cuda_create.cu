@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static void fill_coef(struct dev_coef *d, const pair_coef_t *c) {
   d->A = (meso_real)c->A;
@@ -116,6 +117,10 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   }
   q->rev_axis = plan->named[EFFECT_BODY_FORCE] ? s->body_force_reverse_axis : -1;
   q->centre = q->rev_axis >= 0 ? 0.5 * (s->box_lo[q->rev_axis] + s->box_hi[q->rev_axis]) : 0.0;
+  /* Several ranks overlap interior passes with the host exchanges unless MDPORE_CUDA_OVERLAP=0
+   * (kept for measuring what the overlap gains: bench/RESULTS.md). */
+  const char *ov = getenv("MDPORE_CUDA_OVERLAP");
+  g->overlap = !(ov && !strcmp(ov, "0"));
   if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, err, len)) {
     free(g);
     return NULL;

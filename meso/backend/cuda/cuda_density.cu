@@ -16,9 +16,10 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     k_density(const struct dev_params q, int n, int cap, int stride, const int *__restrict__ start,
               const int *__restrict__ gstart, const struct dev_pos *__restrict__ pos,
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
-              uint32_t *__restrict__ nbr, int *__restrict__ count, int *most) {
+              uint32_t *__restrict__ nbr, int *__restrict__ count, int *most,
+              const uint32_t *__restrict__ part, uint32_t part_flag) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n) return;
+  if (i >= n || (part && part[i] != part_flag)) return;
   const struct dev_pos pi = pos[i];
   const struct dev_coef *row = q.coef[pi.species];
   meso_real sum = MESO_R(0.0);
@@ -42,11 +43,49 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   if (m > stride) atomicMax(most, m);
 }
 
-template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g) {
+template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g, int part) {
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   k_density<KERNEL, DENSITY><<<blocks, CUDA_BLOCK>>>(
-      g->prm, g->n, g->cap, g->nbr_stride, g->cell_start, g->prm.multi ? g->gcell_start : NULL,
-      g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most);
+      g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
+      g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
+      g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,
+      (uint32_t)(part > 0 ? 1 : 0));
+}
+
+static void launch_part(struct cuda_sim *g, int part) {
+  if (!g->prm.density)
+    launch<MESO_KERNEL_WARREN, 0>(g, part);
+  else if (g->prm.kernel == MESO_KERNEL_LUCY)
+    launch<MESO_KERNEL_LUCY, 1>(g, part);
+  else
+    launch<MESO_KERNEL_WARREN, 1>(g, part);
+}
+
+/* Several ranks, overlap (cuda_halo.cu): the interior particles (boundary flag 1 in key) need no
+ * ghost, so their densities and lists are computed while the host builds the ghosts. No list
+ * overflow check here: cuda_density_pass_rest checks both parts. */
+int cuda_density_pass_interior(struct cuda_sim *g) {
+  if (!g->prm.terms || g->n == 0) return 0;
+  if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
+  if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
+  launch_part(g, 1);
+  return 0;
+}
+
+/* The boundary part after the ghosts arrived; on a list overflow in either part, room grows and
+ * the whole pass runs again. */
+int cuda_density_pass_rest(struct cuda_sim *g) {
+  if (!g->prm.terms || g->n == 0) return 0;
+  launch_part(g, 0);
+  int most = 0;
+  if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
+                 "density pass"))
+    return -1;
+  if (most == 0) {
+    g->n_builds++;
+    return 0;
+  }
+  return cuda_nbr_reserve(g, most + most / 8 + 8) || cuda_density_pass(g) ? -1 : 0;
 }
 
 /* Densities over the lists of the last build: the same kernel sums as the bin scan, partners in
@@ -89,15 +128,15 @@ void cuda_density_from_lists(struct cuda_sim *g) {
         <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho);
 }
 
-__global__ void k_rho_to_vel(int n, const meso_real *__restrict__ rho, struct dev_vel *vel) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+__global__ void k_rho_to_vel(int i0, int n, const meso_real *__restrict__ rho,
+                             struct dev_vel *vel) {
+  const int i = i0 + blockIdx.x * blockDim.x + threadIdx.x;
   if (i < n) vel[i].pad = rho[i];
 }
 
-void cuda_rho_to_vel(struct cuda_sim *g) {
-  const int n = g->n + g->n_ghost;
-  if (!g->prm.density || !g->vel || n == 0) return;
-  k_rho_to_vel<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(n, g->rho, g->vel);
+void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1) {
+  if (!g->prm.density || !g->vel || i1 <= i0) return;
+  k_rho_to_vel<<<(i1 - i0 + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(i0, i1, g->rho, g->vel);
 }
 
 /* Densities and lists; a list longer than the room it had grows the room and runs the pass again
@@ -107,12 +146,7 @@ int cuda_density_pass(struct cuda_sim *g) {
   if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
   for (;;) {
     if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
-    if (!g->prm.density)
-      launch<MESO_KERNEL_WARREN, 0>(g);
-    else if (g->prm.kernel == MESO_KERNEL_LUCY)
-      launch<MESO_KERNEL_LUCY, 1>(g);
-    else
-      launch<MESO_KERNEL_WARREN, 1>(g);
+    launch_part(g, -1);
     int most = 0;
     if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
                    "density pass"))

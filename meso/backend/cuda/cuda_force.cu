@@ -24,15 +24,26 @@ struct force_args {
   double *fx, *fy, *fz, *virial, *block_virial;
   uint64_t step;
   int n, write_f;
+  /* Several ranks with overlap: only slots whose boundary flag (cuda_halo.cu) equals part_flag;
+   * NULL: every slot. accumulate: add to the block virial rows (the second part). */
+  const uint32_t *part;
+  uint32_t part_flag;
+  int accumulate;
 };
 
 /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
-__device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *block_virial) {
+__device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *block_virial,
+                                                  int accumulate) {
   typedef cub::BlockReduce<double, CUDA_BLOCK> reduce_t;
   __shared__ typename reduce_t::TempStorage tmp;
   for (int k = 0; k < 6; k++) {
     const double s = reduce_t(tmp).Sum((double)w[k]);
-    if (threadIdx.x == 0) block_virial[6 * blockIdx.x + k] = s;
+    if (threadIdx.x == 0) {
+      if (accumulate)
+        block_virial[6 * blockIdx.x + k] += s;
+      else
+        block_virial[6 * blockIdx.x + k] = s;
+    }
     __syncthreads();
   }
 }
@@ -45,7 +56,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   meso_real w[6] = {0, 0, 0, 0, 0, 0};
-  if (i < a.n) {
+  if (i < a.n && (!a.part || a.part[i] == a.part_flag)) {
     const struct dev_pos pi = a.pos[i];
     const struct dev_coef *row = q.coef[pi.species];
     struct dev_vel vi = {0, 0, 0, 0};
@@ -102,7 +113,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     if (VIRIAL)
       for (int k = 0; k < 6; k++) a.virial[6 * (size_t)i + k] = w[k];
   }
-  if (PV) block_virial_sums(w, a.block_virial);
+  if (PV) block_virial_sums(w, a.block_virial, a.accumulate);
 }
 
 template <int T>
@@ -116,17 +127,34 @@ static void launch(const struct dev_params &q, const struct force_args &a, int b
     k_force<T, 0, 0><<<blocks, CUDA_BLOCK>>>(q, a);
 }
 
-void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
+/* part < 0: every owned particle; 1 / 0: only the interior / boundary particles (several ranks,
+ * overlap: cuda_halo.cu), the boundary part second. */
+void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
+                          int part) {
   const int n = g->n, blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   g->n_force_blocks = n > 0 ? blocks : 0;
   const int pv = g->want_pressure || want_virial;
   g->pressure_valid = pv;
   g->last_force_step = step;
   if (n == 0) return;
-  if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g);
-  struct force_args a = {g->nbr,    g->nbr_count,    g->cap,    g->pos,    g->vel,
-                         g->a.id,   g->rho,          g->a.f[0], g->a.f[1], g->a.f[2],
-                         g->virial, g->block_virial, step,      n,         !keep_forces};
+  struct force_args a = {g->nbr,
+                         g->nbr_count,
+                         g->cap,
+                         g->pos,
+                         g->vel,
+                         g->a.id,
+                         g->rho,
+                         g->a.f[0],
+                         g->a.f[1],
+                         g->a.f[2],
+                         g->virial,
+                         g->block_virial,
+                         step,
+                         n,
+                         !keep_forces,
+                         part >= 0 ? g->key : NULL,
+                         (uint32_t)(part > 0 ? 1 : 0),
+                         part == 0};
   const int virial = want_virial && g->virial != NULL;
   switch (g->prm.terms & 7) {
   case 0:
@@ -154,4 +182,9 @@ void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int kee
     launch<7>(g->prm, a, blocks, virial, pv);
     break;
   }
+}
+
+void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
+  if (g->n > 0 && (g->prm.terms & PAIR_TERM_THERMOSTAT)) cuda_rho_to_vel(g, 0, g->n + g->n_ghost);
+  cuda_force_pass_part(g, step, want_virial, keep_forces, -1);
 }

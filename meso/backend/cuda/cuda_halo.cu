@@ -1,12 +1,13 @@
 /* Several ranks, one GPU each: the device side of migration, ghosts and the density halo. Only the
- * particles that cross or border a face travel through the host (plain host copies; Open MPI 4.1 on
- * the GPU machines is not CUDA-aware); the host side reuses the CPU path's exchanges
+ * particles that cross or border a face travel through the host (through a pinned buffer, all
+ * copies of a set queued before one wait); the host side reuses the CPU path's exchanges
  * (migrate_particles, ghosts_build, ghosts_sync_scalar) on those few particles, so the images, the
  * stages and the messages are the CPU path's. Owned particles come first in bin order, then the
  * ghosts in bin order (their own bin starts, gcell_start). */
 #include "cuda_state.cuh"
 
 #include <stdlib.h>
+#include <string.h>
 
 /* (hb must have room for all owned particles: the caller reserves it.) */
 /* Owned particles within the ghost cutoff of a face between ranks: the only ones ghosts_build can
@@ -59,21 +60,83 @@ static int down(void *dst, const void *src, size_t bytes) {
   return cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "halo download");
 }
 
-static int up(void *dst, const void *src, size_t bytes) {
-  return cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice), "halo upload");
+/* The pinned host buffer every halo transfer goes through (DMA at full speed, several copies in
+ * flight, one synchronisation per transfer set). Grows as needed. */
+static char *pinned(struct cuda_sim *g, size_t bytes) {
+  if (bytes <= g->pinned_bytes) return g->pinned;
+  if (g->pinned) cudaFreeHost(g->pinned);
+  g->pinned = NULL;
+  g->pinned_bytes = 0;
+  const size_t want = bytes + bytes / 4 + 4096;
+  if (cuda_check(cudaHostAlloc((void **)&g->pinned, want, cudaHostAllocDefault), "pinned buffer"))
+    return NULL;
+  g->pinned_bytes = want;
+  return g->pinned;
+}
+
+/* A set of device <-> host copies staged through the pinned buffer (16-byte aligned pieces). */
+struct stage {
+  int k;
+  void *host[16];
+  void *dev[16];
+  size_t bytes[16];
+};
+
+static void stage_add(struct stage *st, void *host, void *dev, size_t bytes) {
+  st->host[st->k] = host;
+  st->dev[st->k] = dev;
+  st->bytes[st->k] = bytes;
+  st->k++;
+}
+
+static size_t padded(size_t b) {
+  return (b + 15) & ~(size_t)15;
+}
+
+/* Device -> pinned (all copies queued, one wait) -> the host arrays. */
+static int stage_down(struct cuda_sim *g, const struct stage *st) {
+  size_t total = 0;
+  for (int i = 0; i < st->k; i++) total += padded(st->bytes[i]);
+  char *buf = pinned(g, total);
+  if (!buf) return -1;
+  int rc = 0;
+  for (int i = 0, off = 0; i < st->k; off += (int)padded(st->bytes[i]), i++)
+    rc |= cuda_check(cudaMemcpyAsync(buf + off, st->dev[i], st->bytes[i], cudaMemcpyDeviceToHost),
+                     "halo download");
+  rc |= cuda_check(cudaStreamSynchronize(0), "halo download");
+  for (int i = 0, off = 0; i < st->k && !rc; off += (int)padded(st->bytes[i]), i++)
+    memcpy(st->host[i], buf + off, st->bytes[i]);
+  return rc ? -1 : 0;
+}
+
+/* The host arrays -> pinned -> device (all copies queued, one wait before the buffer is reused). */
+static int stage_up(struct cuda_sim *g, const struct stage *st) {
+  size_t total = 0;
+  for (int i = 0; i < st->k; i++) total += padded(st->bytes[i]);
+  char *buf = pinned(g, total);
+  if (!buf) return -1;
+  int rc = cuda_check(cudaStreamSynchronize(0), "halo upload"); /* earlier copies are done */
+  for (int i = 0, off = 0; i < st->k; off += (int)padded(st->bytes[i]), i++) {
+    memcpy(buf + off, st->host[i], st->bytes[i]);
+    rc |= cuda_check(cudaMemcpyAsync(st->dev[i], buf + off, st->bytes[i], cudaMemcpyHostToDevice),
+                     "halo upload");
+  }
+  rc |= cuda_check(cudaStreamSynchronize(0), "halo upload");
+  return rc ? -1 : 0;
 }
 
 /* Copy slots [off, off + n) of f into p's slots [p0, p0 + n) (id, species, x, v, f). */
-static int fields_down(const struct dev_fields *f, int off, int n, particles_t *p, int p0,
-                       int with_f) {
-  int rc = down(p->id + p0, f->id + off, (size_t)n * 8) |
-           down(p->species + p0, f->species + off, (size_t)n * 4);
+static int fields_down(struct cuda_sim *g, const struct dev_fields *f, int off, int n,
+                       particles_t *p, int p0, int with_f) {
+  struct stage st = {0, {0}, {0}, {0}};
+  stage_add(&st, p->id + p0, f->id + off, (size_t)n * 8);
+  stage_add(&st, p->species + p0, f->species + off, (size_t)n * 4);
   for (int d = 0; d < 3; d++) {
-    rc |= down(p->x[d] + p0, f->x[d] + off, (size_t)n * 8) |
-          down(p->v[d] + p0, f->v[d] + off, (size_t)n * 8);
-    if (with_f) rc |= down(p->f[d] + p0, f->f[d] + off, (size_t)n * 8);
+    stage_add(&st, p->x[d] + p0, f->x[d] + off, (size_t)n * 8);
+    stage_add(&st, p->v[d] + p0, f->v[d] + off, (size_t)n * 8);
+    if (with_f) stage_add(&st, p->f[d] + p0, f->f[d] + off, (size_t)n * 8);
   }
-  return rc ? -1 : 0;
+  return stage_down(g, &st);
 }
 
 extern "C" int cuda_halo_sort_owned(cuda_sim_t *g, int *n_stay) {
@@ -88,7 +151,7 @@ extern "C" int cuda_halo_take_leavers(cuda_sim_t *g, int n_stay, particles_t *ou
   const int m = g->n - n_stay;
   out->n_local = m;
   out->n_ghost = 0;
-  if (m > 0 && fields_down(&g->a, n_stay, m, out, 0, 1)) return -1;
+  if (m > 0 && fields_down(g, &g->a, n_stay, m, out, 0, 1)) return -1;
   g->n = n_stay;
   return 0;
 }
@@ -100,11 +163,15 @@ extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
             g->cap);
     return -1;
   }
-  int rc =
-      up(g->a.id + n0, in->id, (size_t)m * 8) | up(g->a.species + n0, in->species, (size_t)m * 4);
-  for (int d = 0; d < 3; d++)
-    rc |= up(g->a.x[d] + n0, in->x[d], (size_t)m * 8) |
-          up(g->a.v[d] + n0, in->v[d], (size_t)m * 8) | up(g->a.f[d] + n0, in->f[d], (size_t)m * 8);
+  struct stage st = {0, {0}, {0}, {0}};
+  stage_add(&st, in->id, g->a.id + n0, (size_t)m * 8);
+  stage_add(&st, in->species, g->a.species + n0, (size_t)m * 4);
+  for (int d = 0; d < 3; d++) {
+    stage_add(&st, in->x[d], g->a.x[d] + n0, (size_t)m * 8);
+    stage_add(&st, in->v[d], g->a.v[d] + n0, (size_t)m * 8);
+    stage_add(&st, in->f[d], g->a.f[d] + n0, (size_t)m * 8);
+  }
+  const int rc = m > 0 ? stage_up(g, &st) : 0;
   g->n = n0 + m;
   return rc ? -1 : 0;
 }
@@ -132,7 +199,7 @@ extern "C" int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb) {
   g->n_boundary = nb;
   if (nb == 0) return 0;
   k_boundary_gather<<<blocks_of(nb), CUDA_BLOCK>>>(nb, g->perm, g->a, g->b, g->prm.use_vpred);
-  if (fields_down(&g->b, 0, nb, hb, 0, 0)) return -1;
+  if (fields_down(g, &g->b, 0, nb, hb, 0, 0)) return -1;
   hb->n_local = nb;
   return 0;
 }
@@ -146,11 +213,14 @@ extern "C" int cuda_halo_set_ghosts(cuda_sim_t *g, const particles_t *hb) {
     return -1;
   }
   double *const *vel = g->prm.use_vpred ? g->b.vpred : g->b.v;
-  int rc = up(g->b.id + n0, hb->id + h0, (size_t)ng * 8) |
-           up(g->b.species + n0, hb->species + h0, (size_t)ng * 4);
-  for (int d = 0; d < 3; d++)
-    rc |= up(g->b.x[d] + n0, hb->x[d] + h0, (size_t)ng * 8) |
-          up(vel[d] + n0, hb->v[d] + h0, (size_t)ng * 8);
+  struct stage st = {0, {0}, {0}, {0}};
+  stage_add(&st, hb->id + h0, g->b.id + n0, (size_t)ng * 8);
+  stage_add(&st, hb->species + h0, g->b.species + n0, (size_t)ng * 4);
+  for (int d = 0; d < 3; d++) {
+    stage_add(&st, hb->x[d] + h0, g->b.x[d] + n0, (size_t)ng * 8);
+    stage_add(&st, hb->v[d] + h0, vel[d] + n0, (size_t)ng * 8);
+  }
+  const int rc = ng > 0 ? stage_up(g, &st) : 0;
   g->n_ghost = ng;
   return rc || cuda_sort_ghosts(g) ? -1 : 0;
 }
@@ -159,23 +229,24 @@ extern "C" int cuda_halo_rho_out(cuda_sim_t *g, double *field) {
   const int nb = g->n_boundary;
   if (!g->prm.density || nb == 0) return 0;
   k_rho_gather<<<blocks_of(nb), CUDA_BLOCK>>>(nb, g->perm, g->rho, g->rho_stage);
-  meso_real *tmp = (meso_real *)malloc((size_t)nb * sizeof(meso_real));
-  if (!tmp) return -1;
-  const int rc = down(tmp, g->rho_stage, (size_t)nb * sizeof(meso_real));
+  meso_real *tmp = (meso_real *)pinned(g, (size_t)nb * sizeof(meso_real));
+  if (!tmp || down(tmp, g->rho_stage, (size_t)nb * sizeof(meso_real))) return -1;
   for (int k = 0; k < nb; k++) field[k] = (double)tmp[k];
-  free(tmp);
-  return rc;
+  return 0;
 }
 
 extern "C" int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho) {
   const int ng = g->n_ghost;
   if (!g->prm.density || ng == 0) return 0;
-  meso_real *tmp = (meso_real *)malloc((size_t)ng * sizeof(meso_real));
+  /* The interior force kernel may still run: wait for it before the buffer is rewritten. */
+  if (cuda_check(cudaStreamSynchronize(0), "rho halo")) return -1;
+  meso_real *tmp = (meso_real *)pinned(g, (size_t)ng * sizeof(meso_real));
   if (!tmp) return -1;
   for (int k = 0; k < ng; k++) tmp[k] = (meso_real)ghost_rho[k];
-  const int rc = up(g->rho_stage, tmp, (size_t)ng * sizeof(meso_real));
-  free(tmp);
-  if (rc) return -1;
+  if (cuda_check(
+          cudaMemcpy(g->rho_stage, tmp, (size_t)ng * sizeof(meso_real), cudaMemcpyHostToDevice),
+          "rho halo"))
+    return -1;
   k_rho_scatter<<<blocks_of(ng), CUDA_BLOCK>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
   return cuda_check(cudaGetLastError(), "rho halo");
 }

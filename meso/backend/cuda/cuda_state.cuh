@@ -13,9 +13,11 @@
 #include <stdint.h>
 
 #define CUDA_BLOCK 128
-/* Verlet skin of the lists on one GPU when --skin is not given (rc units; bench/RESULTS.md has the
- * time-vs-skin curve this was chosen from). */
-#define CUDA_DEFAULT_SKIN 0.3
+/* Verlet skin of the lists on one GPU when --skin is not given (rc units). bench/RESULTS.md has the
+ * time-vs-skin curve this was chosen from: at dt = 0.01 the fastest of millions of particles moves
+ * ~0.06 rc per step, so a list outlives only 2-3 steps, and the longer lists cost the pair passes
+ * more than the saved builds; 0 (lists rebuilt every step) is the fastest. */
+#define CUDA_DEFAULT_SKIN 0.0
 #define NBR_SLOT_BITS 27 /* slots < 2^27 particles per GPU; 5 bits for the 27 bin offsets */
 
 /* Constants of one species pair in the pair math's precision (plan.h pair_coef_t). */
@@ -139,6 +141,11 @@ struct cuda_sim {
   int want_pressure;  /* the next force passes fill block_virial (a thermo sample follows) */
   int pressure_valid; /* block_virial belongs to the last force pass */
   uint64_t last_force_step;
+  int overlap;  /* several ranks: interior passes run while the host exchanges (MDPORE_CUDA_OVERLAP)
+                 */
+  char *pinned; /* pinned host staging buffer of the halo transfers (cuda_halo.cu) */
+  size_t pinned_bytes;
+  int split_passes; /* this step's passes were split in two parts (key holds the boundary flags) */
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;
@@ -159,6 +166,7 @@ int cuda_sort_ghosts(struct cuda_sim *g);
 /* Pack positions (bin-relative) and thermostat velocities for the pair passes (after the
  * prediction). */
 void cuda_pack(struct cuda_sim *g);
+void cuda_pack_range(struct cuda_sim *g, int i0, int i1);
 /* Pack and, with a skin, check the displacement since the last build: 1 when the lists must be
  * rebuilt (always 1 without a skin), 0 when they still hold, -1 on a CUDA error. */
 int cuda_pack_check(struct cuda_sim *g);
@@ -167,8 +175,14 @@ int cuda_pack_check(struct cuda_sim *g);
 int cuda_density_pass(struct cuda_sim *g);
 /* Densities over the lists of the last build (skin > 0, lists still valid). */
 void cuda_density_from_lists(struct cuda_sim *g);
-/* Copy rho into the thermostat velocity's spare lane (vel[i].pad) for the force pass. */
-void cuda_rho_to_vel(struct cuda_sim *g);
+/* Copy rho of slots [i0, i1) into the thermostat velocity's spare lane (vel.pad) for the force
+ * pass. */
+void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1);
+/* Several ranks with overlap: interior part first (no ghosts needed), then the boundary part. */
+int cuda_density_pass_interior(struct cuda_sim *g);
+int cuda_density_pass_rest(struct cuda_sim *g);
+void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
+                          int part);
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
 
 /* cuda_integrate.cu */

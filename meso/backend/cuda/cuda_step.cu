@@ -68,15 +68,47 @@ extern "C" int cuda_halo_predict(cuda_sim_t *g, int setup) {
   return cuda_check(cudaGetLastError(), "prediction");
 }
 
+/* Overlap (several ranks): after cuda_halo_boundary the key array flags each owned slot, 0 for
+ * the boundary set and 1 for the interior, whose partners are all owned. The interior halves of the
+ * density and force passes are launched before the host exchanges (kernel launches return at once,
+ * so the GPU computes while the host builds ghosts or syncs densities); the boundary halves follow
+ * when the ghosts or their densities are on the device. Each slot is computed once, by the same
+ * code, so the results are those of the one-part passes. */
+extern "C" int cuda_halo_density_early(cuda_sim_t *g) {
+  g->split_passes = g->overlap && g->n > 0;
+  if (!g->split_passes) return 0;
+  cuda_pack_range(g, 0, g->n);
+  if (cuda_density_pass_interior(g)) return -1;
+  return cuda_check(cudaGetLastError(), "interior densities");
+}
+
 extern "C" int cuda_halo_density(cuda_sim_t *g) {
-  cuda_pack(g);
-  return cuda_density_pass(g);
+  if (!g->split_passes) {
+    cuda_pack(g);
+    return cuda_density_pass(g);
+  }
+  cuda_pack_range(g, g->n, g->n + g->n_ghost);
+  return cuda_density_pass_rest(g);
+}
+
+extern "C" int cuda_halo_forces_early(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
+  if (!g->split_passes) return 0;
+  if (cuda_set_virial(g, want_virial)) return -1;
+  if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g, 0, g->n);
+  cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 1);
+  return cuda_check(cudaGetLastError(), "interior forces");
 }
 
 extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces,
                                 int kick, cuda_problem_t *pr) {
   if (cuda_set_virial(g, want_virial)) return -1;
-  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+  if (g->split_passes) {
+    if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g, g->n, g->n + g->n_ghost);
+    cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 0);
+  } else {
+    cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+  }
+  g->split_passes = 0;
   cuda_finish_forces(g, !keep_forces, kick);
   return finish(g, pr);
 }

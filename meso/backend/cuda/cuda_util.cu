@@ -149,11 +149,16 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->rho_stage,    (void **)&g->pos0,
                    (void **)&g->rebuild};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
+  if (g->pinned) cudaFreeHost(g->pinned);
   free(g);
 }
 
 extern "C" int cuda_sim_count(const cuda_sim_t *g) {
   return g->n;
+}
+
+extern "C" int cuda_sim_overlap(const cuda_sim_t *g) {
+  return g->overlap && g->prm.multi;
 }
 
 extern "C" size_t cuda_sim_bytes(const cuda_sim_t *g) {
