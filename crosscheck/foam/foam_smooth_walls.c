@@ -189,8 +189,9 @@ static void build_fields(lattice_t *L) {
       }
 }
 
-/* Tag mesh points, project wall points, blend into the band, limit to valid cells. */
-static void displace(lattice_t *L, mdp_foam_smooth_t *st) {
+/* Tag mesh points, project wall points, blend into the band, limit to valid cells. Returns 1 when
+ * out of memory. */
+static int displace(lattice_t *L, mdp_foam_smooth_t *st) {
   const long long *N = L->N;
   const int R = L->R;
   for (long long K = 0; K <= N[2]; K++)
@@ -272,7 +273,12 @@ static void displace(lattice_t *L, mdp_foam_smooth_t *st) {
   const double tet_min = 0.05;
   const size_t np = (size_t)(N[0] + 1) * (N[1] + 1) * (N[2] + 1);
   unsigned char *halve = calloc(np, 1), *held = calloc(np / 8 + 1, 1);
-  for (int pass = 0; pass < 12 && halve && held; pass++) {
+  if (!halve || !held) {
+    free(halve);
+    free(held);
+    return 1;
+  }
+  for (int pass = 0; pass < 12; pass++) {
     long long bad = 0;
     for (long long c = 0; c < cells; c++) {
       const long long I = c % N[0], J = (c / N[0]) % N[1], K = c / (N[0] * N[1]);
@@ -294,6 +300,7 @@ static void displace(lattice_t *L, mdp_foam_smooth_t *st) {
   }
   free(halve);
   free(held);
+  return 0;
 }
 
 /* Read the points file, move each point by the displacement of its lattice site, write it back. */
@@ -371,13 +378,11 @@ int mdp_foam_smooth_walls(const char *dir, const mdp_image_t *img, const mdp_foa
   L.D = calloc(points, sizeof *L.D);
   L.tag = calloc(points, 1);
   int rc = 1;
-  if (!L.S || !L.G || !L.D || !L.tag) {
+  if (L.S && L.G && L.D && L.tag) build_fields(&L);
+  if (!L.S || !L.G || !L.D || !L.tag || displace(&L, st))
     snprintf(err, MDP_FOAM_ERR_LEN, "smooth walls: out of memory for %zu mesh points", points);
-  } else {
-    build_fields(&L);
-    displace(&L, st);
+  else
     rc = rewrite_points(dir, &L, err);
-  }
   free(L.S);
   free(L.G);
   free(L.D);
