@@ -31,7 +31,7 @@ __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict
 
 /* dst[k] = src[perm[k]] for every field. */
 __global__ void k_gather(int n, const int *__restrict__ perm, struct dev_fields src,
-                         struct dev_fields dst, int with_vpred) {
+                         struct dev_fields dst, int with_vpred, int with_f) {
   const int k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const int i = perm[k];
@@ -41,7 +41,7 @@ __global__ void k_gather(int n, const int *__restrict__ perm, struct dev_fields 
   for (int d = 0; d < 3; d++) {
     dst.x[d][k] = src.x[d][i];
     dst.v[d][k] = src.v[d][i];
-    dst.f[d][k] = src.f[d][i];
+    if (with_f) dst.f[d][k] = src.f[d][i];
     if (with_vpred) dst.vpred[d][k] = src.vpred[d][i];
   }
 }
@@ -71,7 +71,7 @@ static struct dev_fields shifted(struct dev_fields f, int off) {
 
 /* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start. */
 static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct dev_fields src,
-                      struct dev_fields dst, int *start) {
+                      struct dev_fields dst, int *start, int with_f) {
   const struct dev_params *q = &g->prm;
   if (n == 0) return cuda_check(cudaMemset(start, 0, (q->ncell + 1) * sizeof(int)), "sort");
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
@@ -86,14 +86,14 @@ static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct d
                                                  n, 0, end_bit),
                  "cell sort"))
     return -1;
-  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off), q->use_vpred);
+  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off), q->use_vpred, with_f);
   k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted + off, start);
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
 
-int cuda_sort_cells(struct cuda_sim *g) {
+int cuda_sort_cells(struct cuda_sim *g, int with_f) {
   g->lists_valid = 0;
-  if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start)) return -1;
+  if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start, with_f)) return -1;
   struct dev_fields t = g->a;
   g->a = g->b;
   g->b = t;
@@ -102,7 +102,7 @@ int cuda_sort_cells(struct cuda_sim *g) {
 
 /* Ghosts uploaded into b's slots [n, n + n_ghost) go into a's, in bin order (multi). */
 int cuda_sort_ghosts(struct cuda_sim *g) {
-  return sort_range(g, g->n, g->n_ghost, 0, g->b, g->a, g->gcell_start);
+  return sort_range(g, g->n, g->n_ghost, 0, g->b, g->a, g->gcell_start, 0); /* ghosts: no f */
 }
 
 /* Position relative to the lower corner of the bin the particle was sorted into. With a skin the

@@ -17,7 +17,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
               const int *__restrict__ gstart, const struct dev_pos *__restrict__ pos,
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
               uint32_t *__restrict__ nbr, int *__restrict__ count, int *most,
-              const uint32_t *__restrict__ part, uint32_t part_flag) {
+              const uint32_t *__restrict__ part, uint32_t part_flag, struct dev_vel *vel) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n || (part && part[i] != part_flag)) return;
   const struct dev_pos pi = pos[i];
@@ -29,7 +29,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= q.list_cut2 || t == i) return; /* most candidates */
-        if (m < stride) nbr[(size_t)m * cap + i] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
+        if (m < stride)
+          nbr[nbr_index(i, m, cap, stride)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
         m++;
         if (!DENSITY || r2 >= q.rd2_max) return;
         const struct dev_coef &c = row[pj.species];
@@ -39,8 +40,15 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
                                           : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
       });
   if (DENSITY) rho[i] = sum;
+  if (DENSITY && vel) vel[i].pad = sum; /* one rank: the force pass reads it there */
   count[i] = m;
   if (m > stride) atomicMax(most, m);
+}
+
+/* With one rank and the thermostat the density passes also store rho in vel.pad (several ranks
+ * copy it there once the ghost densities have arrived: cuda_rho_to_vel). */
+static struct dev_vel *rho_vel(struct cuda_sim *g) {
+  return g->prm.multi || !(g->prm.terms & PAIR_TERM_THERMOSTAT) ? NULL : g->vel;
 }
 
 template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g, int part) {
@@ -49,7 +57,7 @@ template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g, int pa
       g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
       g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,
-      (uint32_t)(part > 0 ? 1 : 0));
+      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g));
 }
 
 static void launch_part(struct cuda_sim *g, int part) {
@@ -92,9 +100,10 @@ int cuda_density_pass_rest(struct cuda_sim *g) {
  * list order (= the traversal order of the build). */
 template <int KERNEL>
 __global__ void __launch_bounds__(CUDA_BLOCK)
-    k_density_list(const struct dev_params q, int n, int cap,
+    k_density_list(const struct dev_params q, int n, int cap, int stride,
                    const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ nbr,
-                   const int *__restrict__ count, meso_real *__restrict__ rho) {
+                   const int *__restrict__ count, meso_real *__restrict__ rho,
+                   struct dev_vel *vel) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const struct dev_pos pi = pos[i];
@@ -102,7 +111,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   meso_real sum = MESO_R(0.0);
   const int m = count[i];
   for (int k = 0; k < m; k++) {
-    const uint32_t e = nbr[(size_t)k * cap + i];
+    const uint32_t e = nbr[nbr_index(i, k, cap, stride)];
     const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
     meso_real dx, dy, dz;
     dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
@@ -115,17 +124,18 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
                                       : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
   }
   rho[i] = sum;
+  if (vel) vel[i].pad = sum;
 }
 
 void cuda_density_from_lists(struct cuda_sim *g) {
   if (!g->prm.density || g->n == 0) return;
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (g->prm.kernel == MESO_KERNEL_LUCY)
-    k_density_list<MESO_KERNEL_LUCY>
-        <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho);
+    k_density_list<MESO_KERNEL_LUCY><<<blocks, CUDA_BLOCK>>>(
+        g->prm, g->n, g->cap, g->nbr_stride, g->pos, g->nbr, g->nbr_count, g->rho, rho_vel(g));
   else
-    k_density_list<MESO_KERNEL_WARREN>
-        <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho);
+    k_density_list<MESO_KERNEL_WARREN><<<blocks, CUDA_BLOCK>>>(
+        g->prm, g->n, g->cap, g->nbr_stride, g->pos, g->nbr, g->nbr_count, g->rho, rho_vel(g));
 }
 
 __global__ void k_rho_to_vel(int i0, int n, const meso_real *__restrict__ rho,

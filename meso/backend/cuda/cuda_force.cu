@@ -16,7 +16,7 @@
 struct force_args {
   const uint32_t *nbr;
   const int *count;
-  int cap;
+  int cap, stride;
   const struct dev_pos *pos;
   const struct dev_vel *vel;
   const int64_t *id;
@@ -68,7 +68,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     meso_real sfx = 0, sfy = 0, sfz = 0;
     const int m = a.count[i];
     for (int k = 0; k < m; k++) {
-      const uint32_t e = a.nbr[(size_t)k * a.cap + i];
+      const uint32_t e = a.nbr[nbr_index(i, k, a.cap, a.stride)];
       const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
       const struct dev_pos pj = a.pos[t];
       meso_real dx, dy, dz;
@@ -140,6 +140,7 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
   struct force_args a = {g->nbr,
                          g->nbr_count,
                          g->cap,
+                         g->nbr_stride,
                          g->pos,
                          g->vel,
                          g->a.id,
@@ -185,6 +186,8 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
 }
 
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
-  if (g->n > 0 && (g->prm.terms & PAIR_TERM_THERMOSTAT)) cuda_rho_to_vel(g, 0, g->n + g->n_ghost);
+  /* One rank: the density pass stored rho in vel.pad already. */
+  if (g->n > 0 && g->prm.multi && (g->prm.terms & PAIR_TERM_THERMOSTAT))
+    cuda_rho_to_vel(g, 0, g->n + g->n_ghost);
   cuda_force_pass_part(g, step, want_virial, keep_forces, -1);
 }

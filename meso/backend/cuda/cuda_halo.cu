@@ -140,7 +140,7 @@ static int fields_down(struct cuda_sim *g, const struct dev_fields *f, int off, 
 }
 
 extern "C" int cuda_halo_sort_owned(cuda_sim_t *g, int *n_stay) {
-  if (cuda_sort_cells(g)) return -1;
+  if (cuda_sort_cells(g, 1)) return -1;
   *n_stay = g->n;
   if (g->n == 0) return 0;
   return down(n_stay, g->cell_start + g->prm.ncell, sizeof(int));
@@ -177,7 +177,7 @@ extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
 }
 
 extern "C" int cuda_halo_resort(cuda_sim_t *g) {
-  return cuda_sort_cells(g);
+  return cuda_sort_cells(g, 1);
 }
 
 extern "C" int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb) {

@@ -152,6 +152,19 @@ struct cuda_sim {
   char device_name[256];
 };
 
+/* Entry k of the list of particle i. NBR_ROWS: one row per particle (a particle's appends fill
+ * its own sectors in turn); otherwise entry-major (k * cap + i: the warp's reads at one k are
+ * coalesced, but its appends at different k scatter over 32 sectors). */
+__device__ __forceinline__ size_t nbr_index(int i, int k, int cap, int stride) {
+#ifdef MDPORE_NBR_ROWS
+  (void)cap;
+  return (size_t)i * (size_t)stride + (size_t)k;
+#else
+  (void)stride;
+  return (size_t)k * (size_t)cap + (size_t)i;
+#endif
+}
+
 /* cuda_util.cu */
 int cuda_check(cudaError_t e, const char *what);
 int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes);
@@ -161,7 +174,9 @@ int cuda_set_virial(struct cuda_sim *g, int on);
 int cuda_nbr_reserve(struct cuda_sim *g, int stride);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
-int cuda_sort_cells(struct cuda_sim *g);
+/* with_f: carry the forces along (they are needed after the sort only when kept from a checkpoint
+ * or when particles leave for another rank; a step recomputes them). */
+int cuda_sort_cells(struct cuda_sim *g, int with_f);
 int cuda_sort_ghosts(struct cuda_sim *g);
 /* Pack positions (bin-relative) and thermostat velocities for the pair passes (after the
  * prediction). */

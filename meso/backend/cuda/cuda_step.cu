@@ -10,7 +10,7 @@ static int finish(struct cuda_sim *g, cuda_problem_t *pr) {
 
 extern "C" int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, int want_virial,
                                      cuda_problem_t *pr) {
-  if (cuda_set_virial(g, want_virial) || cuda_sort_cells(g)) return -1;
+  if (cuda_set_virial(g, want_virial) || cuda_sort_cells(g, keep_forces)) return -1;
   cuda_predict(g, 1); /* v~ = v at setup */
   cuda_pack(g);
   if (cuda_density_pass(g)) return -1;
@@ -31,7 +31,7 @@ static int pack_and_densities(struct cuda_sim *g) {
       return 0;
     }
   }
-  if (cuda_sort_cells(g)) return -1;
+  if (cuda_sort_cells(g, 0)) return -1; /* the force pass below rewrites f */
   cuda_pack(g);
   return cuda_density_pass(g);
 }
