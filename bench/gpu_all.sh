@@ -29,12 +29,20 @@ if has ncu && command -v ncu > /dev/null; then
       --csv "$B/bin/gpu_bench" porous 33 30 20 cuda -1 > "$O/ncu.csv" 2> "$O/ncu.err"
   echo "ncu: $(wc -l < "$O/ncu.csv") lines in $O/ncu.csv"
 fi
+if has slab; then
+  # The CI slab (tests/engine/scenes/ci_slab.yaml) on 1 GPU and on every GPU (auto backend).
+  G=$(nvidia-smi -L | wc -l)
+  for np in 1 $G; do
+    mpiexec --allow-run-as-root --oversubscribe -n $np "$B/bin/mdpore" run --output-dir "$O/slab$np" \
+      "$(dirname "$0")/../tests/engine/scenes/ci_slab.yaml" 2>&1 | grep -v "^step" | tail -6
+  done | tee "$O/slab.txt"
+fi
 if has multi; then
   # Weak scaling on every visible GPU (one per rank) with and without the overlap of interior passes
   # and host exchanges; the one-GPU figures of the same sizes in the same run.
   G=$(nvidia-smi -L | wc -l)
   MPIRUN="mpiexec --allow-run-as-root --oversubscribe --bind-to none -n $G"
-  for c in "porous 72 50 20" "porous 33 100 20" "bulk 70 100 20"; do
+  for c in "porous 72 50 20" "bulk 70 100 20"; do
     "$B/bin/gpu_bench" $c cuda
     $MPIRUN "$B/bin/gpu_bench" $c cuda
     MDPORE_CUDA_OVERLAP=0 $MPIRUN -x MDPORE_CUDA_OVERLAP "$B/bin/gpu_bench" $c cuda

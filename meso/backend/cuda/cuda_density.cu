@@ -30,7 +30,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= q.list_cut2 || t == i) return; /* most candidates */
         if (m < stride)
-          nbr[nbr_index(i, m, cap, stride)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
+          nbr[nbr_index(i, m, cap)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
         m++;
         if (!DENSITY || r2 >= q.rd2_max) return;
         const struct dev_coef &c = row[pj.species];
@@ -111,7 +111,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   meso_real sum = MESO_R(0.0);
   const int m = count[i];
   for (int k = 0; k < m; k++) {
-    const uint32_t e = nbr[nbr_index(i, k, cap, stride)];
+    const uint32_t e = nbr[nbr_index(i, k, cap)];
     const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
     meso_real dx, dy, dz;
     dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);

@@ -68,7 +68,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     meso_real sfx = 0, sfy = 0, sfz = 0;
     const int m = a.count[i];
     for (int k = 0; k < m; k++) {
-      const uint32_t e = a.nbr[nbr_index(i, k, a.cap, a.stride)];
+      const uint32_t e = a.nbr[nbr_index(i, k, a.cap)];
       const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
       const struct dev_pos pj = a.pos[t];
       meso_real dx, dy, dz;

@@ -152,17 +152,10 @@ struct cuda_sim {
   char device_name[256];
 };
 
-/* Entry k of the list of particle i. NBR_ROWS: one row per particle (a particle's appends fill
- * its own sectors in turn); otherwise entry-major (k * cap + i: the warp's reads at one k are
- * coalesced, but its appends at different k scatter over 32 sectors). */
-__device__ __forceinline__ size_t nbr_index(int i, int k, int cap, int stride) {
-#ifdef MDPORE_NBR_ROWS
-  (void)cap;
-  return (size_t)i * (size_t)stride + (size_t)k;
-#else
-  (void)stride;
+/* Entry k of the list of particle i: entry-major, so a warp's reads at one k are coalesced (one
+ * row per particle was measured 20% slower on the H100: bench/RESULTS.md). */
+__device__ __forceinline__ size_t nbr_index(int i, int k, int cap) {
   return (size_t)k * (size_t)cap + (size_t)i;
-#endif
 }
 
 /* cuda_util.cu */
