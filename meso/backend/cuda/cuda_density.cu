@@ -29,8 +29,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= q.list_cut2 || t == i) return; /* most candidates */
-        if (m < stride)
-          nbr[nbr_index(i, m, cap)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
+        if (m < stride) nbr[nbr_index(i, m, cap)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
         m++;
         if (!DENSITY || r2 >= q.rd2_max) return;
         const struct dev_coef &c = row[pj.species];
@@ -61,7 +60,7 @@ template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g, int pa
 }
 
 static void launch_part(struct cuda_sim *g, int part) {
-  if (!g->prm.density)
+  if (!g->prm.density || g->split_density)
     launch<MESO_KERNEL_WARREN, 0>(g, part);
   else if (g->prm.kernel == MESO_KERNEL_LUCY)
     launch<MESO_KERNEL_LUCY, 1>(g, part);
@@ -165,6 +164,9 @@ int cuda_density_pass(struct cuda_sim *g) {
     if (cuda_nbr_reserve(g, most + most / 8 + 8)) return -1;
   }
   g->n_builds++;
+  /* Split build (one rank): the bin scan above only wrote the lists; the densities come from them,
+   * with every lane of a warp on a partner in range instead of ~15% of bin candidates. */
+  if (g->split_density) cuda_density_from_lists(g);
   if (g->prm.skin <= 0.0 || g->prm.multi) return 0;
   /* Positions at this build: the pack kernel measures the displacement from them. */
   if (!g->pos0 && cuda_alloc(g, (void **)&g->pos0, (size_t)g->cap * sizeof(struct dev_pos)))

@@ -145,7 +145,18 @@ struct cuda_sim {
                  */
   char *pinned; /* pinned host staging buffer of the halo transfers (cuda_halo.cu) */
   size_t pinned_bytes;
-  int split_passes; /* this step's passes were split in two parts (key holds the boundary flags) */
+  int split_passes;
+  int split_density;
+      /* one rank: lists first, then densities from them (MDPORE_CUDA_SPLIT_DENSITY) */ /* this
+                                                                                           step's
+                                                                                           passes
+                                                                                           were
+                                                                                           split in
+                                                                                           two parts
+                                                                                           (key
+                                                                                           holds the
+                                                                                           boundary
+                                                                                           flags) */
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;
