@@ -121,8 +121,6 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
    * (kept for measuring what the overlap gains: bench/RESULTS.md). */
   const char *ov = getenv("MDPORE_CUDA_OVERLAP");
   g->overlap = !(ov && !strcmp(ov, "0"));
-  const char *sd = getenv("MDPORE_CUDA_SPLIT_DENSITY");
-  g->split_density = sd && !strcmp(sd, "1") && dims[0] * dims[1] * dims[2] == 1;
   if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, err, len)) {
     free(g);
     return NULL;

@@ -60,7 +60,7 @@ template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g, int pa
 }
 
 static void launch_part(struct cuda_sim *g, int part) {
-  if (!g->prm.density || g->split_density)
+  if (!g->prm.density)
     launch<MESO_KERNEL_WARREN, 0>(g, part);
   else if (g->prm.kernel == MESO_KERNEL_LUCY)
     launch<MESO_KERNEL_LUCY, 1>(g, part);
@@ -164,9 +164,6 @@ int cuda_density_pass(struct cuda_sim *g) {
     if (cuda_nbr_reserve(g, most + most / 8 + 8)) return -1;
   }
   g->n_builds++;
-  /* Split build (one rank): the bin scan above only wrote the lists; the densities come from them,
-   * with every lane of a warp on a partner in range instead of ~15% of bin candidates. */
-  if (g->split_density) cuda_density_from_lists(g);
   if (g->prm.skin <= 0.0 || g->prm.multi) return 0;
   /* Positions at this build: the pack kernel measures the displacement from them. */
   if (!g->pos0 && cuda_alloc(g, (void **)&g->pos0, (size_t)g->cap * sizeof(struct dev_pos)))

@@ -147,16 +147,16 @@ struct cuda_sim {
   size_t pinned_bytes;
   int split_passes;
   int split_density;
-      /* one rank: lists first, then densities from them (MDPORE_CUDA_SPLIT_DENSITY) */ /* this
-                                                                                           step's
-                                                                                           passes
-                                                                                           were
-                                                                                           split in
-                                                                                           two parts
-                                                                                           (key
-                                                                                           holds the
-                                                                                           boundary
-                                                                                           flags) */
+  /* one rank: lists first, then densities from them (MDPORE_CUDA_SPLIT_DENSITY) */ /* this
+                                                                                       step's
+                                                                                       passes
+                                                                                       were
+                                                                                       split in
+                                                                                       two parts
+                                                                                       (key
+                                                                                       holds the
+                                                                                       boundary
+                                                                                       flags) */
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;
