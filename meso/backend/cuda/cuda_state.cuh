@@ -141,22 +141,13 @@ struct cuda_sim {
   int want_pressure;  /* the next force passes fill block_virial (a thermo sample follows) */
   int pressure_valid; /* block_virial belongs to the last force pass */
   uint64_t last_force_step;
-  int overlap;  /* several ranks: interior passes run while the host exchanges (MDPORE_CUDA_OVERLAP)
-                 */
-  char *pinned; /* pinned host staging buffer of the halo transfers (cuda_halo.cu) */
+  /* Several ranks: the interior passes run while the host exchanges (MDPORE_CUDA_OVERLAP). */
+  int overlap;
+  /* Pinned host staging buffer of the halo transfers (cuda_halo.cu). */
+  char *pinned;
   size_t pinned_bytes;
+  /* This step's passes were split in an interior and a boundary part (key holds the flags). */
   int split_passes;
-  int split_density;
-  /* one rank: lists first, then densities from them (MDPORE_CUDA_SPLIT_DENSITY) */ /* this
-                                                                                       step's
-                                                                                       passes
-                                                                                       were
-                                                                                       split in
-                                                                                       two parts
-                                                                                       (key
-                                                                                       holds the
-                                                                                       boundary
-                                                                                       flags) */
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;
