@@ -3,6 +3,7 @@
  * forces, kick. */
 #include "sim_internal.h"
 #include "backend/cpu/cpu_passes.h"
+#include "physics/pair_random.h"
 #include "effects/effect.h"
 #include "integrate.h"
 #include "migrate.h"
@@ -60,6 +61,13 @@ void sim_destroy(sim_t *sim) {
 }
 
 int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], const double v[3]) {
+  if (id < 0 || id > PAIR_RANDOM_MAX_ID) {
+    fprintf(stderr,
+            "mdpore: particle id %lld: expected 0 to %lld (the pair random numbers of this build "
+            "are keyed on the ids; %s)\n",
+            (long long)id, (long long)PAIR_RANDOM_MAX_ID, sim->scene.file);
+    return -1;
+  }
   if (species < 0 || species >= sim->plan.n_species) {
     fprintf(stderr, "mdpore: particle %lld: species %d: expected 0 to %d (%s)\n", (long long)id,
             species, sim->plan.n_species - 1, sim->scene.file);
