@@ -228,9 +228,11 @@ int mdp_foam_run(const char *dir, const mdp_image_t *img, const mdp_foam_opts_t 
     res->flux_error = rho > 0 && rho < 1 ? res->flux_change * rho / (1 - rho) : NAN;
     if (res->flux_change < 1e-13) res->flux_error = res->flux_change; /* settled to round-off */
     /* The drive pushes along +axis: a flux that is not positive and finite, changes that grow from
-     * check to check, or a pressure residual still of order one after two runs (a neutral
-     * oscillation) mean that the pseudo-time step is too large. */
-    if (!o->simple && (diverged || !(q > 0) || !isfinite(q) || (n >= 4 && fabs(rho) > 1.2) ||
+     * check to check (above round-off: the ratio of two round-off changes means nothing), or a
+     * pressure residual still of order one after two runs (a neutral oscillation) mean that the
+     * pseudo-time step is too large. */
+    const int growing = n >= 4 && fabs(rho) > 1.2 && res->flux_change > 1e-12;
+    if (!o->simple && (diverged || !(q > 0) || !isfinite(q) || growing ||
                        (last >= 2 * o->chunk && res->res_p > 0.1))) {
       if (res->restarts >= 4) {
         snprintf(err, MDP_FOAM_ERR_LEN,
