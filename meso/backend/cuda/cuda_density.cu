@@ -18,8 +18,17 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
               uint32_t *__restrict__ nbr, int *__restrict__ count, int *most,
               const uint32_t *__restrict__ part, uint32_t part_flag, struct dev_vel *vel) {
+  /* Each thread gathers NBR_CHUNK entries in its own shared-memory slots (padded: no bank
+   * conflicts), then stores them as one chunk (no barrier: no thread reads another's slots). */
+  __shared__ uint32_t chunk_buf[CUDA_BLOCK * (NBR_CHUNK + 1)];
+  uint32_t *mine = chunk_buf + threadIdx.x * (NBR_CHUNK + 1);
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n || (part && part[i] != part_flag)) return;
+  const auto flush = [&](int c) {
+    uint4 *dst = (uint4 *)(nbr + nbr_index(i, c * NBR_CHUNK, cap));
+    dst[0] = make_uint4(mine[0], mine[1], mine[2], mine[3]);
+    dst[1] = make_uint4(mine[4], mine[5], mine[6], mine[7]);
+  };
   const struct dev_pos pi = pos[i];
   const struct dev_coef *row = q.coef[pi.species];
   meso_real sum = MESO_R(0.0);
@@ -29,7 +38,10 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= q.list_cut2 || t == i) return; /* most candidates */
-        if (m < stride) nbr[nbr_index(i, m, cap)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
+        if (m < stride) {
+          mine[m % NBR_CHUNK] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
+          if (m % NBR_CHUNK == NBR_CHUNK - 1) flush(m / NBR_CHUNK);
+        }
         m++;
         if (!DENSITY || r2 >= q.rd2_max) return;
         const struct dev_coef &c = row[pj.species];
@@ -38,6 +50,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
                                           : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
       });
+  const int kept = m < stride ? m : stride;
+  if (kept % NBR_CHUNK) flush(kept / NBR_CHUNK); /* the last, partial chunk */
   if (DENSITY) rho[i] = sum;
   if (DENSITY && vel) vel[i].pad = sum; /* one rank: the force pass reads it there */
   count[i] = m;

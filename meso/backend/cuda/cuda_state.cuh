@@ -124,7 +124,7 @@ struct cuda_sim {
   struct dev_pos *pos;  /* [cap] packed positions (cell order) */
   struct dev_vel *vel;  /* [cap] packed thermostat velocities (thermostat only) */
   /* Per-step neighbour lists written by the density pass (cuda_density.cu): entry k of particle i
-   * at nbr[k * cap + i] (coalesced), slot | bin-offset code << NBR_SLOT_BITS, partners within the
+   * at nbr[nbr_index(i, k, cap)], slot | bin-offset code << NBR_SLOT_BITS, partners within the
    * largest cutoff in traversal order. */
   uint32_t *nbr;
   int *nbr_count, *nbr_most; /* [cap]; [1] the longest list of the last pass */
@@ -154,10 +154,14 @@ struct cuda_sim {
   char device_name[256];
 };
 
-/* Entry k of the list of particle i: entry-major, so a warp's reads at one k are coalesced (one
- * row per particle was measured 20% slower on the H100: bench/RESULTS.md). */
+/* Entry k of the list of particle i: chunks of NBR_CHUNK entries, chunk-major (chunk c of particle
+ * i at (c cap + i) NBR_CHUNK). The density pass writes a particle's chunk with two 16-byte stores
+ * (one sector) instead of eight scattered 4-byte ones; a warp's reads at one k stay within 32
+ * sectors that serve the next 7 entries from L1. (Measured: entry-major k cap + i and one row per
+ * particle, bench/RESULTS.md.) Strides are multiples of NBR_CHUNK. */
+#define NBR_CHUNK 8
 __device__ __forceinline__ size_t nbr_index(int i, int k, int cap) {
-  return (size_t)k * (size_t)cap + (size_t)i;
+  return ((size_t)(k / NBR_CHUNK) * (size_t)cap + (size_t)i) * NBR_CHUNK + (size_t)(k % NBR_CHUNK);
 }
 
 /* cuda_util.cu */

@@ -106,6 +106,7 @@ int cuda_reserve(struct cuda_sim *g, int n) {
 
 /* Neighbour-list room for stride entries per particle. */
 int cuda_nbr_reserve(struct cuda_sim *g, int stride) {
+  stride = (stride + NBR_CHUNK - 1) / NBR_CHUNK * NBR_CHUNK; /* whole chunks */
   if (stride <= g->nbr_stride) return 0;
   cuda_free_ptr(g, (void **)&g->nbr);
   if (cuda_alloc(g, (void **)&g->nbr, (size_t)g->cap * (size_t)stride * sizeof(uint32_t)))
