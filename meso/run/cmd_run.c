@@ -22,7 +22,8 @@ static void usage(FILE *to) {
       "  --backend B       cpu, cuda or auto (default: cuda when every rank sees a GPU; one GPU\n"
       "                    per rank)\n"
       "  --skin S          Verlet skin of the CUDA path's neighbour lists on one GPU, in rc units\n"
-      "                    (default 0: rebuilt every step, the fastest at dt = 0.01; the physics is the\n"
+      "                    (default 0: rebuilt every step, the fastest at dt = 0.01; the physics "
+      "is the\n"
       "                    same)\n");
 }
 
