@@ -158,11 +158,7 @@ extern "C" int cuda_halo_take_leavers(cuda_sim_t *g, int n_stay, particles_t *ou
 
 extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
   const int m = in->n_local, n0 = g->n;
-  if (n0 + m > g->cap) {
-    fprintf(stderr, "mdpore: CUDA backend: %d particles arrive on a GPU with room for %d\n", n0 + m,
-            g->cap);
-    return -1;
-  }
+  if (cuda_grow(g, n0 + m)) return -1;
   struct stage st = {0, {0}, {0}, {0}};
   stage_add(&st, in->id, g->a.id + n0, (size_t)m * 8);
   stage_add(&st, in->species, g->a.species + n0, (size_t)m * 4);
@@ -207,10 +203,10 @@ extern "C" int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb) {
 extern "C" int cuda_halo_set_ghosts(cuda_sim_t *g, const particles_t *hb) {
   const int ng = hb->n_ghost, n0 = g->n, h0 = hb->n_local;
   if (n0 + ng > g->cap) {
-    fprintf(stderr,
-            "mdpore: CUDA backend: %d owned + %d ghost particles on a GPU with room for %d\n", n0,
-            ng, g->cap);
-    return -1;
+    /* More ghosts than room: grow (after the interior pass in flight) and run this step's pair
+     * passes in one part, since the interior lists went with the old arrays. */
+    g->split_passes = 0;
+    if (cuda_grow(g, n0 + ng)) return -1;
   }
   double *const *vel = g->prm.use_vpred ? g->b.vpred : g->b.v;
   struct stage st = {0, {0}, {0}, {0}};

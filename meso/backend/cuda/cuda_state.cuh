@@ -169,6 +169,7 @@ int cuda_check(cudaError_t e, const char *what);
 int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes);
 void cuda_free_ptr(struct cuda_sim *g, void **ptr);
 int cuda_reserve(struct cuda_sim *g, int n);
+int cuda_grow(struct cuda_sim *g, int need);
 int cuda_set_virial(struct cuda_sim *g, int on);
 int cuda_nbr_reserve(struct cuda_sim *g, int stride);
 

@@ -3,6 +3,8 @@
 
 #include <cub/device/device_radix_sort.cuh>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 int cuda_check(cudaError_t e, const char *what) {
   if (e == cudaSuccess) return 0;
@@ -48,9 +50,8 @@ static int alloc_fields(struct cuda_sim *g, struct dev_fields *f, int cap) {
   return rc ? -1 : 0;
 }
 
-/* Room for n particles; contents are not kept (called before an upload only). */
-int cuda_reserve(struct cuda_sim *g, int n) {
-  if (n <= g->cap) return 0;
+/* Room for cap slots; contents are not kept. */
+static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   free_fields(g, &g->a);
   free_fields(g, &g->b);
   cuda_free_ptr(g, (void **)&g->rho);
@@ -76,8 +77,6 @@ int cuda_reserve(struct cuda_sim *g, int n) {
             (1 << NBR_SLOT_BITS) - 4096);
     return -1;
   }
-  /* Several ranks: room for the ghost layer too (up to twice the owned particles). */
-  const int cap = g->prm.multi ? 3 * n + 4096 : n + n / 16 + 256;
   const size_t c = (size_t)cap;
   const int blocks = (cap + CUDA_BLOCK - 1) / CUDA_BLOCK;
   size_t tmp = 0;
@@ -102,6 +101,58 @@ int cuda_reserve(struct cuda_sim *g, int n) {
   g->block_virial_cap = blocks;
   g->cap = cap;
   return 0;
+}
+
+/* Slots for need particles with a margin; several ranks leave room for the ghost layer, which
+ * cuda_grow widens when a step needs more (MDPORE_CUDA_TIGHT_ROOM=1: almost no margin, so that the
+ * tests exercise the growth). */
+static int room_for(const struct cuda_sim *g, int need) {
+  if (!g->prm.multi) return need + need / 16 + 256;
+  const char *tight = getenv("MDPORE_CUDA_TIGHT_ROOM");
+  if (tight && !strcmp(tight, "1")) return need + 64;
+  return need + need / 4 + 4096;
+}
+
+/* Room for n particles; contents are not kept (called before an upload only). */
+int cuda_reserve(struct cuda_sim *g, int n) {
+  if (n <= g->cap) return 0;
+  return reserve_cap(g, n, room_for(g, n));
+}
+
+static int copy_back(void *dst, const void *src, size_t bytes) {
+  return bytes ? cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToDevice), "grow") : 0;
+}
+
+/* Room for need slots, keeping the owned particles [0, n), their bins (key_sorted), boundary flags
+ * (key) and the boundary permutation (perm[0, n_boundary)); everything else is rebuilt by the
+ * passes that follow. Waits for the work in flight. 0 or -1. */
+int cuda_grow(struct cuda_sim *g, int need) {
+  if (need <= g->cap) return 0;
+  if (cuda_check(cudaDeviceSynchronize(), "grow")) return -1;
+  const size_t n = (size_t)g->n, nb = (size_t)g->n_boundary;
+  struct dev_fields old = g->a;
+  uint32_t *okey = g->key, *oks = g->key_sorted;
+  int *operm = g->perm;
+  memset(&g->a, 0, sizeof g->a); /* detached: reserve_cap frees the rest */
+  g->key = g->key_sorted = NULL;
+  g->perm = NULL;
+  const int cap_was = g->cap;
+  int rc = reserve_cap(g, need, room_for(g, need));
+  if (!rc) {
+    rc = copy_back(g->a.id, old.id, n * 8) || copy_back(g->a.species, old.species, n * 4) ||
+         copy_back(g->key, okey, n * 4) || copy_back(g->key_sorted, oks, n * 4) ||
+         copy_back(g->perm, operm, nb * 4);
+    for (int d = 0; d < 3 && !rc; d++)
+      rc = copy_back(g->a.x[d], old.x[d], n * 8) || copy_back(g->a.v[d], old.v[d], n * 8) ||
+           copy_back(g->a.f[d], old.f[d], n * 8) ||
+           (old.vpred[d] && copy_back(g->a.vpred[d], old.vpred[d], n * 8));
+  }
+  free_fields(g, &old);
+  cuda_free_ptr(g, (void **)&okey);
+  cuda_free_ptr(g, (void **)&oks);
+  cuda_free_ptr(g, (void **)&operm);
+  if (rc) fprintf(stderr, "mdpore: CUDA backend: cannot grow from %d to %d slots\n", cap_was, need);
+  return rc ? -1 : 0;
 }
 
 /* Neighbour-list room for stride entries per particle. */
