@@ -7,15 +7,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every rank's subdomain (lo, hi) on rank 0, 6 doubles per rank (NULL elsewhere). Collective. */
+static double *gather_subdomains(sim_t *sim, MPI_Comm comm, int rank, int size) {
+  double box[6];
+  sim_subdomain(sim, box, box + 3);
+  double *boxes = rank == 0 ? malloc((size_t)size * 6 * sizeof *boxes) : NULL;
+  MPI_Gather(box, 6, MPI_DOUBLE, boxes, 6, MPI_DOUBLE, 0, comm);
+  return boxes;
+}
+
 int checkpoint_write(const char *path, sim_t *sim) {
   MPI_Comm comm = sim_comm(sim);
   int rank, size, rc = 0;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  double box[6];
-  sim_subdomain(sim, box, box + 3);
-  double *boxes = rank == 0 ? malloc((size_t)size * 6 * sizeof *boxes) : NULL;
-  MPI_Gather(box, 6, MPI_DOUBLE, boxes, 6, MPI_DOUBLE, 0, comm);
+  double *boxes = gather_subdomains(sim, comm, rank, size);
   long *counts = rank == 0 ? malloc((size_t)size * sizeof *counts) : NULL;
   particle_set_t set;
   if (gather_particles(sim, 0, 1, &set, counts)) {
@@ -157,10 +163,7 @@ int checkpoint_read(const char *path, sim_t *sim) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  double box[6];
-  sim_subdomain(sim, box, box + 3);
-  double *boxes = rank == 0 ? malloc((size_t)size * 6 * sizeof *boxes) : NULL;
-  MPI_Gather(box, 6, MPI_DOUBLE, boxes, 6, MPI_DOUBLE, 0, comm);
+  double *boxes = gather_subdomains(sim, comm, rank, size);
   long *counts = calloc((size_t)size, sizeof *counts), step = 0;
   particle_set_t set;
   memset(&set, 0, sizeof set);

@@ -19,7 +19,6 @@ MESO_HD meso_real pair_random_from_bits(uint32_t bits) {
 }
 
 #ifdef MDPORE_PAIR_RNG_PHILOX2X32
-#include <Random123/philox.h>
 /* Philox2x32-10 (half the multiplies of Philox4x32-10, also Crush-resistant per Salmon et al.):
  * counter = (min id, max id) as 32-bit words (ids < 2^32, checked at setup), key = the seed folded
  * to 32 bits plus the step times an odd constant (a bijection of the step for one seed). */

@@ -82,15 +82,30 @@ static void launch_part(struct cuda_sim *g, int part) {
     launch<MESO_KERNEL_WARREN, 1>(g, part);
 }
 
+/* Clear the overflow record and launch one part (-1: all) of the scan; lists start with room for
+ * 48 entries. */
+static int start_scan(struct cuda_sim *g, int part) {
+  if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
+  if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
+  launch_part(g, part);
+  return 0;
+}
+
+/* The longest list that did not fit since start_scan (0: all fitted; waits for the scan), or -1. */
+static int overflow(struct cuda_sim *g) {
+  int most = 0;
+  if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
+                 "density pass"))
+    return -1;
+  return most;
+}
+
 /* Several ranks, overlap (cuda_halo.cu): the interior particles (boundary flag 1 in key) need no
  * ghost, so their densities and lists are computed while the host builds the ghosts. No list
  * overflow check here: cuda_density_pass_rest checks both parts. */
 int cuda_density_pass_interior(struct cuda_sim *g) {
   if (!g->prm.terms || g->n == 0) return 0;
-  if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
-  if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
-  launch_part(g, 1);
-  return 0;
+  return start_scan(g, 1);
 }
 
 /* The boundary part after the ghosts arrived; on a list overflow in either part, room grows and
@@ -98,10 +113,8 @@ int cuda_density_pass_interior(struct cuda_sim *g) {
 int cuda_density_pass_rest(struct cuda_sim *g) {
   if (!g->prm.terms || g->n == 0) return 0;
   launch_part(g, 0);
-  int most = 0;
-  if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
-                 "density pass"))
-    return -1;
+  const int most = overflow(g);
+  if (most < 0) return -1;
   if (most == 0) {
     g->n_builds++;
     return 0;
@@ -113,7 +126,7 @@ int cuda_density_pass_rest(struct cuda_sim *g) {
  * list order (= the traversal order of the build). */
 template <int KERNEL>
 __global__ void __launch_bounds__(CUDA_BLOCK)
-    k_density_list(const struct dev_params q, int n, int cap, int stride,
+    k_density_list(const struct dev_params q, int n, int cap,
                    const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ nbr,
                    const int *__restrict__ count, meso_real *__restrict__ rho,
                    struct dev_vel *vel) {
@@ -144,11 +157,11 @@ void cuda_density_from_lists(struct cuda_sim *g) {
   if (!g->prm.density || g->n == 0) return;
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (g->prm.kernel == MESO_KERNEL_LUCY)
-    k_density_list<MESO_KERNEL_LUCY><<<blocks, CUDA_BLOCK>>>(
-        g->prm, g->n, g->cap, g->nbr_stride, g->pos, g->nbr, g->nbr_count, g->rho, rho_vel(g));
+    k_density_list<MESO_KERNEL_LUCY><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr,
+                                                             g->nbr_count, g->rho, rho_vel(g));
   else
-    k_density_list<MESO_KERNEL_WARREN><<<blocks, CUDA_BLOCK>>>(
-        g->prm, g->n, g->cap, g->nbr_stride, g->pos, g->nbr, g->nbr_count, g->rho, rho_vel(g));
+    k_density_list<MESO_KERNEL_WARREN><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr,
+                                                               g->nbr_count, g->rho, rho_vel(g));
 }
 
 __global__ void k_rho_to_vel(int i0, int n, const meso_real *__restrict__ rho,
@@ -166,14 +179,10 @@ void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1) {
  * (one small device-to-host copy per step tells). */
 int cuda_density_pass(struct cuda_sim *g) {
   if (!g->prm.terms || g->n == 0) return 0;
-  if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
   for (;;) {
-    if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
-    launch_part(g, -1);
-    int most = 0;
-    if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
-                   "density pass"))
-      return -1;
+    if (start_scan(g, -1)) return -1;
+    const int most = overflow(g);
+    if (most < 0) return -1;
     if (most == 0) break;
     if (cuda_nbr_reserve(g, most + most / 8 + 8)) return -1;
   }

@@ -16,7 +16,7 @@
 struct force_args {
   const uint32_t *nbr;
   const int *count;
-  int cap, stride;
+  int cap;
   const struct dev_pos *pos;
   const struct dev_vel *vel;
   const int64_t *id;
@@ -140,7 +140,6 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
   struct force_args a = {g->nbr,
                          g->nbr_count,
                          g->cap,
-                         g->nbr_stride,
                          g->pos,
                          g->vel,
                          g->a.id,
