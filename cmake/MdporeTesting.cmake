@@ -28,10 +28,10 @@ function(mdpore_add_test)
   endif()
 endfunction()
 
-# add_subdirectory() for each module folder (engine image foam upscale) that has a CMakeLists.txt;
-# upscale only when PETSc is enabled. Used by tests/ and validation/.
+# add_subdirectory() for each module folder (engine image foam flowdata upscale) that has a
+# CMakeLists.txt; upscale only when PETSc is enabled. Used by tests/ and validation/.
 macro(mdpore_add_module_dirs)
-  foreach(sub engine image foam upscale)
+  foreach(sub engine image foam flowdata upscale)
     if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${sub}/CMakeLists.txt)
       if(NOT (sub STREQUAL "upscale" AND NOT MDPORE_PETSC_ENABLED))
         add_subdirectory(${sub})

@@ -57,42 +57,6 @@ static int rm_entry(const char *path, const struct stat *sb, int flag, struct FT
   return remove(path);
 }
 
-/* Pore clusters that do not join the inlet face to the outlet face carry no flow; they become solid
- * so that OpenFOAM never sees a closed region with an undetermined pressure. */
-static int drop_nonspanning(mdp_image_t *img, int axis, long long *dropped, char *err) {
-  size_t n = mdp_image_count(img);
-  int32_t *cl = malloc(n * sizeof *cl);
-  int nc = 0;
-  if (!cl || mdp_image_label_clusters(img, cl, &nc, err)) {
-    free(cl);
-    return 1;
-  }
-  unsigned char *faces = calloc((size_t)nc + 1, 1);
-  int solid = -1;
-  const int dim[3] = {img->nx, img->ny, img->nz};
-  for (int k = 0; k < img->nz; k++)
-    for (int j = 0; j < img->ny; j++)
-      for (int i = 0; i < img->nx; i++) {
-        size_t idx = mdp_image_index(img, i, j, k);
-        const int ijk[3] = {i, j, k};
-        if (cl[idx] < 0) {
-          solid = img->label[idx];
-          continue;
-        }
-        if (ijk[axis] == 0) faces[cl[idx]] |= 1;
-        if (ijk[axis] == dim[axis] - 1) faces[cl[idx]] |= 2;
-      }
-  *dropped = 0;
-  for (size_t idx = 0; idx < n; idx++)
-    if (cl[idx] >= 0 && faces[cl[idx]] != 3) {
-      img->label[idx] = (uint8_t)solid;
-      (*dropped)++;
-    }
-  free(cl);
-  free(faces);
-  return 0;
-}
-
 static int axis_of(const char *s) {
   return !strcmp(s, "x") ? 0 : !strcmp(s, "y") ? 1 : !strcmp(s, "z") ? 2 : -1;
 }
@@ -224,7 +188,9 @@ int cmd_foam(int argc, char **argv) {
   if (mdp_image_stats(&img, &st, err) ||
       mdp_image_require_percolation(&img, &st, o.axis, path, err))
     goto out;
-  if (drop_nonspanning(&img, o.axis, &dropped, err)) goto out;
+  /* non-spanning clusters become solid, so OpenFOAM never sees a closed region with an undetermined
+   * pressure */
+  if (mdp_image_drop_nonspanning(&img, o.axis, &dropped, err)) goto out;
   if (o.periodic) {
     long long bad = end_slice_mismatch(&img, o.axis);
     if (bad) {

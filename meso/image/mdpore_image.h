@@ -139,6 +139,15 @@ int mdp_image_label_clusters(const mdp_image_t *img, int32_t *cluster, int *n_cl
 int mdp_image_require_percolation(const mdp_image_t *img, const mdp_image_stats_t *st, int axis,
                                   const char *source, char *err);
 
+/* ---- flow paths (image_spanning.c) ---- */
+/* Turns solid every pore cluster (6-connected) that does not connect the inlet face to the outlet
+ * face along `axis` (0 x, 1 y, 2 z): isolated pores and clusters open to one face only carry no
+ * flow. Dead-end branches of a spanning cluster are part of it and stay pore. Dropped voxels take
+ * the label of a solid voxel of the image (the last one in x-fastest order); *dropped = their
+ * number. If no cluster spans the axis the whole pore space is dropped (check with
+ * mdp_image_require_percolation first). Shared by `mdpore foam` and the mDPD wall builder. */
+int mdp_image_drop_nonspanning(mdp_image_t *img, int axis, long long *dropped, char *err);
+
 /* ---- synthetic images (image_make.c); all labels: 0 pore, 1 inorganic solid ---- */
 /* Slit along x: n_pore pore layers between `wall` solid layers normal to y; nx = length, nz =
  * depth. */

@@ -9,7 +9,7 @@
 #include "commands.h"
 #include "fit_report.h"
 #include "fit_tao.h"
-#include "flow_table.h"
+#include "flowdata/flow_table.h"
 
 static const char *usage_text =
     "usage: mdpore fit TABLE [--json OUT.json] [--plot OUT.png] [--models LIST] [--criterion "

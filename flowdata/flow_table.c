@@ -1,5 +1,8 @@
-/* Flow-table reader and validator (docs/flow-table.md). */
-#include "flow_table.h"
+/* Flow-table reader and validator (docs/flow-table.md), and the in-memory table (init, rows,
+ * comments, free) that the writer (flow_table_write.c) takes. */
+#include "flowdata/flow_table.h"
+
+#include "flowdata/flow_table_format.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -9,9 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { COL_G, COL_Q, COL_SIGMA, COL_RUN, NCOLS };
-static const char *col_names[NCOLS] = {"pressure_gradient", "darcy_velocity",
-                                       "darcy_velocity_stderr", "run_length"};
+const char *const flow_table_columns[FLOW_NCOLS] = {"pressure_gradient", "darcy_velocity",
+                                                    "darcy_velocity_stderr", "run_length"};
+const char *const flow_table_text_keys[4] = {"sample", "axis", "length_unit", "unit_system"};
+const char *const flow_table_num_keys[4] = {"viscosity", "density", "voxel_size", "length_unit_m"};
 
 static int fail(char *err, int errlen, const char *fmt, ...) {
   va_list ap;
@@ -53,16 +57,21 @@ static int split(char *line, char **fields, int max) {
   return n;
 }
 
-/* "# key: value" header lines. Returns 0 if handled (or plain comment), -1 on a bad value. */
+/* "# key: value" header lines. Returns 0 if handled (metadata, the format line or a free comment,
+ * which is kept in t->comments), -1 on a bad value or when out of memory. */
 static int header_line(flow_table *t, char *text, int lineno, int *seen, char *err, int errlen) {
+  text = trim(text);
+  if (!strcmp(text, FLOW_TABLE_FORMAT_LINE)) return 0;
+  char whole[FLOW_TABLE_MAX_LINE]; /* the comment as written, kept if it is not metadata */
+  snprintf(whole, sizeof whole, "%s", text);
   char *colon = strchr(text, ':');
-  if (!colon) return 0; /* free comment */
-  *colon = 0;
-  char *key = trim(text), *val = trim(colon + 1);
-  static const char *text_keys[] = {"sample", "axis", "length_unit", "unit_system"};
-  static const char *num_keys[] = {"viscosity", "density", "voxel_size", "length_unit_m"};
-  for (int i = 0; i < 4; i++) {
-    if (strcmp(key, text_keys[i])) continue;
+  char *key = text, *val = NULL;
+  if (colon) {
+    *colon = 0;
+    key = trim(text), val = trim(colon + 1);
+  }
+  for (int i = 0; i < 4 && colon; i++) {
+    if (strcmp(key, flow_table_text_keys[i])) continue;
     seen[i] = 1;
     if (!*val) return fail(err, errlen, "%s:%d: header '%s' is empty", t->path, lineno, key);
     if (i == 0) snprintf(t->sample, sizeof t->sample, "%s", val);
@@ -85,8 +94,8 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
     }
     return 0;
   }
-  for (int i = 0; i < 4; i++) {
-    if (strcmp(key, num_keys[i])) continue;
+  for (int i = 0; i < 4 && colon; i++) {
+    if (strcmp(key, flow_table_num_keys[i])) continue;
     double v;
     seen[4 + i] = 1;
     if (parse_number(val, &v) || !(v > 0))
@@ -98,39 +107,73 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
     if (i == 3) t->length_unit_m = v;
     return 0;
   }
-  return 0; /* other "key: value" comments are kept as free text */
+  /* a free comment, or a "key: value" line with another key: kept as free text */
+  if (flow_table_add_comment(t, whole))
+    return fail(err, errlen, "%s:%d: out of memory", t->path, lineno);
+  return 0;
 }
 
-static int push_row(flow_table *t, int *cap, const double *v, int lineno) {
-  if (t->n == *cap) {
-    *cap = *cap ? 2 * *cap : 16;
-    t->G = realloc(t->G, *cap * sizeof(double));
-    t->q = realloc(t->q, *cap * sizeof(double));
-    t->sigma = realloc(t->sigma, *cap * sizeof(double));
-    t->run_length = realloc(t->run_length, *cap * sizeof(double));
-    t->line = realloc(t->line, *cap * sizeof(int));
-    if (!t->G || !t->q || !t->sigma || !t->run_length || !t->line) return -1;
+/* Grows a row array to `cap` entries; on failure the old array stays in place (freed later). */
+static int grow_doubles(double **a, int cap) {
+  double *p = realloc(*a, (size_t)cap * sizeof *p);
+  if (p) *a = p;
+  return p ? 0 : -1;
+}
+
+static int push_row(flow_table *t, const double *v, int lineno) {
+  if (t->n == t->capacity) {
+    int cap = t->capacity ? 2 * t->capacity : 16;
+    if (grow_doubles(&t->G, cap) || grow_doubles(&t->q, cap) || grow_doubles(&t->sigma, cap) ||
+        grow_doubles(&t->run_length, cap))
+      return -1;
+    int *line = realloc(t->line, (size_t)cap * sizeof *line);
+    if (!line) return -1;
+    t->line = line;
+    t->capacity = cap;
   }
-  t->G[t->n] = v[COL_G];
-  t->q[t->n] = v[COL_Q];
-  t->sigma[t->n] = v[COL_SIGMA];
-  t->run_length[t->n] = v[COL_RUN];
+  t->G[t->n] = v[FLOW_COL_G];
+  t->q[t->n] = v[FLOW_COL_Q];
+  t->sigma[t->n] = v[FLOW_COL_SIGMA];
+  t->run_length[t->n] = v[FLOW_COL_RUN];
   t->line[t->n] = lineno;
   t->n++;
   return 0;
 }
 
-int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
+void flow_table_init(flow_table *t) {
   memset(t, 0, sizeof *t);
-  snprintf(t->path, sizeof t->path, "%s", path);
+  snprintf(t->driving_column, sizeof t->driving_column, "%s", flow_table_columns[FLOW_COL_G]);
   t->voxel_size = NAN;
   t->length_unit_m = NAN;
+}
+
+int flow_table_add_row(flow_table *t, double G, double q, double sigma, double run_length) {
+  double v[FLOW_NCOLS];
+  v[FLOW_COL_G] = G, v[FLOW_COL_Q] = q, v[FLOW_COL_SIGMA] = sigma, v[FLOW_COL_RUN] = run_length;
+  return push_row(t, v, 0);
+}
+
+int flow_table_add_comment(flow_table *t, const char *text) {
+  char *copy = strdup(text);
+  char **c = copy ? realloc(t->comments, (size_t)(t->n_comments + 1) * sizeof *c) : NULL;
+  if (!c) {
+    free(copy);
+    return -1;
+  }
+  t->comments = c;
+  t->comments[t->n_comments++] = copy;
+  return 0;
+}
+
+int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
+  flow_table_init(t);
+  snprintf(t->path, sizeof t->path, "%s", path);
   FILE *f = fopen(path, "r");
   if (!f) return fail(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-  char buf[8192];
-  int lineno = 0, have_header = 0, cap = 0, rc = 0, ncols = 0;
+  char buf[FLOW_TABLE_MAX_LINE];
+  int lineno = 0, have_header = 0, rc = 0, ncols = 0;
   int seen[8] = {0};
-  int where[NCOLS]; /* field index of each required column */
+  int where[FLOW_NCOLS]; /* field index of each required column */
   char *fields[256];
   while (fgets(buf, sizeof buf, f)) {
     lineno++;
@@ -153,11 +196,11 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
         break;
       }
       ncols = nf;
-      for (int c = 0; c < NCOLS; c++) {
+      for (int c = 0; c < FLOW_NCOLS; c++) {
         where[c] = -1;
         for (int i = 0; i < nf; i++) {
-          int match = !strcmp(fields[i], col_names[c]) ||
-                      (c == COL_G && !strcmp(fields[i], "body_force_density"));
+          int match = !strcmp(fields[i], flow_table_columns[c]) ||
+                      (c == FLOW_COL_G && !strcmp(fields[i], "body_force_density"));
           if (match && where[c] >= 0) {
             rc = fail(err, errlen, "%s:%d: column '%s' appears twice", path, lineno, fields[i]);
             break;
@@ -169,12 +212,13 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
           rc = fail(err, errlen,
                     "%s:%d: missing column '%s'%s (header must name: pressure_gradient (or "
                     "body_force_density), darcy_velocity, darcy_velocity_stderr, run_length)",
-                    path, lineno, col_names[c], c == COL_G ? " (or 'body_force_density')" : "");
+                    path, lineno, flow_table_columns[c],
+                    c == FLOW_COL_G ? " (or 'body_force_density')" : "");
           break;
         }
       }
       if (rc) break;
-      snprintf(t->driving_column, sizeof t->driving_column, "%s", fields[where[COL_G]]);
+      snprintf(t->driving_column, sizeof t->driving_column, "%s", fields[where[FLOW_COL_G]]);
       have_header = 1;
       continue;
     }
@@ -183,23 +227,23 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
                 path, lineno, ncols, nf);
       break;
     }
-    double v[NCOLS];
-    for (int c = 0; c < NCOLS && !rc; c++) {
+    double v[FLOW_NCOLS];
+    for (int c = 0; c < FLOW_NCOLS && !rc; c++) {
       const char *s = fields[where[c]];
-      const char *name = c == COL_G ? t->driving_column : col_names[c];
+      const char *name = c == FLOW_COL_G ? t->driving_column : flow_table_columns[c];
       if (parse_number(s, &v[c]))
         rc = fail(err, errlen, "%s:%d: column %d '%s': expected a number, got '%s'", path, lineno,
                   where[c] + 1, name, s);
-      else if (c == COL_SIGMA && !(v[c] > 0))
+      else if (c == FLOW_COL_SIGMA && !(v[c] > 0))
         rc =
             fail(err, errlen, "%s:%d: column %d '%s': expected a positive standard error, got '%s'",
                  path, lineno, where[c] + 1, name, s);
-      else if (c == COL_RUN && !(v[c] > 0))
+      else if (c == FLOW_COL_RUN && !(v[c] > 0))
         rc = fail(err, errlen, "%s:%d: column %d '%s': expected a positive run length, got '%s'",
                   path, lineno, where[c] + 1, name, s);
     }
     if (rc) break;
-    if (push_row(t, &cap, v, lineno)) {
+    if (push_row(t, v, lineno)) {
       rc = fail(err, errlen, "%s: out of memory", path);
       break;
     }
@@ -225,7 +269,10 @@ void flow_table_free(flow_table *t) {
   free(t->sigma);
   free(t->run_length);
   free(t->line);
+  for (int i = 0; i < t->n_comments; i++) free(t->comments[i]);
+  free(t->comments);
   t->G = t->q = t->sigma = t->run_length = NULL;
   t->line = NULL;
-  t->n = 0;
+  t->comments = NULL;
+  t->n = t->capacity = t->n_comments = 0;
 }
