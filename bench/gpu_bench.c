@@ -11,6 +11,7 @@
  * fresh system. After the timed steps, 100 more steps with a thermo sample every 10 give <T> and
  * <p>: a skin that missed a pair would show there (the skin changes no physics).
  * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps. */
+#include "effects/effect.h"
 #include "engine/sim.h"
 #include "engine/sim_internal.h"
 #ifdef MDPORE_HAVE_CUDA
@@ -50,13 +51,12 @@ static void scene_base(scene_t *s, double lx, double ly, double lz, int n_specie
     for (int b = 0; b < SCENE_MAX_SPECIES; b++)
       s->pair[a][b] = (scene_pair_t){.A = -40, .B = 25, .gamma = 4.5, .rc = 1.0, .rd = 0.75};
   s->kT = 1.0;
-  s->weight_exp = 1.0;
   s->vv_lambda = 0.5;
-  s->body_force_reverse_axis = -1;
   s->dt = 0.01;
   s->seed = 7;
-  s->effect[EFFECT_MDPD_ATTRACTION] = s->effect[EFFECT_MDPD_REPULSION] = 1;
-  s->effect[EFFECT_DPD_THERMOSTAT] = 1;
+  effect_name_in_scene(s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(s, EFFECT_DPD_THERMOSTAT);
 }
 
 static long add(sim_t *sim, long id, int species, double x, double y, double z, const scene_t *s) {
@@ -123,10 +123,11 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int step
   const char *device = "cpu";
   double bytes = 0;
 #ifdef MDPORE_HAVE_CUDA
-  if (sim->gpu) {
-    device = cuda_sim_device_name(sim->gpu);
-    bytes = (double)cuda_sim_bytes(sim->gpu) / (double)n;
-    cuda_sim_list_stats(sim->gpu, &builds, &nsteps, &skin);
+  cuda_sim_t *gpu = cuda_backend_device(sim_state(sim), sim_backend_name(sim));
+  if (gpu) {
+    device = cuda_sim_device_name(gpu);
+    bytes = (double)cuda_sim_bytes(gpu) / (double)n;
+    cuda_sim_list_stats(gpu, &builds, &nsteps, &skin);
   }
 #endif
   /* Statistics after the timing: <T>, <p> over 10 samples of the next 100 steps. */
@@ -169,8 +170,8 @@ int main(int argc, char **argv) {
     scene_base(s, 16.0 * k * nranks, 2.0, 16.0 * k, 2);
     s->procs[0] = nranks; /* split along x only */
     s->procs[1] = s->procs[2] = 1;
-    s->effect[EFFECT_BODY_FORCE] = 1;
-    s->body_force[0][2] = 0.02;
+    effect_name_in_scene(s, EFFECT_BODY_FORCE);
+    SCENE_EFFECT_OPTIONS(s, EFFECT_BODY_FORCE, body_force_params_t)->g[0][2] = 0.02;
   } else {
     scene_base(s, (double)k * nranks, k, k, 1);
     s->procs[0] = nranks;

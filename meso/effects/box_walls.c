@@ -1,36 +1,21 @@
-/* box_walls: specular reflection on the non-periodic faces of the box. A particle that crossed face
- * x = lo during the drift is mirrored, x <- 2 lo - x, and its normal velocity reversed, v_n <- -v_n
- * (the tangential velocity is kept: a slip wall). Periodic axes are left alone. */
-#include "effect.h"
+/* box_walls: specular reflection on the non-periodic faces of the box (position mirrored, normal
+ * velocity reversed: a slip wall). Periodic axes are left alone. The per-particle math both
+ * backends run after the drift is box_walls_after_drift in meso/physics/box_walls.h. */
+#include "effects/effect.h"
 
-#include <math.h>
+static int check(const scene_t *s, scene_report_t *r) {
+  if (s->periodic[0] && s->periodic[1] && s->periodic[2])
+    r->warn(r, "effects.box_walls", "every box axis is periodic: box_walls has nothing to do");
+  return 0;
+}
 
-static long after_drift(const scene_t *s, const plan_t *plan, particles_t *p,
-                        effect_violation_t *bad) {
-  (void)plan;
-  long n_bad = 0;
+static void configure(const scene_t *s, plan_t *plan) {
+  box_walls_params_t *w = &plan->particle.box_walls;
   for (int d = 0; d < 3; d++) {
-    if (s->periodic[d]) continue;
-    const double lo = s->box_lo[d], hi = s->box_hi[d];
-    double *x = p->x[d], *v = p->v[d];
-    for (int i = 0; i < p->n_local; i++) {
-      if (x[i] < lo) {
-        x[i] = 2.0 * lo - x[i];
-        v[i] = -v[i];
-      } else if (x[i] >= hi) {
-        x[i] = 2.0 * hi - x[i];
-        v[i] = -v[i];
-        if (x[i] >= hi) x[i] = nextafter(hi, lo); /* x == hi exactly: stay inside [lo, hi) */
-      }
-      if (!(x[i] >= lo && x[i] < hi)) { /* moved more than a box length, or NaN */
-        if (n_bad++ == 0) {
-          bad->id = p->id[i];
-          for (int k = 0; k < 3; k++) bad->x[k] = p->x[k][i];
-        }
-      }
-    }
+    w->lo[d] = s->box_lo[d];
+    w->hi[d] = s->box_hi[d];
+    w->reflect[d] = !s->periodic[d];
   }
-  return n_bad;
 }
 
 static void describe(const scene_t *s, FILE *out) {
@@ -45,9 +30,9 @@ static void describe(const scene_t *s, FILE *out) {
 }
 
 const effect_t effect_box_walls = {
+    .scene = {.name = "box_walls", .confines = 1, .check = check},
     .id = EFFECT_BOX_WALLS,
-    .name = "box_walls",
     .needs = NEED_AFTER_DRIFT,
-    .after_drift = after_drift,
+    .configure = configure,
     .describe = describe,
 };

@@ -1,25 +1,58 @@
 /* dpd_thermostat: dissipative + random pair forces (Espanol & Warren 1995; paper eq. 1):
- *   -gamma w_R^2 (e . v_ij) e + sigma w_R xi_ij / sqrt(dt) e,  w_R = (1 - r/rc)^s,  sigma^2 = 2
- * gamma kT. xi_ij = xi_ji comes from the counter-based generator of meso/physics/pair_random.h.
- * v_ij uses the Groot-Warren predicted velocities, so ghosts must carry velocities. */
-#include "effect.h"
+ *   -gamma w_R^2 (e . v_ij) e + sigma w_R xi_ij / sqrt(dt) e,  w_R = (1 - r/rc)^s,
+ *   sigma^2 = 2 gamma kT.
+ * xi_ij = xi_ji comes from the counter-based generator of meso/physics/pair_random.h. v_ij uses the
+ * Groot-Warren predicted velocities, so ghosts must carry velocities. Option: exponent s (1). */
+#include "effects/effect.h"
 
 #include <math.h>
 #include <stddef.h>
 
-static int check(const scene_t *s, char *err, size_t errlen) {
-  if (!(s->kT >= 0)) {
-    snprintf(err, errlen, "%s: kT = %g: expected kT >= 0 for dpd_thermostat", s->file, s->kT);
-    return -1;
-  }
+typedef struct {
+  double exponent; /* s of w_R = (1 - r/rc)^s */
+} dpd_thermostat_options_t;
+_Static_assert(sizeof(dpd_thermostat_options_t) <= SCENE_EFFECT_OPTION_BYTES, "options too large");
+
+static dpd_thermostat_options_t *options(scene_t *s) {
+  return SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t);
+}
+static const dpd_thermostat_options_t *options_of(const scene_t *s) {
+  return SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, const dpd_thermostat_options_t);
+}
+
+static void defaults(scene_t *s) {
+  options(s)->exponent = 1.0;
+}
+
+static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
+  static const char *const keys[] = {"exponent", NULL};
+  if (yt_check_keys(t, opt, path, keys)) return -1;
+  yaml_node_t *v = yt_get(t, opt, "exponent");
+  if (!v) return 0;
+  char sub[192];
+  snprintf(sub, sizeof sub, "%s.exponent", path);
+  if (yt_double(t, v, sub, &options(s)->exponent)) return -1;
+  if (!(options(s)->exponent > 0))
+    return yt_error(t, v, sub, "expected an exponent s > 0 of w_R = (1 - r/rc)^s (got %g)",
+                    options(s)->exponent);
+  return 0;
+}
+
+static int check(const scene_t *s, scene_report_t *r) {
+  if (!(s->kT >= 0))
+    return r->error(r, "kT", "expected kT >= 0 for dpd_thermostat (got %g)", s->kT);
   for (int a = 0; a < s->n_species; a++)
-    for (int b = 0; b < s->n_species; b++)
+    for (int b = a; b < s->n_species; b++)
       if (!(s->pair[a][b].gamma >= 0)) {
-        snprintf(err, errlen, "%s: pair %s-%s: gamma = %g: expected gamma >= 0", s->file,
-                 s->species[a].name, s->species[b].name, s->pair[a][b].gamma);
-        return -1;
+        char key[160];
+        snprintf(key, sizeof key, "pairs.%s-%s.gamma", s->species[a].name, s->species[b].name);
+        return r->error(r, key, "expected gamma >= 0 (got %g)", s->pair[a][b].gamma);
       }
   return 0;
+}
+
+static double cutoff(const scene_t *s, int a, int b) {
+  return s->pair[a][b].rc;
 }
 
 static void pair_coef(const scene_t *s, int a, int b, pair_coef_t *c) {
@@ -27,22 +60,33 @@ static void pair_coef(const scene_t *s, int a, int b, pair_coef_t *c) {
   c->sigma = sqrt(2.0 * c->gamma * s->kT); /* fluctuation-dissipation */
 }
 
+static void configure(const scene_t *s, plan_t *plan) {
+  const double e = options_of(s)->exponent;
+  plan->weight_exp = e > 0 ? e : 1.0;
+}
+
 static void describe(const scene_t *s, FILE *out) {
+  const double e = options_of(s)->exponent;
   fprintf(out,
           "dpd_thermostat: -gamma w_R^2 (e.v~) e + sigma w_R xi/sqrt(dt) e, w_R = (1 - r/rc)^%g; "
           "gamma = ",
-          s->weight_exp);
+          e > 0 ? e : 1.0);
   effect_print_pair_param(s, out, offsetof(scene_pair_t, gamma));
   fprintf(out, "; kT = %g; xi from Philox(seed %llu, step, ids)", s->kT,
           (unsigned long long)s->seed);
 }
 
 const effect_t effect_dpd_thermostat = {
+    .scene = {.name = "dpd_thermostat",
+              .pair_params = SCENE_PAIR_GAMMA,
+              .defaults = defaults,
+              .parse = parse,
+              .check = check},
     .id = EFFECT_DPD_THERMOSTAT,
-    .name = "dpd_thermostat",
     .needs = NEED_PAIR | NEED_GHOST_V,
     .pair_term = PAIR_TERM_THERMOSTAT,
-    .check = check,
+    .cutoff = cutoff,
     .pair_coef = pair_coef,
+    .configure = configure,
     .describe = describe,
 };

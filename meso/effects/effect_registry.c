@@ -1,19 +1,39 @@
-/* The table of effects by scene id, and small helpers the effects share for their messages. */
-#include "effect.h"
+/* The table of effects, generated from the registry list (effect_list.h), the catalog the scene
+ * parser reads, and small helpers the effects share for their messages. */
+#include "effects/effect.h"
 
 #include <stddef.h>
 
-static const effect_t *const effect_table[EFFECT_COUNT] = {
-    [EFFECT_MDPD_ATTRACTION] = &effect_mdpd_attraction,
-    [EFFECT_MDPD_REPULSION] = &effect_mdpd_repulsion,
-    [EFFECT_DPD_CONSERVATIVE] = &effect_dpd_conservative,
-    [EFFECT_DPD_THERMOSTAT] = &effect_dpd_thermostat,
-    [EFFECT_BODY_FORCE] = &effect_body_force,
-    [EFFECT_BOX_WALLS] = &effect_box_walls,
-};
+#define DECLARE_(name, ID, kind) extern const effect_t effect_##name;
+MESO_EFFECT_LIST(DECLARE_)
+
+#define ENTRY_(name, ID, kind) [EFFECT_##ID] = &effect_##name,
+static const effect_t *const effect_table[EFFECT_COUNT] = {MESO_EFFECT_LIST(ENTRY_)};
+
+#define SCENE_ENTRY_(name, ID, kind) [EFFECT_##ID] = &effect_##name.scene,
+static const scene_effect_entry_t *const scene_entries[EFFECT_COUNT] = {
+    MESO_EFFECT_LIST(SCENE_ENTRY_)};
+static const scene_catalog_t catalog = {EFFECT_COUNT, scene_entries};
+
+_Static_assert(EFFECT_COUNT <= SCENE_MAX_EFFECTS, "raise SCENE_MAX_EFFECTS (scene/scene.h)");
 
 const effect_t *effect_get(int id) {
   return id >= 0 && id < EFFECT_COUNT ? effect_table[id] : NULL;
+}
+
+const char *effect_name(int id) {
+  return id >= 0 && id < EFFECT_COUNT ? effect_table[id]->scene.name : "?";
+}
+
+const scene_catalog_t *effect_catalog(void) {
+  return &catalog;
+}
+
+void effect_name_in_scene(scene_t *s, int id) {
+  const effect_t *e = effect_get(id);
+  if (!e) return;
+  s->effect[id] = 1;
+  if (e->scene.defaults) e->scene.defaults(s);
 }
 
 static double pair_field(const scene_t *s, int a, int b, size_t field) {

@@ -1,19 +1,20 @@
 /* mdpd_attraction: the long-range conservative term A w_c(r) e, w_c = 1 - r/rc, A < 0 attracts
- * (Warren 2003; paper eq. 1; physics.md section 1). Cutoff rc. */
-#include "effect.h"
-#include "physics/pair_forces.h"
+ * (Warren 2003; paper eq. 1; physics.md section 1). Cutoff rc. The pair math is
+ * pair_conservative_inv in meso/physics/pair_forces.h. */
+#include "effects/effect.h"
 
 #include <stddef.h>
 
-static int check(const scene_t *s, char *err, size_t errlen) {
-  if (s->effect[EFFECT_DPD_CONSERVATIVE]) {
-    snprintf(err, errlen,
-             "%s: effects 'mdpd_attraction' and 'dpd_conservative' both use the pair amplitude A: "
-             "name only one of them",
-             s->file);
-    return -1;
-  }
+static int check(const scene_t *s, scene_report_t *r) {
+  if (s->effect[EFFECT_DPD_CONSERVATIVE])
+    return r->error(r, "effects.dpd_conservative",
+                    "expected either mdpd_attraction or dpd_conservative (got both; both use the "
+                    "pair's A)");
   return 0;
+}
+
+static double cutoff(const scene_t *s, int a, int b) {
+  return s->pair[a][b].rc;
 }
 
 static void pair_coef(const scene_t *s, int a, int b, pair_coef_t *c) {
@@ -28,11 +29,11 @@ static void describe(const scene_t *s, FILE *out) {
 }
 
 const effect_t effect_mdpd_attraction = {
+    .scene = {.name = "mdpd_attraction", .pair_params = SCENE_PAIR_A, .check = check},
     .id = EFFECT_MDPD_ATTRACTION,
-    .name = "mdpd_attraction",
     .needs = NEED_PAIR,
     .pair_term = PAIR_TERM_CONSERVATIVE,
-    .check = check,
+    .cutoff = cutoff,
     .pair_coef = pair_coef,
     .describe = describe,
 };

@@ -1,29 +1,45 @@
 /* mdpd_repulsion: the many-body repulsion B (rho_i + rho_j) w_d(r) e, w_d = 1 - r/rd (Warren 2003;
  * paper eq. 1). Needs the local densities rho_i = sum_{j != i, r < rd} w_rho(r) (self term
  * excluded, physics.md section 1) of owned particles and of ghosts: a density pass and a ghost sync
- * of rho. */
-#include "effect.h"
+ * of rho. Cutoff rd. The pair math is pair_manybody_inv in meso/physics/pair_forces.h. */
+#include "effects/effect.h"
 
 #include <stddef.h>
 
-static int check(const scene_t *s, char *err, size_t errlen) {
+static int check(const scene_t *s, scene_report_t *r) {
   for (int a = 0; a < s->n_species; a++)
-    for (int b = 0; b < s->n_species; b++) {
+    for (int b = a; b < s->n_species; b++) {
       const scene_pair_t *p = &s->pair[a][b];
+      char key[160];
       if (!(p->rd > 0) || p->rd > p->rc) {
-        snprintf(err, errlen, "%s: pair %s-%s: rd = %g: expected 0 < rd <= rc (rc = %g)", s->file,
-                 s->species[a].name, s->species[b].name, p->rd, p->rc);
-        return -1;
+        snprintf(key, sizeof key, "pairs.%s-%s.rd", s->species[a].name, s->species[b].name);
+        return r->error(r, key, "expected 0 < rd <= rc = %g (got %g)", p->rc, p->rd);
+      }
+      if (!(p->B >= 0)) {
+        snprintf(key, sizeof key, "pairs.%s-%s.B", s->species[a].name, s->species[b].name);
+        return r->error(r, key, "expected B >= 0: the many-body term repels (got %g)", p->B);
       }
     }
   /* Warren, PRE 87, 045303 (2013): species-dependent B or rd make the force non-conservative. */
-  if (!effect_pair_param_common(s, offsetof(scene_pair_t, B)) ||
-      !effect_pair_param_common(s, offsetof(scene_pair_t, rd)))
-    fprintf(stderr,
-            "%s: warning: mdpd_repulsion with species-dependent B or rd is not conservative "
-            "(Warren 2013 no-go theorem); set wetting through A instead\n",
-            s->file);
+  for (int a = 0; a < s->n_species; a++)
+    for (int b = a; b < s->n_species; b++) {
+      const scene_pair_t *p = &s->pair[a][b], *ref = &s->pair[0][0];
+      if (p->B != ref->B || p->rd != ref->rd) {
+        char key[160];
+        snprintf(key, sizeof key, "pairs.%s-%s", s->species[a].name, s->species[b].name);
+        r->warn(r, key,
+                "B or rd differs between species pairs (B %g vs %g, rd %g vs %g): the many-body "
+                "force is then not conservative (Warren, PRE 87, 045303, 2013); keep B and rd "
+                "common, set wetting via A",
+                p->B, ref->B, p->rd, ref->rd);
+        return 0;
+      }
+    }
   return 0;
+}
+
+static double cutoff(const scene_t *s, int a, int b) {
+  return s->pair[a][b].rd;
 }
 
 static void pair_coef(const scene_t *s, int a, int b, pair_coef_t *c) {
@@ -38,11 +54,13 @@ static void describe(const scene_t *s, FILE *out) {
 }
 
 const effect_t effect_mdpd_repulsion = {
+    .scene = {.name = "mdpd_repulsion",
+              .pair_params = SCENE_PAIR_B | SCENE_PAIR_RD,
+              .check = check},
     .id = EFFECT_MDPD_REPULSION,
-    .name = "mdpd_repulsion",
     .needs = NEED_PAIR | NEED_DENSITY_PASS,
     .pair_term = PAIR_TERM_MANYBODY,
-    .check = check,
+    .cutoff = cutoff,
     .pair_coef = pair_coef,
     .describe = describe,
 };

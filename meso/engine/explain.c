@@ -1,9 +1,10 @@
-/* sim_explain: the step plan of a scene in words (mdpore run --explain). Built from the same plan
- * the engine runs, so a pass that is not printed is not run. */
-#include "decomp.h"
+/* sim_explain: the phase lists of a scene's plan in words (mdpore run --explain). It prints the
+ * plan's own lists (effects/plan.h), the ones engine/step.c runs, with the chosen backend's remark
+ * on each phase (backend.h phase_note: where a fused phase runs), so a phase that is not printed is
+ * not run. */
+#include "domain/decomp.h"
 #include "effects/effect.h"
-#include "plan.h"
-#include "sim.h"
+#include "engine/sim_internal.h"
 
 #include <stddef.h>
 
@@ -19,6 +20,113 @@ static void list_species(const scene_t *s, FILE *out, int frozen) {
   if (!any) fprintf(out, "none");
 }
 
+/* The named effects that need `need` (enum effect_need), comma-separated; then, with describe,
+ * one indented line each. */
+static void list_effects(const scene_t *s, const plan_t *plan, unsigned need, FILE *out,
+                         int describe) {
+  const char *sep = "";
+  for (int e = 0; e < EFFECT_COUNT; e++)
+    if (plan->named[e] && (effect_get(e)->needs & need)) {
+      if (describe) {
+        fprintf(out, "\n      ");
+        effect_get(e)->describe(s, out);
+      } else {
+        fprintf(out, "%s%s", sep, effect_name(e));
+        sep = ", ";
+      }
+    }
+}
+
+static void describe_phase(const scene_t *s, const plan_t *plan, int phase, int setup, FILE *out) {
+  switch (phase) {
+  case PHASE_KICK_DRIFT:
+    fprintf(out, "first half kick v += dt/2 f/m + drift x += dt v (mobile species: ");
+    list_species(s, out, 0);
+    fprintf(out, "; frozen, never moved: ");
+    list_species(s, out, 1);
+    fprintf(out, ")");
+    break;
+  case PHASE_AFTER_DRIFT:
+    fprintf(out, "position constraints: ");
+    list_effects(s, plan, NEED_AFTER_DRIFT, out, 0);
+    list_effects(s, plan, NEED_AFTER_DRIFT, out, 1);
+    break;
+  case PHASE_CHECK_DRIFT:
+    fprintf(out,
+            "collective check: NaN/Inf in x, v; displacement > %g (half the cutoff) in one step; "
+            "then the step index advances",
+            plan->max_disp);
+    break;
+  case PHASE_MIGRATE:
+    fprintf(out, "periodic wrap; particles to the rank that owns them");
+    break;
+  case PHASE_SORT:
+    fprintf(out, "owned particles in cell order");
+    break;
+  case PHASE_PREDICT:
+    if (setup)
+      fprintf(out, "v~ = v (the first forces use the current velocities)");
+    else
+      fprintf(out, "predicted velocity v~ = v + (lambda - 1/2) dt f/m, lambda = %g (Groot-Warren)",
+              plan->vv_lambda);
+    break;
+  case PHASE_GHOSTS:
+    fprintf(out, "ghost exchange in 3 stages x, y, z, width %g (fields: id, species, x%s)",
+            plan->rcut, plan->ghost_v ? (plan->use_vpred ? ", v~" : ", v") : "");
+    break;
+  case PHASE_NEIGHBOURS:
+    fprintf(out, "cell lists of width >= %g and neighbour lists", plan->rcut);
+    break;
+  case PHASE_DENSITY:
+    fprintf(out, "density pass (%s kernel, rd = ", s->density_kernel == 1 ? "Lucy" : "Warren");
+    effect_print_pair_param(s, out, offsetof(scene_pair_t, rd));
+    fprintf(out, "; self term excluded)");
+    break;
+  case PHASE_RHO_SYNC:
+    fprintf(out, "ghost sync: rho");
+    break;
+  case PHASE_PAIR_FORCES:
+    if (!plan->pair_terms) {
+      fprintf(out, "no pair effect named: forces start at 0");
+      break;
+    }
+    fprintf(out, "force pass: ");
+    list_effects(s, plan, NEED_PAIR, out, 0);
+    if (!setup) list_effects(s, plan, NEED_PAIR, out, 1);
+    break;
+  case PHASE_PARTICLE_FORCES:
+    fprintf(out, "particle forces: ");
+    list_effects(s, plan, NEED_PARTICLE, out, 0);
+    if (!setup) list_effects(s, plan, NEED_PARTICLE, out, 1);
+    break;
+  case PHASE_KICK:
+    fprintf(out, "second half kick v += dt/2 f/m");
+    break;
+  case PHASE_CHECK:
+    fprintf(out, "collective check: NaN/Inf in f%s (all ranks stop together)",
+            setup ? "" : "; particle count");
+    break;
+  default:
+    break;
+  }
+}
+
+static void print_list(const scene_t *s, const plan_t *plan, const backend_ops_t *ops, int setup,
+                       FILE *out) {
+  const unsigned char *list = setup ? plan->setup : plan->step;
+  const int n = setup ? plan->n_setup : plan->n_step;
+  for (int k = 0; k < n; k++) {
+    fprintf(out, "%2d. %s: ", k + 1, step_phase_names[list[k]]);
+    describe_phase(s, plan, list[k], setup, out);
+    const char *note = ops && ops->phase_note ? ops->phase_note(plan, list[k]) : NULL;
+    if (note)
+      fprintf(out, "\n      [%s: %s]", ops->name, note);
+    else if (ops && !ops->phase[list[k]])
+      fprintf(out, "\n      [%s: nothing to do here]", ops->name);
+    fprintf(out, "\n");
+  }
+}
+
 void sim_explain(const scene_t *s, int nranks, FILE *out) {
   plan_t plan;
   char err[512];
@@ -27,81 +135,18 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
     fprintf(out, "cannot plan this scene: %s\n", err);
     return;
   }
+  const backend_ops_t *ops = sim_backend_ops(s->backend, nranks);
   fprintf(out, "Step plan for scene '%s' (%s)\n", s->name, s->file);
   fprintf(
       out,
       "decomposition: %d MPI rank(s) as %d x %d x %d subdomains of %g x %g x %g; ghost cutoff %g\n",
       nranks, dims[0], dims[1], dims[2], (s->box_hi[0] - s->box_lo[0]) / dims[0],
       (s->box_hi[1] - s->box_lo[1]) / dims[1], (s->box_hi[2] - s->box_lo[2]) / dims[2], plan.rcut);
-  fprintf(out, "periodic: x %s, y %s, z %s; dt = %g\n", s->periodic[0] ? "yes" : "no",
-          s->periodic[1] ? "yes" : "no", s->periodic[2] ? "yes" : "no", s->dt);
-  int k = 1;
-  fprintf(out,
-          "%d. integrate: first half kick v += dt/2 f/m + drift x += dt v (mobile species: ", k++);
-  list_species(s, out, 0);
-  fprintf(out, "; frozen, never moved: ");
-  list_species(s, out, 1);
-  fprintf(out, ")\n");
-  if (plan.walls) {
-    fprintf(out, "   ");
-    effect_box_walls.describe(s, out);
-    fprintf(out, "\n");
-  }
-  if (plan.use_vpred)
-    fprintf(out,
-            "   predicted velocity v~ = v + (lambda - 1/2) dt f/m, lambda = %g (Groot-Warren)\n",
-            s->vv_lambda);
-  else if (plan.ghost_v)
-    fprintf(
-        out,
-        "   lambda = 0.5: the thermostat uses the half-kicked velocity (plain velocity Verlet)\n");
-  if (plan.pair_terms)
-    fprintf(out, "%d. migrate + ghost exchange in 3 stages x, y, z (fields: id, species, x%s)\n",
-            k++, plan.ghost_v ? (plan.use_vpred ? ", v~" : ", v") : "");
-  else
-    fprintf(out, "%d. migrate (no pair effect named: no ghosts, no neighbour search)\n", k++);
-  if (plan.density) {
-    fprintf(out, "%d. density pass (%s kernel, rd = ", k++,
-            s->density_kernel == 1 ? "Lucy" : "Warren");
-    effect_print_pair_param(s, out, offsetof(scene_pair_t, rd));
-    fprintf(out, "; self term excluded)\n");
-    fprintf(out, "%d. ghost sync: rho\n", k++);
-  }
-  if (plan.pair_terms) {
-    fprintf(out, "%d. force pass:", k++);
-    const char *sep = " ";
-    for (int e = 0; e < EFFECT_COUNT; e++)
-      if (plan.named[e] && (effect_get(e)->needs & NEED_PAIR)) {
-        fprintf(out, "%s%s", sep, effect_get(e)->name);
-        sep = ", ";
-      }
-    fprintf(out, " (full neighbour traversal, cell lists of width >= %g)\n", plan.rcut);
-    for (int e = 0; e < EFFECT_COUNT; e++)
-      if (plan.named[e] && (effect_get(e)->needs & NEED_PAIR)) {
-        fprintf(out, "   ");
-        effect_get(e)->describe(s, out);
-        fprintf(out, "\n");
-      }
-  }
-  if (plan.particle_forces) {
-    fprintf(out, "%d. particle forces: ", k++);
-    const char *sep = "";
-    for (int e = 0; e < EFFECT_COUNT; e++)
-      if (plan.named[e] && (effect_get(e)->needs & NEED_PARTICLE)) {
-        fprintf(out, "%s%s", sep, effect_get(e)->name);
-        sep = ", ";
-      }
-    fprintf(out, "\n");
-    for (int e = 0; e < EFFECT_COUNT; e++)
-      if (plan.named[e] && (effect_get(e)->needs & NEED_PARTICLE)) {
-        fprintf(out, "   ");
-        effect_get(e)->describe(s, out);
-        fprintf(out, "\n");
-      }
-  }
-  fprintf(out, "%d. second half kick v += dt/2 f/m\n", k++);
-  fprintf(out,
-          "checks every step (all ranks stop together): NaN/Inf in x, v, f; displacement > %g "
-          "(half the cutoff) in one step; particle count\n",
-          plan.max_disp);
+  fprintf(out, "periodic: x %s, y %s, z %s; dt = %g; backend: %s\n", s->periodic[0] ? "yes" : "no",
+          s->periodic[1] ? "yes" : "no", s->periodic[2] ? "yes" : "no", s->dt,
+          ops ? ops->name : "cuda (not in this build)");
+  fprintf(out, "set-up (forces of the first configuration), %d phases:\n", plan.n_setup);
+  print_list(s, &plan, ops, 1, out);
+  fprintf(out, "every step, %d phases:\n", plan.n_step);
+  print_list(s, &plan, ops, 0, out);
 }

@@ -3,8 +3,9 @@
 #ifndef MESO_ENGINE_SIM_H
 #define MESO_ENGINE_SIM_H
 
-#include "../io/scene.h"
-#include "particles.h"
+#include "effects/effect_list.h"
+#include "scene/scene.h"
+#include "domain/particles.h"
 
 #include <mpi.h>
 #include <stdio.h>
@@ -69,6 +70,8 @@ void sim_rebuild_lists(sim_t *sim);
 int sim_check_count(sim_t *sim);
 /* The last error message of this rank ("" when none). */
 const char *sim_last_error(const sim_t *sim);
+/* The backend that runs the phases: "cpu" or "cuda". */
+const char *sim_backend_name(const sim_t *sim);
 
 /* The backend for --backend NAME: "cpu", "cuda", or "auto" (cuda when this build has CUDA, a GPU is
  * visible and the run has one rank; cpu otherwise). 0, or -1 with the reason in err (cuda asked for
@@ -78,7 +81,8 @@ int sim_backend_choose(const char *name, int nranks, int *backend, char *err, si
  * back first when they changed (outputs only; changes made through it after sim_setup are not seen
  * by the device). */
 
-/* Print the per-step pass plan for a scene without running it (mdpore run --explain). */
+/* Print the phase lists (set-up and step) the scene's plan runs on scene.backend, with each named
+ * effect's numbers, without running it (mdpore run --explain). */
 void sim_explain(const scene_t *scene, int nranks, FILE *out);
 
 #endif

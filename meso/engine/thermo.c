@@ -3,17 +3,19 @@
  *   P_ab = ( sum_i m v_a v_b + 1/2 sum_{i != j} r_ij,a F_ij,b ) / V
  * with all pair force parts (conservative, dissipative, random; physics.md section 2). Temperature
  * counts 3 (N_mobile - 1) degrees of freedom (total momentum is conserved without body force). */
-#include "sim_internal.h"
+#include "engine/sim_internal.h"
 
 #include <string.h>
 
 void sim_thermo(sim_t *sim, thermo_t *out) {
-  const particles_t *p = &sim->p;
-  const plan_t *plan = &sim->plan;
+  sim_state_t *st = &sim->st;
+  const particles_t *p = &st->p;
+  const plan_t *plan = &st->plan;
+  const int on_device = sim->ops->thermo_sums != NULL;
   enum { N_MOBILE, KE, PX, PY, PZ, K0, NV = K0 + 6, NVAL = NV + 6 };
   double v[NVAL] = {0}, g[NVAL];
-  if (sim->gpu && sim_cuda_thermo_sums(sim, v)) memset(v, 0, sizeof v); /* message printed */
-  for (int i = 0; i < (sim->gpu ? 0 : p->n_local); i++) {
+  if (on_device && sim->ops->thermo_sums(st, v)) memset(v, 0, sizeof v); /* message printed */
+  for (int i = 0; i < (on_device ? 0 : p->n_local); i++) {
     const int s = p->species[i];
     const double m = plan->mass[s];
     const double vx = p->v[0][i], vy = p->v[1][i], vz = p->v[2][i];
@@ -30,22 +32,22 @@ void sim_thermo(sim_t *sim, thermo_t *out) {
     v[PY] += m * vy;
     v[PZ] += m * vz;
   }
-  if (!sim->gpu)
-    for (int k = 0; k < 6; k++) v[NV + k] = sim->virial[k];
+  if (!on_device)
+    for (int k = 0; k < 6; k++) v[NV + k] = st->virial[k];
   /* Reduce on rank 0 and broadcast: bitwise identical values on every rank. */
-  MPI_Reduce(v, g, NVAL, MPI_DOUBLE, MPI_SUM, 0, sim->dc.cart);
-  MPI_Bcast(g, NVAL, MPI_DOUBLE, 0, sim->dc.cart);
+  MPI_Reduce(v, g, NVAL, MPI_DOUBLE, MPI_SUM, 0, st->dc.cart);
+  MPI_Bcast(g, NVAL, MPI_DOUBLE, 0, st->dc.cart);
   long n_local = p->n_local, n_total = 0;
-  MPI_Allreduce(&n_local, &n_total, 1, MPI_LONG, MPI_SUM, sim->dc.cart);
+  MPI_Allreduce(&n_local, &n_total, 1, MPI_LONG, MPI_SUM, st->dc.cart);
   memset(out, 0, sizeof *out);
-  out->step = sim->step;
-  out->time = sim->step * sim->scene.dt;
+  out->step = st->step;
+  out->time = st->step * st->scene.dt;
   out->n_total = n_total;
   out->n_mobile = (long)g[N_MOBILE];
   out->ke = g[KE];
   out->temperature = out->n_mobile > 1 ? 2.0 * g[KE] / (3.0 * (double)(out->n_mobile - 1)) : 0.0;
   for (int d = 0; d < 3; d++) out->momentum[d] = g[PX + d];
   out->volume = 1.0;
-  for (int d = 0; d < 3; d++) out->volume *= sim->scene.box_hi[d] - sim->scene.box_lo[d];
+  for (int d = 0; d < 3; d++) out->volume *= st->scene.box_hi[d] - st->scene.box_lo[d];
   for (int k = 0; k < 6; k++) out->pressure[k] = (g[K0 + k] + g[NV + k]) / out->volume;
 }

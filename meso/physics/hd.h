@@ -24,4 +24,7 @@ typedef double meso_real;
 
 #define MESO_PI 3.14159265358979323846
 
+/* Most species a scene may declare (sizes the per-species tables of the plan and the device). */
+#define MESO_MAX_SPECIES 8
+
 #endif

@@ -1,7 +1,7 @@
 /* Pair force magnitudes of (many-body) DPD along e = r_ij / r (physics.md section 1, paper eq. 1):
- *   F_ij = [ A w_c(r) + B (rho_i + rho_j) w_d(r) ] e - gamma w_D(r) (e . v_ij) e + sigma w_R(r) xi
- * / sqrt(dt) e Each function returns the scalar that multiplies e; positive pushes i away from j.
- */
+ *   F_ij = [ A w_c(r) + B (rho_i + rho_j) w_d(r) ] e
+ *          - gamma w_D(r) (e . v_ij) e + sigma w_R(r) xi / sqrt(dt) e
+ * Each function returns the scalar that multiplies e; positive pushes i away from j. */
 #ifndef MESO_PHYSICS_PAIR_FORCES_H
 #define MESO_PHYSICS_PAIR_FORCES_H
 

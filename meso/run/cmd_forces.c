@@ -1,10 +1,11 @@
 /* mdpore forces SCENE [--dump FILE]: zero steps. Builds the scene's initial configuration,
  * evaluates densities and forces once and writes them as a LAMMPS-style dump (id type x y z vx vy
  * vz fx fy fz rho) for cross-checks with LAMMPS (pair mdpd + mdpd/rhosum, or pair dpd). */
+#include "effects/scene_load.h"
 #include "commands.h"
 #include "engine/sim.h"
 #include "io/dump_lammps.h"
-#include "io/init_config.h"
+#include "build/init_config.h"
 
 #include <getopt.h>
 #include <math.h>

@@ -1,4 +1,5 @@
 /* mdpore run [--explain] [--steps N] [--output-dir D] [--restart FILE] SCENE */
+#include "effects/scene_load.h"
 #include "commands.h"
 #include "engine/sim.h"
 #include "common/atomic_file.h"

@@ -3,7 +3,7 @@
 #ifndef MESO_RUN_RUN_LOOP_H
 #define MESO_RUN_RUN_LOOP_H
 
-#include "io/scene.h"
+#include "scene/scene.h"
 
 #include <mpi.h>
 

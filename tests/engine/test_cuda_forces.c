@@ -33,10 +33,13 @@ int main(int argc, char **argv) {
   s.pair[0][1].A = s.pair[1][0].A = -30; /* wetting through A only (Warren 2013) */
   s.periodic[2] = 0;                     /* reflecting walls along z */
   s.vv_lambda = 0.65;                    /* exercises the predicted-velocity array */
-  s.effect[EFFECT_MDPD_ATTRACTION] = s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = s.effect[EFFECT_BODY_FORCE] = s.effect[EFFECT_BOX_WALLS] = 1;
-  s.body_force[0][0] = 0.3;
-  s.body_force_reverse_axis = 2;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
+  effect_name_in_scene(&s, EFFECT_BODY_FORCE);
+  effect_name_in_scene(&s, EFFECT_BOX_WALLS);
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->g[0][0] = 0.3;
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->reverse_axis = 2;
   const int n = 2016; /* density 6 */
   sim_t *cpu = build(&s, SCENE_BACKEND_CPU, n);
   CHECK(cpu, "building the CPU simulation");
@@ -88,7 +91,8 @@ int main(int argc, char **argv) {
       }
     long builds = 0, steps = 0;
     double skin = 0;
-    cuda_sim_list_stats(gpu->gpu, &builds, &steps, &skin);
+    cuda_sim_list_stats(cuda_backend_device(sim_state(gpu), sim_backend_name(gpu)), &builds, &steps,
+                        &skin);
     printf("skin %.2f: after 5 steps (%ld list builds): max |x_gpu - x_cpu| = %.3e, max |v_gpu - "
            "v_cpu| = %.3e\n",
            skin, builds, dx, dv);

@@ -15,10 +15,13 @@ static void scene_of(scene_t *s) {
   s->pair[0][1].A = s->pair[1][0].A = -30;
   s->periodic[2] = 0;
   s->vv_lambda = 0.65;
-  s->effect[EFFECT_MDPD_ATTRACTION] = s->effect[EFFECT_MDPD_REPULSION] = 1;
-  s->effect[EFFECT_DPD_THERMOSTAT] = s->effect[EFFECT_BODY_FORCE] = s->effect[EFFECT_BOX_WALLS] = 1;
-  s->body_force[0][0] = 0.3;
-  s->body_force_reverse_axis = 2;
+  effect_name_in_scene(s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(s, EFFECT_DPD_THERMOSTAT);
+  effect_name_in_scene(s, EFFECT_BODY_FORCE);
+  effect_name_in_scene(s, EFFECT_BOX_WALLS);
+  SCENE_EFFECT_OPTIONS(s, EFFECT_BODY_FORCE, body_force_params_t)->g[0][0] = 0.3;
+  SCENE_EFFECT_OPTIONS(s, EFFECT_BODY_FORCE, body_force_params_t)->reverse_axis = 2;
   s->backend = SCENE_BACKEND_CUDA;
 }
 

@@ -57,8 +57,10 @@ int main(int argc, char **argv) {
   test_scene_mdpd(&s, 10.0, 8.0, 6.0); /* 480 volume, density 6.25 */
   s.periodic[2] = 0;
   s.vv_lambda = 0.65;
-  s.effect[EFFECT_MDPD_ATTRACTION] = s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = s.effect[EFFECT_BOX_WALLS] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
+  effect_name_in_scene(&s, EFFECT_BOX_WALLS);
   stat_t Tc, Pc, Tg, Pg;
   double dc, dg;
   CHECK(!run(&s, SCENE_BACKEND_CPU, 5, &Tc, &Pc, &dc), "CPU run");

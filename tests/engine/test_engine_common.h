@@ -3,8 +3,9 @@
 #ifndef TEST_ENGINE_COMMON_H
 #define TEST_ENGINE_COMMON_H
 
+#include "effects/effect.h"
 #include "engine/sim.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 #include <math.h>
 #include <mpi.h>
@@ -55,9 +56,7 @@ static inline void test_scene_mdpd(scene_t *s, double lx, double ly, double lz) 
       s->pair[a][b] = (scene_pair_t){.A = -40, .B = 25, .gamma = 4.5, .rc = 1.0, .rd = 0.75};
   s->density_kernel = 0;
   s->kT = 1.0;
-  s->weight_exp = 1.0;
   s->vv_lambda = 0.5;
-  s->body_force_reverse_axis = -1;
   s->dt = 0.01;
   s->seed = 12345;
 }

@@ -9,9 +9,9 @@ int main(int argc, char **argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   scene_t s;
   test_scene_mdpd(&s, 6.0, 5.0, 5.0);
-  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
-  s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
   sim_t *sim = sim_create(&s, MPI_COMM_WORLD);
   CHECK(sim, "sim_create");
   const int n = 900; /* density 6 */

@@ -20,8 +20,8 @@ int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   scene_t s;
   test_scene_mdpd(&s, 10, 10, 10);
-  s.effect[EFFECT_DPD_CONSERVATIVE] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  effect_name_in_scene(&s, EFFECT_DPD_CONSERVATIVE);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
   s.pair[0][0].A = 25; /* standard DPD a */
   char *t = explain(&s, 2);
   printf("--- standard DPD ---\n%s", t);
@@ -36,13 +36,13 @@ int main(int argc, char **argv) {
   sim_destroy(sim);
 
   test_scene_mdpd(&s, 10, 10, 10);
-  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
-  s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
-  s.effect[EFFECT_BODY_FORCE] = 1;
-  s.effect[EFFECT_BOX_WALLS] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
+  effect_name_in_scene(&s, EFFECT_BODY_FORCE);
+  effect_name_in_scene(&s, EFFECT_BOX_WALLS);
   s.periodic[2] = 0;
-  s.body_force[0][0] = 0.02;
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->g[0][0] = 0.02;
   t = explain(&s, 1);
   printf("--- mDPD with walls and body force ---\n%s", t);
   const char *dens = strstr(t, "density pass (Warren kernel, rd = 0.75");
@@ -62,11 +62,11 @@ int main(int argc, char **argv) {
   if (rank == 0) fprintf(stderr, "(three expected error messages follow)\n");
   s.effect[EFFECT_BOX_WALLS] = 0; /* z not periodic, no walls */
   CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "non-periodic axis without box_walls accepted");
-  s.effect[EFFECT_BOX_WALLS] = 1;
+  effect_name_in_scene(&s, EFFECT_BOX_WALLS);
   s.box_hi[0] = 0.9; /* thinner than rc = 1 */
   CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "subdomain thinner than the cutoff accepted");
   s.box_hi[0] = 10;
-  s.effect[EFFECT_DPD_CONSERVATIVE] = 1;
+  effect_name_in_scene(&s, EFFECT_DPD_CONSERVATIVE);
   CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "mdpd_attraction + dpd_conservative accepted");
   MPI_Finalize();
   return 0;

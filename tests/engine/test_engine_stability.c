@@ -9,9 +9,9 @@ int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   scene_t s;
   test_scene_mdpd(&s, 5, 5, 5);
-  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
-  s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
   s.dt = 0.5; /* far too large for mDPD */
   sim_t *sim = sim_create(&s, MPI_COMM_WORLD);
   CHECK(sim, "sim_create");
@@ -29,13 +29,14 @@ int main(int argc, char **argv) {
   sim_destroy(sim);
 
   test_scene_mdpd(&s, 6, 5, 5);
-  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
-  s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
-  s.effect[EFFECT_BOX_WALLS] = 1;
-  s.effect[EFFECT_BODY_FORCE] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
+  effect_name_in_scene(&s, EFFECT_BOX_WALLS);
+  effect_name_in_scene(&s, EFFECT_BODY_FORCE);
   s.periodic[0] = 0;
-  s.body_force[0][0] = 2.0; /* pushes everything against the wall at x = 6 */
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->g[0][0] =
+      2.0; /* pushes everything against the wall at x = 6 */
   sim = sim_create(&s, MPI_COMM_WORLD);
   CHECK(sim, "sim_create (walls)");
   CHECK(test_fill_random(sim, &s, 900, 0.0, 9) == 0, "fill");

@@ -20,9 +20,9 @@ int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   scene_t s;
   test_scene_mdpd(&s, 5, 5, 5);
-  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
-  s.effect[EFFECT_MDPD_REPULSION] = 1;
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
 #ifdef _OPENMP
   omp_set_num_threads(1);
 #endif

@@ -43,8 +43,8 @@ int main(int argc, char **argv) {
   scene_t s;
   const double L = 4.0;
   test_scene_mdpd(&s, L, L, L);
-  s.effect[EFFECT_MDPD_ATTRACTION] = 1;
-  s.effect[EFFECT_MDPD_REPULSION] = 1;
+  effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
+  effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
   sim_t *sim = sim_create(&s, MPI_COMM_SELF);
   CHECK(sim, "sim_create failed");
   const int n = 200;

@@ -2,9 +2,10 @@
  * zero total momentum and a temperature near the requested one; the configuration generated on the
  * parallel decomposition is bitwise the same as on one rank (keyed on ids, not on ranks). Frozen
  * species are at rest; a lattice fill realises the density within 5%. Run on 2 ranks. */
+#include "effects/scene_load.h"
 #include "engine/sim.h"
 #include "io/gather.h"
-#include "io/init_config.h"
+#include "build/init_config.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -32,7 +32,7 @@ int main(int argc, char **argv) {
 
   scene_t s;
   test_scene_mdpd(&s, 5.0, 5.0, 5.0);
-  s.effect[EFFECT_DPD_THERMOSTAT] = 1;
+  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
   sim_t *sim = sim_create(&s, MPI_COMM_SELF);
   CHECK(sim, "sim_create");
   CHECK(test_fill_random(sim, &s, 500, 0.0, 5) == 0, "fill");

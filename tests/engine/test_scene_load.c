@@ -1,7 +1,9 @@
 /* Parse scene files and report: exit 0 when every file given parses and validates, 1 otherwise.
  * Used by the tests that every scene in cases/ loads and that bad scenes fail with a clear message.
  */
-#include "io/scene.h"
+#include "effects/plan.h"
+#include "effects/scene_load.h"
+#include "scene/scene.h"
 
 #include <mpi.h>
 #include <stdio.h>
@@ -15,9 +17,16 @@ int main(int argc, char **argv) {
       bad = 1;
       continue;
     }
-    printf("%s: '%s' %d species, %ld steps, box %g x %g x %g, cutoff %g\n", argv[i], s.name,
-           s.n_species, s.steps, s.box_hi[0] - s.box_lo[0], s.box_hi[1] - s.box_lo[1],
-           s.box_hi[2] - s.box_lo[2], scene_max_cutoff(&s));
+    plan_t plan;
+    char err[1024];
+    if (plan_build(&plan, &s, err, sizeof err)) {
+      fprintf(stderr, "%s\n", err);
+      bad = 1;
+      continue;
+    }
+    printf("%s: '%s' %d species, %ld steps, box %g x %g x %g, cutoff %g, %d phases a step\n",
+           argv[i], s.name, s.n_species, s.steps, s.box_hi[0] - s.box_lo[0],
+           s.box_hi[1] - s.box_lo[1], s.box_hi[2] - s.box_lo[2], plan.rcut, plan.n_step);
   }
   MPI_Finalize();
   return argc < 2 ? 2 : bad;

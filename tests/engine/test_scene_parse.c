@@ -1,6 +1,8 @@
 /* The scene parser turns a full scene into the right numbers: defaults, pair overrides applied
  * symmetrically, effect options, fill regions, outputs, paths relative to the scene file. */
-#include "io/scene.h"
+#include "effects/effect.h"
+#include "effects/scene_load.h"
+#include "scene/scene.h"
 #include "physics/density_kernels.h"
 
 #include <math.h>
@@ -52,11 +54,12 @@ int main(int argc, char **argv) {
   CHECK(s.pair[0][0].A == -40 && s.pair[0][1].A == -30 && s.pair[1][0].A == -30 &&
         s.pair[1][1].A == -40);
   CHECK(s.pair[0][1].B == 25 && s.pair[0][1].rd == 0.75 && s.pair[1][0].gamma == 4.5);
-  CHECK(s.density_kernel == MESO_KERNEL_LUCY && s.kT == 0.9 && s.weight_exp == 0.5);
+  CHECK(s.density_kernel == MESO_KERNEL_LUCY && s.kT == 0.9);
   CHECK(s.effect[EFFECT_MDPD_ATTRACTION] && s.effect[EFFECT_MDPD_REPULSION] &&
         s.effect[EFFECT_BOX_WALLS]);
   CHECK(!s.effect[EFFECT_DPD_CONSERVATIVE]);
-  CHECK(s.body_force[0][0] == 0.02 && s.body_force[1][0] == 0 && s.body_force_reverse_axis == 1);
+  const body_force_params_t *bf = SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t);
+  CHECK(bf->g[0][0] == 0.02 && bf->g[1][0] == 0 && bf->reverse_axis == 1);
   CHECK(s.init.kind == INIT_FILL && s.init.n_fill == 2 && s.init.fill[0].mode == FILL_LATTICE);
   CHECK(s.init.fill[1].species == 1 && s.init.fill[1].hi[0] == 20 &&
         s.init.fill[1].mode == FILL_RANDOM);
@@ -65,12 +68,21 @@ int main(int argc, char **argv) {
   CHECK(s.thermo.every == 100 && !strcmp(s.thermo.path, "thermo.h5") && s.snapshot.every == 0);
   CHECK(s.profile.axis == 2 && s.profile.nbins == 40 && s.profile.start == 1000);
   CHECK(!s.progress && !strcmp(s.summary_path, "summary.json"));
-  CHECK(fabs(scene_max_cutoff(&s) - 1.0) < 1e-15);
+  /* The plan: the thermostat's exponent, the cutoff, the body force centre along y. */
+  plan_t plan;
+  char err[512];
+  CHECK(plan_build(&plan, &s, err, sizeof err) == 0);
+  CHECK(plan.weight_exp == 0.5 && !plan.weight_exp_is_one);
+  CHECK(fabs(plan.rcut - 1.0) < 1e-15);
+  CHECK(plan.particle.on[EFFECT_BODY_FORCE] && plan.particle.body_force.centre == 5.0);
   /* The physics hash sees physics, not outputs. */
   scene_t t = s;
   t.thermo.every = 7;
   CHECK(scene_physics_hash(&t) == scene_physics_hash(&s));
   t.pair[0][1].A = -31;
+  CHECK(scene_physics_hash(&t) != scene_physics_hash(&s));
+  t = s; /* an effect option is physics too */
+  SCENE_EFFECT_OPTIONS(&t, EFFECT_BODY_FORCE, body_force_params_t)->g[0][0] = 0.03;
   CHECK(scene_physics_hash(&t) != scene_physics_hash(&s));
   remove(path);
   MPI_Finalize();

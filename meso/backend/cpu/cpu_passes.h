@@ -4,9 +4,9 @@
 #ifndef MESO_BACKEND_CPU_PASSES_H
 #define MESO_BACKEND_CPU_PASSES_H
 
-#include "engine/cell_list.h"
-#include "engine/particles.h"
-#include "engine/plan.h"
+#include "domain/cell_list.h"
+#include "domain/particles.h"
+#include "effects/plan.h"
 
 #include <stdint.h>
 
@@ -34,8 +34,8 @@ void cpu_density_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl,
 
 typedef struct {
   uint64_t seed;
-  uint64_t step; /* step index of this force evaluation (keys the random numbers) */
-  double dt;
+  uint64_t step;           /* step index of this force evaluation (keys the random numbers) */
+  double inv_sqrt_dt;      /* 1 / sqrt(dt) of the random force (plan.inv_sqrt_dt) */
   int per_particle_virial; /* fill p->virial */
   double
       virial[6]; /* out: 1/2 sum_{owned i} sum_j r_ij,a F_ij,b (xx yy zz xy xz yz), pair forces */

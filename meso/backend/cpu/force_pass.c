@@ -102,9 +102,8 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
 void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, const nlist_t *nl,
                     force_pass_args_t *a) {
   const int per_virial = a->per_particle_virial && p->virial != NULL;
-  force_consts_t k = {.inv_sqrt_dt = 1.0 / sqrt(a->dt),
-                      .s_exp = plan->weight_exp,
-                      .s_one = plan->weight_exp_is_one};
+  force_consts_t k = {
+      .inv_sqrt_dt = a->inv_sqrt_dt, .s_exp = plan->weight_exp, .s_one = plan->weight_exp_is_one};
   k.vx = p->vpred[0] ? p->vpred[0] : p->v[0];
   k.vy = p->vpred[1] ? p->vpred[1] : p->v[1];
   k.vz = p->vpred[2] ? p->vpred[2] : p->v[2];

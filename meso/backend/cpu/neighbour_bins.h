@@ -3,7 +3,7 @@
 #ifndef MESO_BACKEND_CPU_NEIGHBOUR_BINS_H
 #define MESO_BACKEND_CPU_NEIGHBOUR_BINS_H
 
-#include "engine/cell_list.h"
+#include "domain/cell_list.h"
 
 static inline int neighbour_rows(const cell_list_t *cl, int cell, int lo[9], int hi[9]) {
   int b[3];

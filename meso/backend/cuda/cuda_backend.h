@@ -1,4 +1,5 @@
-/* The CUDA backend's C interface (used by meso/engine/sim_cuda.c and sim_cuda_halo.c). One GPU
+/* The CUDA backend's C interface (used by its host glue, cuda_glue.c and cuda_glue_halo.c, which
+ * fill the ops table of backend/backend.h). One GPU
  * holds the particles of one rank between steps; the host sees them only through cuda_sim_download
  * (outputs, checkpoints) and, with several ranks, the boundary particles of the halo exchange.
  * Pair math comes from meso/physics (*.h), compiled for the device with MESO_REAL_FLOAT unless the
@@ -6,9 +7,10 @@
 #ifndef MESO_BACKEND_CUDA_BACKEND_H
 #define MESO_BACKEND_CUDA_BACKEND_H
 
-#include "engine/particles.h"
-#include "engine/plan.h"
-#include "io/scene.h"
+#include "backend/backend.h"
+#include "domain/particles.h"
+#include "effects/plan.h"
+#include "scene/scene.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -53,18 +55,26 @@ int cuda_sim_download(cuda_sim_t *g, particles_t *p);
 /* Number of particles on the device. */
 int cuda_sim_count(const cuda_sim_t *g);
 
-/* Sort by cell, densities and forces at step index `step` (setup: v~ = v). keep_forces: forces
- * were loaded from a checkpoint and are kept (the pass still runs for rho and the virial). */
-int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, int want_virial,
-                          cuda_problem_t *pr);
-/* One velocity-Verlet step; step is the index after the step (keys the random numbers). */
-int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_problem_t *pr);
+/* The phases on one rank (cuda_step.cu; the glue in cuda_glue.c calls them in the plan's order):
+ * kick + drift + constraints + wrap; sort by cell (set-up: with the loaded forces when keep_forces;
+ * a step with a skin may keep the lists: cuda_sim_neighbours decides); prediction (v~ = v at
+ * set-up); pack + neighbour scan with the densities; the pair forces at step index `step`; the
+ * finishing kernel (particle forces when add_particle, finite check, second kick when kick); the
+ * problem record of the step (synchronises). Each 0 or -1. */
+int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial);
+int cuda_sim_sort(cuda_sim_t *g, int setup, int keep_forces, int want_virial);
+int cuda_sim_predict(cuda_sim_t *g, int setup);
+int cuda_sim_neighbours(cuda_sim_t *g);
+int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces);
+int cuda_sim_finish(cuda_sim_t *g, int add_particle, int kick);
+int cuda_sim_fetch_problems(cuda_sim_t *g, cuda_problem_t *pr);
 
 /* Several ranks (one GPU each; cuda_halo.cu, cuda_step.cu), in step order: kick-drift; sort the
  * owned particles by bin with the leavers last (*n_stay = first leaver); take the leavers out into
  * `out` (host); add the arrivals; sort again; predict; boundary set into hb (host: id, species, x,
  * thermostat velocity in v); ghosts of hb (after ghosts_build) to the device; densities; boundary
- * densities out (field[0..n_boundary)), ghost densities in (host ghost order); forces (+ kick). */
+ * densities out (field[0..n_boundary)), ghost densities in (host ghost order); forces (then
+ * cuda_sim_finish and cuda_sim_fetch_problems as on one rank). */
 int cuda_halo_kick_drift(cuda_sim_t *g);
 int cuda_halo_sort_owned(cuda_sim_t *g, int *n_stay);
 int cuda_halo_take_leavers(cuda_sim_t *g, int n_stay, particles_t *out);
@@ -81,8 +91,7 @@ int cuda_halo_density(cuda_sim_t *g);
 int cuda_halo_forces_early(cuda_sim_t *g, long step, int want_virial, int keep_forces);
 int cuda_halo_rho_out(cuda_sim_t *g, double *field);
 int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho);
-int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces, int kick,
-                     cuda_problem_t *pr);
+int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces);
 
 /* Announce whether the next steps end in a thermo sample: only then does the force pass sum the
  * pair virial (a sample after a step without it reruns the pair pass for the virial alone). */
@@ -104,6 +113,10 @@ size_t cuda_sim_bytes(const cuda_sim_t *g);
 int cuda_sim_double_precision(void);
 /* Name of the device (for summaries and the benchmark). */
 const char *cuda_sim_device_name(const cuda_sim_t *g);
+
+/* The device state of a simulation running on the CUDA backend (st->impl of cuda_glue.c), for
+ * benchmarks and tests; NULL for another backend. */
+cuda_sim_t *cuda_backend_device(const sim_state_t *st, const char *backend_name);
 
 #ifdef __cplusplus
 }

@@ -2,7 +2,6 @@
  * bins of width >= the ghost cutoff over the box; a periodic axis needs at least 2 bins (box >= 2
  * cutoffs, so a pair meets at most one image of its partner). */
 #include "cuda_state.cuh"
-#include "effects/effect.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -96,27 +95,25 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   q->s_one = plan->weight_exp_is_one;
   q->walls = plan->walls;
   q->particle_forces = plan->particle_forces;
+  q->pe = plan->particle;
   q->use_vpred = plan->use_vpred;
   q->s_exp = (meso_real)plan->weight_exp;
-  q->inv_sqrt_dt = (meso_real)(1.0 / sqrt(s->dt));
-  q->seed = s->seed;
-  q->dt = s->dt;
+  q->inv_sqrt_dt = (meso_real)plan->inv_sqrt_dt;
+  q->seed = plan->seed;
+  q->dt = plan->dt;
+  q->half_dt = plan->half_dt;
   q->max_disp = plan->max_disp;
-  q->predict_c = (s->vv_lambda - 0.5) * s->dt;
+  q->predict_c = plan->predict_c;
   for (int a = 0; a < plan->n_species; a++) {
     q->mobile[a] = plan->mobile[a];
     q->inv_mass[a] = plan->inv_mass[a];
     q->mass[a] = plan->mass[a];
-    for (int d = 0; d < 3; d++)
-      q->g[a][d] = plan->named[EFFECT_BODY_FORCE] ? s->body_force[a][d] : 0.0;
     for (int b = 0; b < plan->n_species; b++) {
       fill_coef(&q->coef[a][b], &plan->coef[a][b]);
       if (q->coef[a][b].cut2 > q->cut2_max) q->cut2_max = q->coef[a][b].cut2;
       if (q->coef[a][b].rd2 > q->rd2_max) q->rd2_max = q->coef[a][b].rd2;
     }
   }
-  q->rev_axis = plan->named[EFFECT_BODY_FORCE] ? s->body_force_reverse_axis : -1;
-  q->centre = q->rev_axis >= 0 ? 0.5 * (s->box_lo[q->rev_axis] + s->box_hi[q->rev_axis]) : 0.0;
   /* Several ranks overlap interior passes with the host exchanges unless MDPORE_CUDA_OVERLAP=0
    * (kept for measuring what the overlap gains: bench/RESULTS.md). */
   const char *ov = getenv("MDPORE_CUDA_OVERLAP");

@@ -1,9 +1,10 @@
-/* Device velocity-Verlet pieces, the same arithmetic as meso/engine/integrate.c in double:
- * kick + drift (+ displacement check), box walls (effects/box_walls.c), periodic wrap (the CPU
- * path's migration, engine/decomp.c decomp_wrap), Groot-Warren prediction, body force
- * (effects/body_force.c) + second kick. Problems are recorded on the device and fetched once per
- * step. */
+/* Device velocity-Verlet pieces, the arithmetic of meso/physics/verlet.h in double (the CPU
+ * backend calls the same functions): kick + drift (+ displacement check), periodic wrap, the
+ * position constraints and particle forces of the named effects (effects/effect_list.h:
+ * box_walls, body_force), Groot-Warren prediction, second kick. Problems are recorded on the
+ * device and fetched once per step. */
 #include "cuda_state.cuh"
+#include "physics/verlet.h"
 
 #include <string.h>
 
@@ -14,14 +15,10 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
   const int s = p.species[i];
   double x[3] = {p.x[0][i], p.x[1][i], p.x[2][i]};
   double v[3] = {p.v[0][i], p.v[1][i], p.v[2][i]};
+  const double x_old[3] = {x[0], x[1], x[2]};
   if (q.mobile[s]) {
-    const double h = 0.5 * q.dt * q.inv_mass[s];
-    double d2 = 0.0;
-    for (int d = 0; d < 3; d++) {
-      v[d] = v[d] + h * p.f[d][i];
-      x[d] += q.dt * v[d];
-      d2 += (q.dt * v[d]) * (q.dt * v[d]);
-    }
+    const double f[3] = {p.f[0][i], p.f[1][i], p.f[2][i]};
+    const double d2 = verlet_kick_drift(x, v, f, q.dt, q.half_dt, q.inv_mass[s]);
     if (!(d2 < q.max_disp * q.max_disp)) {
       if (isfinite(d2))
         dev_note(pb, CUDA_TOO_FAST, 1, p.id[i], x[0], x[1], x[2], sqrt(d2));
@@ -29,28 +26,12 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
         dev_note(pb, CUDA_NONFINITE, 1, p.id[i], x[0], x[1], x[2], 0.0);
     }
   }
-  for (int d = 0; d < 3; d++) {
-    if (q.box_periodic[d]) {
-      /* decomp_wrap */
-      if (isfinite(x[d]) && (x[d] < q.box_lo[d] || x[d] >= q.box_hi[d])) {
-        x[d] = q.box_lo[d] + fmod(x[d] - q.box_lo[d], q.box_len[d]);
-        if (x[d] < q.box_lo[d]) x[d] += q.box_len[d];
-        if (x[d] >= q.box_hi[d]) x[d] = nextafter(q.box_hi[d], q.box_lo[d]);
-      }
-    } else if (q.walls) {
-      /* specular reflection (box_walls) */
-      if (x[d] < q.box_lo[d]) {
-        x[d] = 2.0 * q.box_lo[d] - x[d];
-        v[d] = -v[d];
-      } else if (x[d] >= q.box_hi[d]) {
-        x[d] = 2.0 * q.box_hi[d] - x[d];
-        v[d] = -v[d];
-        if (x[d] >= q.box_hi[d]) x[d] = nextafter(q.box_hi[d], q.box_lo[d]);
-      }
-      if (!(x[d] >= q.box_lo[d] && x[d] < q.box_hi[d]))
-        dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
-    }
-  }
+  /* the periodic wrap (the CPU path's migration: decomp_wrap) */
+  for (int d = 0; d < 3; d++)
+    if (q.box_periodic[d]) x[d] = box_wrap(x[d], q.box_lo[d], q.box_hi[d], q.box_len[d]);
+  /* the position constraints of the named effects (box_walls) */
+  if (q.walls && particle_effects_after_drift(&q.pe, x, v, x_old))
+    dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
   for (int d = 0; d < 3; d++) {
     p.x[d][i] = x[d];
     p.v[d][i] = v[d];
@@ -62,26 +43,32 @@ __global__ void k_predict(const struct dev_params q, int n, struct dev_fields p,
   if (i >= n) return;
   const int s = p.species[i];
   const double k = (!setup && q.mobile[s]) ? q.predict_c * q.inv_mass[s] : 0.0;
-  for (int d = 0; d < 3; d++) p.vpred[d][i] = p.v[d][i] + k * p.f[d][i];
+  const double v[3] = {p.v[0][i], p.v[1][i], p.v[2][i]};
+  const double f[3] = {p.f[0][i], p.f[1][i], p.f[2][i]};
+  double vp[3];
+  verlet_predict(vp, v, f, k);
+  for (int d = 0; d < 3; d++) p.vpred[d][i] = vp[d];
 }
 
-/* Body force (when named and add_body), finite check of f, second half kick (kick). */
+/* Particle forces of the named effects (when add_particle), finite check of f, second half kick
+ * (when kick). */
 __global__ void k_finish(const struct dev_params q, int n, struct dev_fields p,
-                         struct dev_problem *pb, int add_body, int kick) {
+                         struct dev_problem *pb, int add_particle, int kick) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const int s = p.species[i];
   double f[3] = {p.f[0][i], p.f[1][i], p.f[2][i]};
-  if (add_body && q.particle_forces) {
-    const double sign = (q.rev_axis >= 0 && p.x[q.rev_axis][i] >= q.centre) ? -1.0 : 1.0;
-    for (int d = 0; d < 3; d++) f[d] += sign * q.g[s][d];
+  if (add_particle && q.particle_forces) {
+    const double x[3] = {p.x[0][i], p.x[1][i], p.x[2][i]};
+    particle_effects_force(&q.pe, s, x, f);
     for (int d = 0; d < 3; d++) p.f[d][i] = f[d];
   }
   if (!isfinite(f[0] + f[1] + f[2]))
     dev_note(pb, CUDA_NONFINITE, 0, p.id[i], p.x[0][i], p.x[1][i], p.x[2][i], 0.0);
   if (!kick || !q.mobile[s]) return;
-  const double h = 0.5 * q.dt * q.inv_mass[s];
-  for (int d = 0; d < 3; d++) p.v[d][i] += h * f[d];
+  double v[3] = {p.v[0][i], p.v[1][i], p.v[2][i]};
+  verlet_kick(v, f, q.half_dt, q.inv_mass[s]);
+  for (int d = 0; d < 3; d++) p.v[d][i] = v[d];
 }
 
 static int blocks_of(int n) {
@@ -97,9 +84,9 @@ void cuda_predict(struct cuda_sim *g, int setup) {
     k_predict<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, setup);
 }
 
-void cuda_finish_forces(struct cuda_sim *g, int add_body, int kick) {
+void cuda_finish_forces(struct cuda_sim *g, int add_particle, int kick) {
   if (g->n)
-    k_finish<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, add_body, kick);
+    k_finish<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, add_particle, kick);
 }
 
 /* Copy the problem record to the host (this synchronises with the step) and clear it. */

@@ -5,6 +5,7 @@
 #define MESO_BACKEND_CUDA_STATE_CUH
 
 #include "cuda_backend.h"
+#include "effects/effect_list.h"
 #include "physics/hd.h"
 
 #include <cub/device/device_radix_sort.cuh>
@@ -31,13 +32,11 @@ struct dev_params {
   int n_species, terms, density, kernel, s_one, walls, particle_forces, use_vpred;
   meso_real s_exp, inv_sqrt_dt;
   uint64_t seed;
-  double dt, max_disp;
+  double dt, half_dt, max_disp;
   double predict_c; /* (vv_lambda - 1/2) dt: v~ = v + predict_c f / m (Groot-Warren) */
   int mobile[SCENE_MAX_SPECIES];
   double inv_mass[SCENE_MAX_SPECIES], mass[SCENE_MAX_SPECIES];
-  double g[SCENE_MAX_SPECIES][3]; /* body force per species (0 when body_force is not named) */
-  int rev_axis;                   /* reverse-Poiseuille axis or -1 */
-  double centre;                  /* box centre along rev_axis */
+  particle_effects_t pe; /* the per-particle effects of the plan (effects/effect_list.h) */
   /* The box (periodic wrap and walls in the integration). */
   double box_lo[3], box_hi[3], box_len[3];
   int box_periodic[3];
@@ -148,6 +147,9 @@ struct cuda_sim {
   size_t pinned_bytes;
   /* This step's passes were split in an interior and a boundary part (key holds the flags). */
   int split_passes;
+  /* One rank with a skin: the sort phase left the choice (keep the lists or sort and rebuild) to
+   * the neighbour phase, which decides after the prediction, as the displacement check needs it. */
+  int lists_maybe_valid;
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;

@@ -1,50 +1,64 @@
-/* The device step, in the order of the CPU path (docs/engine-core.md): kick + drift + walls + wrap,
- * cell sort, prediction, density pass, force pass, body force + second kick; one copy of the
- * problem record per step. */
+/* The device side of the plan's phases (effects/plan.h), driven by the host glue
+ * (cuda_glue.c on one rank, cuda_glue_halo.c on several). One rank: kick + drift + constraints +
+ * periodic wrap in one kernel, cell sort, prediction, pack + neighbour scan with the densities,
+ * force pass, particle forces + second kick in the finishing kernel; one copy of the problem
+ * record per step. */
 #include "cuda_state.cuh"
 
-static int finish(struct cuda_sim *g, cuda_problem_t *pr) {
+/* Launch errors of the step, then the problem record (this synchronises with the step). */
+extern "C" int cuda_sim_fetch_problems(cuda_sim_t *g, cuda_problem_t *pr) {
   if (cuda_check(cudaGetLastError(), "step kernels")) return -1;
   return cuda_problem_fetch(g, pr);
 }
 
-extern "C" int cuda_sim_setup_forces(cuda_sim_t *g, long step, int keep_forces, int want_virial,
-                                     cuda_problem_t *pr) {
-  if (cuda_set_virial(g, want_virial) || cuda_sort_cells(g, keep_forces)) return -1;
-  cuda_predict(g, 1); /* v~ = v at setup */
-  cuda_pack(g);
-  if (cuda_density_pass(g)) return -1;
-  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
-  cuda_finish_forces(g, !keep_forces, 0);
-  return finish(g, pr);
+extern "C" int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial) {
+  if (cuda_set_virial(g, want_virial)) return -1;
+  g->n_steps++;
+  cuda_kick_drift(g);
+  return 0;
+}
+
+/* Set-up: sort by cell (with the forces when they were loaded from a checkpoint). A step: sort,
+ * unless a skin may keep the lists (cuda_sim_neighbours decides). */
+extern "C" int cuda_sim_sort(cuda_sim_t *g, int setup, int keep_forces, int want_virial) {
+  if (setup) return cuda_set_virial(g, want_virial) || cuda_sort_cells(g, keep_forces) ? -1 : 0;
+  g->lists_maybe_valid = g->prm.skin > 0.0 && g->lists_valid;
+  if (g->lists_maybe_valid) return 0;
+  return cuda_sort_cells(g, 0); /* the force pass rewrites f */
+}
+
+extern "C" int cuda_sim_predict(cuda_sim_t *g, int setup) {
+  cuda_predict(g, setup);
+  return 0;
 }
 
 /* Packed positions and densities of this step. With a skin the lists of the last build serve
  * until a particle has moved more than skin / 2; then (and always without a skin) the particles are
- * sorted by cell again and the bin scan builds new lists. */
-static int pack_and_densities(struct cuda_sim *g) {
-  if (g->prm.skin > 0.0 && g->lists_valid) {
+ * sorted by cell again and the bin scan builds new lists (with the densities). */
+extern "C" int cuda_sim_neighbours(cuda_sim_t *g) {
+  if (g->lists_maybe_valid) {
+    g->lists_maybe_valid = 0;
     const int r = cuda_pack_check(g);
     if (r < 0) return -1;
     if (r == 0) {
       cuda_density_from_lists(g);
       return 0;
     }
+    if (cuda_sort_cells(g, 0)) return -1;
   }
-  if (cuda_sort_cells(g, 0)) return -1; /* the force pass below rewrites f */
   cuda_pack(g);
   return cuda_density_pass(g);
 }
 
-extern "C" int cuda_sim_step(cuda_sim_t *g, long step, int want_virial, cuda_problem_t *pr) {
-  if (cuda_set_virial(g, want_virial)) return -1;
-  g->n_steps++;
-  cuda_kick_drift(g);
-  cuda_predict(g, 0); /* per particle: independent of the slot order */
-  if (pack_and_densities(g)) return -1;
-  cuda_force_pass(g, (uint64_t)step, want_virial, 0);
-  cuda_finish_forces(g, 1, 1);
-  return finish(g, pr);
+extern "C" int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
+  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+  return 0;
+}
+
+/* Particle forces of the named effects (add_particle), finite check of f, second half kick. */
+extern "C" int cuda_sim_finish(cuda_sim_t *g, int add_particle, int kick) {
+  cuda_finish_forces(g, add_particle, kick);
+  return 0;
 }
 
 extern "C" void cuda_sim_rebuild_lists(cuda_sim_t *g) {
@@ -57,7 +71,7 @@ extern "C" void cuda_sim_list_stats(const cuda_sim_t *g, long *builds, long *ste
   *skin = g->prm.skin;
 }
 
-/* Pieces of the step for several ranks (sim_cuda_halo.c drives them around the host exchanges). */
+/* Pieces of the step for several ranks (cuda_glue_halo.c drives them around the host exchanges). */
 extern "C" int cuda_halo_kick_drift(cuda_sim_t *g) {
   cuda_kick_drift(g);
   return cuda_check(cudaGetLastError(), "kick-drift");
@@ -99,8 +113,7 @@ extern "C" int cuda_halo_forces_early(cuda_sim_t *g, long step, int want_virial,
   return cuda_check(cudaGetLastError(), "interior forces");
 }
 
-extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces,
-                                int kick, cuda_problem_t *pr) {
+extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
   if (cuda_set_virial(g, want_virial)) return -1;
   if (g->split_passes) {
     if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g, g->n, g->n + g->n_ghost);
@@ -109,6 +122,5 @@ extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int k
     cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
   }
   g->split_passes = 0;
-  cuda_finish_forces(g, !keep_forces, kick);
-  return finish(g, pr);
+  return 0;
 }

@@ -1,30 +1,7 @@
-/* Small queries on a parsed scene: effect names, ghost-layer width, species lookup, physics hash.
- */
-#include "io/scene.h"
+/* Small queries on a parsed scene: species lookup, physics hash. */
+#include "scene/scene.h"
 
 #include <string.h>
-
-const char *const scene_effect_names[EFFECT_COUNT] = {
-    [EFFECT_MDPD_ATTRACTION] = "mdpd_attraction",
-    [EFFECT_MDPD_REPULSION] = "mdpd_repulsion",
-    [EFFECT_DPD_CONSERVATIVE] = "dpd_conservative",
-    [EFFECT_DPD_THERMOSTAT] = "dpd_thermostat",
-    [EFFECT_BODY_FORCE] = "body_force",
-    [EFFECT_BOX_WALLS] = "box_walls",
-};
-
-double scene_max_cutoff(const scene_t *s) {
-  const int uses_rc = s->effect[EFFECT_MDPD_ATTRACTION] || s->effect[EFFECT_DPD_CONSERVATIVE] ||
-                      s->effect[EFFECT_DPD_THERMOSTAT];
-  const int uses_rd = s->effect[EFFECT_MDPD_REPULSION];
-  double cut = 0;
-  for (int a = 0; a < s->n_species; a++)
-    for (int b = 0; b < s->n_species; b++) {
-      if (uses_rc && s->pair[a][b].rc > cut) cut = s->pair[a][b].rc;
-      if (uses_rd && s->pair[a][b].rd > cut) cut = s->pair[a][b].rd;
-    }
-  return cut;
-}
 
 int scene_species_index(const scene_t *s, const char *name) {
   for (int i = 0; i < s->n_species; i++)
@@ -50,14 +27,13 @@ uint64_t scene_physics_hash(const scene_t *s) {
     h = fnv(h, &s->species[a].mass, sizeof(double));
     h = fnv(h, &s->species[a].frozen, sizeof(int));
     for (int b = 0; b < s->n_species; b++) h = fnv(h, &s->pair[a][b], sizeof(scene_pair_t));
-    h = fnv(h, s->body_force[a], sizeof s->body_force[a]);
   }
   h = fnv(h, &s->density_kernel, sizeof s->density_kernel);
   h = fnv(h, &s->kT, sizeof s->kT);
-  h = fnv(h, &s->weight_exp, sizeof s->weight_exp);
   h = fnv(h, &s->vv_lambda, sizeof s->vv_lambda);
   h = fnv(h, s->effect, sizeof s->effect);
-  h = fnv(h, &s->body_force_reverse_axis, sizeof s->body_force_reverse_axis);
+  for (int e = 0; e < SCENE_MAX_EFFECTS; e++) /* the options of the named effects, as parsed */
+    if (s->effect[e]) h = fnv(h, &s->effect_options[e], sizeof s->effect_options[e]);
   h = fnv(h, &s->dt, sizeof s->dt);
   h = fnv(h, &s->seed, sizeof s->seed);
   return h;

@@ -2,7 +2,7 @@
 #ifndef MESO_ENGINE_DECOMP_H
 #define MESO_ENGINE_DECOMP_H
 
-#include "io/scene.h"
+#include "scene/scene.h"
 
 #include <mpi.h>
 #include <stddef.h>

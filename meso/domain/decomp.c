@@ -1,5 +1,6 @@
 /* Cartesian decomposition of the box over the ranks of a communicator. */
 #include "decomp.h"
+#include "physics/verlet.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -71,14 +72,8 @@ void decomp_free(decomp_t *dc) {
 }
 
 void decomp_wrap(const decomp_t *dc, double x[3]) {
-  for (int d = 0; d < 3; d++) {
-    if (!dc->periodic[d] || !isfinite(x[d])) continue;
-    if (x[d] < dc->box_lo[d] || x[d] >= dc->box_hi[d]) {
-      x[d] = dc->box_lo[d] + fmod(x[d] - dc->box_lo[d], dc->L[d]);
-      if (x[d] < dc->box_lo[d]) x[d] += dc->L[d];
-      if (x[d] >= dc->box_hi[d]) x[d] = nextafter(dc->box_hi[d], dc->box_lo[d]);
-    }
-  }
+  for (int d = 0; d < 3; d++)
+    if (dc->periodic[d]) x[d] = box_wrap(x[d], dc->box_lo[d], dc->box_hi[d], dc->L[d]);
 }
 
 int decomp_owns(const decomp_t *dc, const double x[3]) {

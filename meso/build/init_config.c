@@ -1,7 +1,7 @@
 /* Initial configuration: offer a global particle source to the engine, generating Maxwell-Boltzmann
  * velocities (momentum-free) where the source has none. */
-#include "io/init_config.h"
-#include "io/lammps_data.h"
+#include "build/init_config.h"
+#include "build/lammps_data.h"
 #include "io/snapshot.h"
 
 #include <math.h>

@@ -6,7 +6,7 @@
 #define MESO_IO_LAMMPS_DATA_H
 
 #include "io/particle_set.h"
-#include "io/scene.h"
+#include "scene/scene.h"
 
 #include <mpi.h>
 

@@ -1,5 +1,5 @@
 /* LAMMPS data files (atomic style): reader and writer. */
-#include "io/lammps_data.h"
+#include "build/lammps_data.h"
 #include "common/atomic_file.h"
 #include "io/gather.h"
 

@@ -1,27 +1,29 @@
 /* The scene: everything a run is told by its scene file, after parsing and validation.
- * Parsed by meso/io/scene_parse.c (YAML, libyaml); consumed by the engine, the
+ * Parsed by meso/scene/scene_parse.c (YAML, libyaml); consumed by the engine, the
  * initial-configuration builders and the outputs. Plain data, no pointers into parser memory. */
-#ifndef MESO_IO_SCENE_H
-#define MESO_IO_SCENE_H
+#ifndef MESO_SCENE_SCENE_H
+#define MESO_SCENE_SCENE_H
+
+#include "physics/hd.h"
 
 #include <stdint.h>
 
-#define SCENE_MAX_SPECIES 8
+#define SCENE_MAX_SPECIES MESO_MAX_SPECIES
 #define SCENE_MAX_FILLS 16
 #define SCENE_NAME_LEN 64
 #define SCENE_PATH_LEN 1024
 
-/* Effects a scene may name. An effect not named costs nothing: no array, no pass, no kernel. */
-enum scene_effect {
-  EFFECT_MDPD_ATTRACTION = 0, /* "mdpd_attraction": A w_c(r), cutoff rc                     */
-  EFFECT_MDPD_REPULSION,      /* "mdpd_repulsion": B (rho_i + rho_j) w_d(r), needs density pass */
-  EFFECT_DPD_CONSERVATIVE,    /* "dpd_conservative": a w_c(r), a > 0 (standard DPD)          */
-  EFFECT_DPD_THERMOSTAT,      /* "dpd_thermostat": dissipative + random                      */
-  EFFECT_BODY_FORCE,          /* "body_force": constant force per particle of a species      */
-  EFFECT_BOX_WALLS,           /* "box_walls": reflecting walls on the non-periodic box faces  */
-  EFFECT_COUNT
-};
-extern const char *const scene_effect_names[EFFECT_COUNT];
+/* Effects a scene may name: their ids and names live in the registry (meso/effects/effect_list.h);
+ * the scene keeps, per id, whether it is named and the options its effect parsed (plain bytes the
+ * effect casts to its own struct: SCENE_EFFECT_OPTIONS). An effect not named costs nothing. */
+#define SCENE_MAX_EFFECTS 32
+#define SCENE_EFFECT_OPTION_BYTES 512
+typedef union {
+  unsigned char bytes[SCENE_EFFECT_OPTION_BYTES];
+  double align; /* 8-byte alignment for the effects' structs (plain C and C++) */
+} scene_effect_options_t;
+/* The options of effect `id` as its struct type (the effect's file checks the size fits). */
+#define SCENE_EFFECT_OPTIONS(scene, id, type) ((type *)(void *)(scene)->effect_options[id].bytes)
 
 typedef struct {
   char name[SCENE_NAME_LEN];
@@ -89,14 +91,10 @@ typedef struct {
   scene_pair_t pair[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
   int density_kernel; /* enum meso_density_kernel (meso/physics/density_kernels.h) */
   double kT;          /* thermal energy (default 1)                                */
-  double weight_exp;  /* thermostat weight exponent s of w_R = (1 - r/rc)^s (default 1) */
   double vv_lambda;   /* Groot-Warren velocity-prediction factor (default 0.5)      */
 
-  int effect[EFFECT_COUNT]; /* 1 when named in the scene */
-  double body_force[SCENE_MAX_SPECIES][3];
-  int body_force_reverse_axis; /* -1: uniform. 0..2: the force flips sign in the upper half of the
-                                  box along this axis (reverse Poiseuille flow, Backer et al. 2005)
-                                */
+  int effect[SCENE_MAX_EFFECTS]; /* 1 when named in the scene (index: enum effect_id) */
+  scene_effect_options_t effect_options[SCENE_MAX_EFFECTS]; /* parsed by each named effect */
 
   scene_init_t init;
 
@@ -119,12 +117,11 @@ typedef struct {
                             changes the run time, not the physics (docs/engine-cuda.md) */
 } scene_t;
 
-/* Parse and validate a scene file. On error prints "FILE:LINE: key 'K': expected ..." to stderr and
- * returns non-zero. Every rank may call it (the file is small). */
-int scene_load(const char *path, scene_t *scene);
-
-/* Largest cutoff over all species pairs and named effects: the ghost-layer width. */
-double scene_max_cutoff(const scene_t *scene);
+/* Parse and validate a scene file with the effects of `catalog` (meso/effects: scene_load() in
+ * effects/scene_load.h passes the registry). On error prints "FILE:LINE: key 'K': expected ..." to
+ * stderr and returns non-zero. Every rank may call it (the file is small). */
+struct scene_catalog;
+int scene_parse_file(const char *path, const struct scene_catalog *catalog, scene_t *scene);
 
 /* Species index of a name, or -1. */
 int scene_species_index(const scene_t *scene, const char *name);

@@ -1,9 +1,12 @@
 /* Scene file parser: YAML (libyaml) -> scene_t, with validation. The format is documented in
  * docs/scene-format.md. Every mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got
  * ...)". */
-#include "io/scene.h"
 #include "common/yaml_tree.h"
 #include "physics/density_kernels.h"
+#include "scene/scene.h"
+#include "scene/scene_catalog.h"
+
+#include <stdarg.h>
 
 #include <ctype.h>
 #include <libgen.h>
@@ -194,67 +197,34 @@ static int parse_pairs(ytree_t *t, yaml_node_t *n, const scene_t *s,
   return 0;
 }
 
-static int parse_effects(ytree_t *t, yaml_node_t *n, scene_t *s) {
+/* effects: {name: options, ...}: each name looked up in the catalog, its options parsed by the
+ * effect itself (scene_effect_entry_t.parse). */
+static int parse_effects(ytree_t *t, yaml_node_t *n, const scene_catalog_t *cat, scene_t *s) {
   TRY(yt_expect_map(t, n, "effects"));
   const int count = yt_map_size(n);
   for (int i = 0; i < count; i++) {
     yaml_node_t *kn;
     const char *key = yt_map_key(t, n, i, &kn);
     int e = -1;
-    for (int k = 0; key && k < EFFECT_COUNT; k++)
-      if (!strcmp(key, scene_effect_names[k])) e = k;
+    for (int k = 0; key && k < cat->count; k++)
+      if (!strcmp(key, cat->entries[k]->name)) e = k;
     char path[160];
     snprintf(path, sizeof path, "effects.%s", key ? key : "?");
     if (e < 0) {
       char list[512] = "";
-      for (int k = 0; k < EFFECT_COUNT; k++) {
+      for (int k = 0; k < cat->count; k++) {
         strncat(list, k ? ", " : "", sizeof list - strlen(list) - 1);
-        strncat(list, scene_effect_names[k], sizeof list - strlen(list) - 1);
+        strncat(list, cat->entries[k]->name, sizeof list - strlen(list) - 1);
       }
       return yt_error(t, kn, path, "unknown effect (expected one of: %s)", list);
     }
     if (s->effect[e]) return yt_error(t, kn, path, "expected each effect once (got a duplicate)");
     s->effect[e] = 1;
+    if (cat->entries[e]->defaults) cat->entries[e]->defaults(s);
     yaml_node_t *opt = yt_map_value(t, n, i);
     if (yt_is_null(opt)) continue;
-    if (e == EFFECT_DPD_THERMOSTAT) {
-      static const char *const keys[] = {"exponent", NULL};
-      TRY(yt_check_keys(t, opt, path, keys));
-      yaml_node_t *v = yt_get(t, opt, "exponent");
-      if (v) {
-        char sub[192];
-        join(sub, sizeof sub, path, "exponent");
-        TRY(yt_double(t, v, sub, &s->weight_exp));
-        if (!(s->weight_exp > 0))
-          return yt_error(t, v, sub, "expected an exponent s > 0 of w_R = (1 - r/rc)^s (got %g)",
-                          s->weight_exp);
-      }
-    } else if (e == EFFECT_BODY_FORCE) {
-      TRY(yt_expect_map(t, opt, path));
-      const int no = yt_map_size(opt);
-      for (int j = 0; j < no; j++) {
-        yaml_node_t *okn;
-        const char *ok = yt_map_key(t, opt, j, &okn);
-        char sub[192];
-        join(sub, sizeof sub, path, ok ? ok : "?");
-        for (int q = 0; q < j; q++) {
-          const char *other = yt_map_key(t, opt, q, NULL);
-          if (ok && other && !strcmp(ok, other))
-            return yt_error(t, okn, sub, "expected each key once (got a duplicate)");
-        }
-        yaml_node_t *v = yt_map_value(t, opt, j);
-        if (ok && !strcmp(ok, "reverse_along")) {
-          const int ax = yt_enum(t, v, sub, axis_words);
-          if (ax < 0) return -1;
-          s->body_force_reverse_axis = ax;
-          continue;
-        }
-        const int sp = ok ? scene_species_index(s, ok) : -1;
-        if (sp < 0)
-          return yt_error(t, okn, sub, "expected a species name or 'reverse_along' (got '%s')",
-                          ok ? ok : "?");
-        TRY(yt_vec3(t, v, sub, s->body_force[sp]));
-      }
+    if (cat->entries[e]->parse) {
+      TRY(cat->entries[e]->parse(t, opt, path, s));
     } else {
       static const char *const none[] = {NULL};
       if (opt->type == YAML_MAPPING_NODE && yt_map_size(opt) == 0) continue;
@@ -265,14 +235,21 @@ static int parse_effects(ytree_t *t, yaml_node_t *n, scene_t *s) {
 }
 
 /* Check the merged pair parameters against the named effects and copy them into the scene. */
-static int finish_pairs(ytree_t *t, yaml_node_t *pairs_node, scene_t *s,
+static int finish_pairs(ytree_t *t, yaml_node_t *pairs_node, const scene_catalog_t *cat, scene_t *s,
                         pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES]) {
-  const int need_A = s->effect[EFFECT_MDPD_ATTRACTION] || s->effect[EFFECT_DPD_CONSERVATIVE];
-  const int need_B = s->effect[EFFECT_MDPD_REPULSION];
-  const int need_gamma = s->effect[EFFECT_DPD_THERMOSTAT];
-  const int need[P_COUNT] = {need_A, need_B, need_gamma, 0, need_B};
-  const char *why[P_COUNT] = {"mdpd_attraction/dpd_conservative", "mdpd_repulsion",
-                              "dpd_thermostat", "", "mdpd_repulsion"};
+  /* The parameters the named effects need, and which effects need each (for the message). */
+  static const unsigned param_bit[P_COUNT] = {SCENE_PAIR_A, SCENE_PAIR_B, SCENE_PAIR_GAMMA, 0,
+                                              SCENE_PAIR_RD};
+  int need[P_COUNT] = {0};
+  char why[P_COUNT][256] = {{0}};
+  for (int e = 0; e < cat->count; e++)
+    for (int k = 0; k < P_COUNT; k++)
+      if (s->effect[e] && (cat->entries[e]->pair_params & param_bit[k])) {
+        need[k] = 1;
+        const size_t used = strlen(why[k]);
+        snprintf(why[k] + used, sizeof why[k] - used, "%s%s", used ? "/" : "",
+                 cat->entries[e]->name);
+      }
   for (int a = 0; a < s->n_species; a++)
     for (int b = a; b < s->n_species; b++) {
       pair_in_t *p = &pin[a][b];
@@ -289,45 +266,76 @@ static int finish_pairs(ytree_t *t, yaml_node_t *pairs_node, scene_t *s,
       }
       if (!p->set[P_RC]) p->v[P_RC] = 1.0;
       if (!p->set[P_RD]) p->v[P_RD] = p->v[P_RC];
-      char sub[192];
       if (!(p->v[P_RC] > 0)) {
+        char sub[192];
         join(sub, sizeof sub, path, "rc");
         return yt_error(t, p->where[P_RC], sub, "expected rc > 0 (got %g)", p->v[P_RC]);
-      }
-      if (!(p->v[P_RD] > 0) || p->v[P_RD] > p->v[P_RC]) {
-        join(sub, sizeof sub, path, "rd");
-        return yt_error(t, p->where[P_RD] ? p->where[P_RD] : pairs_node, sub,
-                        "expected 0 < rd <= rc = %g (got %g)", p->v[P_RC], p->v[P_RD]);
-      }
-      if (p->set[P_GAMMA] && p->v[P_GAMMA] < 0) {
-        join(sub, sizeof sub, path, "gamma");
-        return yt_error(t, p->where[P_GAMMA], sub, "expected gamma >= 0 (got %g)", p->v[P_GAMMA]);
-      }
-      if (need_B && p->v[P_B] < 0) {
-        join(sub, sizeof sub, path, "B");
-        return yt_error(t, p->where[P_B], sub,
-                        "expected B >= 0: the many-body term repels (got %g)", p->v[P_B]);
       }
       scene_pair_t q = {p->v[P_A], p->v[P_B], p->v[P_GAMMA], p->v[P_RC], p->v[P_RD]};
       s->pair[a][b] = s->pair[b][a] = q;
     }
-  /* Warren 2013: species-dependent B or rd make the many-body force non-conservative. */
-  if (need_B)
-    for (int a = 0; a < s->n_species; a++)
-      for (int b = a; b < s->n_species; b++) {
-        const scene_pair_t *p = &s->pair[a][b], *r = &s->pair[0][0];
-        if (p->B != r->B || p->rd != r->rd) {
-          char path[160];
-          snprintf(path, sizeof path, "pairs.%s-%s", s->species[a].name, s->species[b].name);
-          yt_warn(t, pairs_node, path,
-                  "B or rd differs between species pairs (B %g vs %g, rd %g vs %g): the many-body "
-                  "force is then "
-                  "not conservative (Warren, PRE 87, 045303, 2013); keep B and rd common, set "
-                  "wetting via A",
-                  p->B, r->B, p->rd, r->rd);
-          return 0;
-        }
-      }
+  return 0;
+}
+
+/* The node at a dotted key path ("pairs.liquid-wall.rd"), or its deepest existing parent: where a
+ * check's message points. */
+static yaml_node_t *node_at(ytree_t *t, const char *key) {
+  yaml_node_t *n = yt_root(t);
+  char buf[256];
+  snprintf(buf, sizeof buf, "%s", key);
+  const char *parent = "";
+  for (char *part = strtok(buf, "."); part && n && n->type == YAML_MAPPING_NODE;
+       part = strtok(NULL, ".")) {
+    yaml_node_t *next = yt_get(t, n, part);
+    /* a pair "a-b" may be given only under pairs.default */
+    if (!next && !strcmp(parent, "pairs")) next = yt_get(t, n, "default");
+    if (!next) break;
+    n = next;
+    parent = part;
+  }
+  return n;
+}
+
+static int report_error(scene_report_t *r, const char *key, const char *fmt, ...) {
+  ytree_t *t = r->ctx;
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return yt_error(t, node_at(t, key), key, "%s", msg);
+}
+
+static void report_warn(scene_report_t *r, const char *key, const char *fmt, ...) {
+  ytree_t *t = r->ctx;
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  yt_warn(t, node_at(t, key), key, "%s", msg);
+}
+
+/* Scene-wide rules that involve effects, then each named effect's own check. */
+static int check_effects(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
+  int walls_needed = 0, confined = 0;
+  char confining[256] = "";
+  for (int d = 0; d < 3; d++) walls_needed |= !s->periodic[d];
+  for (int e = 0; e < cat->count; e++)
+    if (cat->entries[e]->confines) {
+      confined |= s->effect[e];
+      const size_t used = strlen(confining);
+      snprintf(confining + used, sizeof confining - used, "%s%s", used ? " or " : "",
+               cat->entries[e]->name);
+    }
+  if (walls_needed && !confined)
+    return yt_error(t, node_at(t, "box.periodic"), "box.periodic",
+                    "expected every axis periodic, or the %s effect for the non-periodic ones (got "
+                    "a non-periodic axis without it)",
+                    confining);
+  scene_report_t r = {.error = report_error, .warn = report_warn, .ctx = t};
+  for (int e = 0; e < cat->count; e++)
+    if (s->effect[e] && cat->entries[e]->check) TRY(cat->entries[e]->check(s, &r));
   return 0;
 }
 
@@ -530,11 +538,9 @@ static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
 
 static void set_defaults(scene_t *s) {
   s->kT = 1.0;
-  s->weight_exp = 1.0;
   s->vv_lambda = 0.5;
   s->density_kernel = MESO_KERNEL_WARREN;
   s->periodic[0] = s->periodic[1] = s->periodic[2] = 1;
-  s->body_force_reverse_axis = -1;
   s->seed = 12345;
   s->progress = 1;
   s->neighbour_skin = -1.0; /* the backend's default (mdpore run --skin) */
@@ -542,7 +548,7 @@ static void set_defaults(scene_t *s) {
   strcpy(s->summary_path, "summary.json");
 }
 
-static int parse_document(ytree_t *t, scene_t *s) {
+static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   yaml_node_t *root = yt_root(t), *v;
   static const char *const keys[] = {"name",    "box",     "species", "pairs", "density_kernel",
                                      "kT",      "effects", "initial", "run",   "output",
@@ -575,32 +581,13 @@ static int parse_document(ytree_t *t, scene_t *s) {
   }
   if (!(v = yt_get(t, root, "effects")))
     return yt_error(t, root, "effects", "expected a mapping of effect names (got nothing)");
-  yaml_node_t *effects = v;
-  TRY(parse_effects(t, v, s));
-  if (s->effect[EFFECT_MDPD_ATTRACTION] && s->effect[EFFECT_DPD_CONSERVATIVE])
-    return yt_error(
-        t, effects, "effects.dpd_conservative",
-        "expected either mdpd_attraction or dpd_conservative (got both; both use the pair's A)");
-  int walls_needed = 0;
-  for (int d = 0; d < 3; d++) walls_needed |= !s->periodic[d];
-  if (walls_needed && !s->effect[EFFECT_BOX_WALLS])
-    return yt_error(
-        t, yt_get(t, root, "box"), "box.periodic",
-        "expected every axis periodic, or the box_walls effect for the non-periodic ones (got a "
-        "non-periodic axis without box_walls)");
-  if (s->effect[EFFECT_BOX_WALLS] && !walls_needed)
-    yt_warn(t, effects, "effects.box_walls",
-            "every box axis is periodic: box_walls has nothing to do");
-  if (s->body_force_reverse_axis >= 0 && !s->periodic[s->body_force_reverse_axis])
-    return yt_error(
-        t, effects, "effects.body_force.reverse_along",
-        "expected a periodic axis for reverse Poiseuille flow (got a non-periodic one)");
+  TRY(parse_effects(t, v, cat, s));
 
   pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
   memset(pin, 0, sizeof pin);
   yaml_node_t *pairs = yt_get(t, root, "pairs");
   if (pairs) TRY(parse_pairs(t, pairs, s, pin));
-  TRY(finish_pairs(t, pairs ? pairs : root, s, pin));
+  TRY(finish_pairs(t, pairs ? pairs : root, cat, s, pin));
 
   if ((v = yt_get(t, root, "run")))
     TRY(parse_run(t, v, s));
@@ -621,10 +608,10 @@ static int parse_document(ytree_t *t, scene_t *s) {
   if (s->init.temperature < 0) s->init.temperature = s->kT;
 
   if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));
-  return 0;
+  return check_effects(t, cat, s);
 }
 
-int scene_load(const char *path, scene_t *scene) {
+int scene_parse_file(const char *path, const scene_catalog_t *catalog, scene_t *scene) {
   int rank = 0, inited = 0;
   MPI_Initialized(&inited);
   if (inited) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -637,7 +624,7 @@ int scene_load(const char *path, scene_t *scene) {
   set_defaults(scene);
   ytree_t t;
   if (yt_load(&t, path, rank != 0)) return -1;
-  const int rc = parse_document(&t, scene);
+  const int rc = parse_document(&t, catalog, scene);
   yt_free(&t);
   return rc;
 }

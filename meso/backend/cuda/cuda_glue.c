@@ -1,0 +1,191 @@
+/* The CUDA backend's ops (backend/backend.h) on one rank, one GPU, and what the several-rank table
+ * (cuda_glue_halo.c) shares: the particles stay on the device between steps; the host copy is
+ * refreshed only when an output asks (sync_host). Problems found on the device are recorded there
+ * and reported by the list's check phase, once per step. */
+#include "backend/cuda/cuda_glue.h"
+#include "domain/particle_store.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+int backend_cuda_device_count(char *why, size_t len) {
+  return cuda_device_count(why, len);
+}
+
+const backend_ops_t *backend_cuda_ops(int nranks) {
+  return nranks > 1 ? &cuda_ops_ranks : &cuda_ops_one_rank;
+}
+
+cuda_sim_t *cuda_backend_device(const sim_state_t *st, const char *backend_name) {
+  if (!backend_name || strcmp(backend_name, "cuda") || !st->impl) return NULL;
+  return ((const cuda_glue_t *)st->impl)->g;
+}
+
+int cuda_glue_create(sim_state_t *st) {
+  cuda_glue_t *c = calloc(1, sizeof *c);
+  if (!c) {
+    snprintf(st->err, sizeof st->err, "out of memory creating the CUDA backend");
+    return -1;
+  }
+  st->impl = c;
+  c->g = cuda_sim_create(&st->plan, &st->scene, st->dc.lo, st->dc.hi, st->dc.dims, st->err,
+                         sizeof st->err);
+  if (!c->g) return -1;
+  if (st->dc.rank == 0)
+    printf("mdpore: backend cuda on %s (%s-precision pair math), %d rank(s)\n",
+           cuda_sim_device_name(c->g), cuda_sim_double_precision() ? "double" : "single",
+           st->dc.nranks);
+  return 0;
+}
+
+void cuda_glue_destroy(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  if (!c) return;
+  cuda_glue_halo_free(st);
+  if (c->g) cuda_sim_destroy(c->g);
+  free(c);
+  st->impl = NULL;
+}
+
+int cuda_glue_setup_begin(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  memset(&c->cp, 0, sizeof c->cp);
+  memset(&c->mr, 0, sizeof c->mr);
+  c->finished = 0;
+  st->host_stale = 1;
+  return cuda_sim_upload(c->g, &st->p);
+}
+
+int cuda_glue_kick_drift(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  memset(&c->cp, 0, sizeof c->cp);
+  memset(&c->mr, 0, sizeof c->mr);
+  c->finished = 0;
+  st->host_stale = 1;
+  if (st->dc.nranks > 1) return cuda_halo_kick_drift(c->g);
+  return cuda_sim_kick_drift(c->g, st->want_virial);
+}
+
+int cuda_glue_predict(sim_state_t *st) {
+  if (st->failed) return 0;
+  return st->dc.nranks > 1 ? cuda_halo_predict(cuda_glue(st)->g, st->in_setup)
+                           : cuda_sim_predict(cuda_glue(st)->g, st->in_setup);
+}
+
+/* A step: the particle forces of the named effects and the second half kick, in one kernel. */
+int cuda_glue_kick(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  if (st->failed) return 0;
+  c->finished = 1;
+  return cuda_sim_finish(c->g, 1, 1);
+}
+
+/* The end of a list: at set-up the finishing kernel (particle forces unless loaded, finite check);
+ * then the device's problem record, the host migration's losses and this rank's failures, combined
+ * over the ranks. */
+int cuda_glue_check(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  int rc = st->failed;
+  if (!rc && !c->finished) rc = cuda_sim_finish(c->g, !st->forces_loaded || !st->in_setup, 0);
+  if (!rc) rc = cuda_sim_fetch_problems(c->g, &c->cp);
+  step_problem_t pr = st->pr;
+  if (rc) step_problem_note(&pr, STEP_NO_MEMORY, -1, NULL, 0);
+  if (c->mr.n_lost)
+    step_problem_note(&pr, STEP_LOST, c->mr.lost_id, c->mr.lost_x, (double)c->mr.n_lost);
+  const cuda_problem_t *cp = &c->cp;
+  if (cp->kind) {
+    step_problem_note(&pr, cp->kind, cp->id, cp->x, cp->value);
+    if (cp->kind == CUDA_TOO_FAST) pr.limit = st->plan.max_disp;
+    if (cp->kind == CUDA_NONFINITE) pr.field = cp->at_drift ? "velocity or position" : "force";
+    if (cp->kind == CUDA_LOST) pr.value = (double)cp->count;
+  }
+  c->finished = 0;
+  return step_check_collective(&pr, st->dc.cart, st->step, cuda_sim_count(c->g), st->n_total,
+                               st->err, sizeof st->err);
+}
+
+int cuda_glue_thermo_sums(sim_state_t *st, double sums[17]) {
+  return cuda_sim_thermo_sums(cuda_glue(st)->g, sums);
+}
+
+void cuda_glue_want_pressure(sim_state_t *st, int on) {
+  cuda_sim_want_pressure(cuda_glue(st)->g, on);
+}
+
+void cuda_glue_rebuild_lists(sim_state_t *st) {
+  cuda_sim_rebuild_lists(cuda_glue(st)->g);
+}
+
+void cuda_glue_sync_host(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  if (!c || !st->host_stale) return;
+  if (pstore_reserve(&st->p, cuda_sim_count(c->g) + 1) == 0 && cuda_sim_download(c->g, &st->p) == 0)
+    st->host_stale = 0;
+}
+
+/* One rank: sort (set-up: with the loaded forces), or leave it to the neighbour phase when a skin
+ * may keep the lists. */
+static int sort(sim_state_t *st) {
+  if (st->failed) return 0;
+  return cuda_sim_sort(cuda_glue(st)->g, st->in_setup, st->forces_loaded && st->in_setup,
+                       st->want_virial);
+}
+
+static int neighbours(sim_state_t *st) {
+  if (st->failed) return 0;
+  return cuda_sim_neighbours(cuda_glue(st)->g);
+}
+
+static int pair_forces(sim_state_t *st) {
+  if (st->failed) return 0;
+  return cuda_sim_pair_forces(cuda_glue(st)->g, st->step, st->want_virial,
+                              st->in_setup && st->forces_loaded);
+}
+
+static const char *phase_note(const plan_t *plan, int phase) {
+  (void)plan;
+  switch (phase) {
+  case PHASE_AFTER_DRIFT:
+    return "in the kick_drift kernel, per particle, with its position before the drift";
+  case PHASE_CHECK_DRIFT:
+    return "the device records the problems; the step's check reports them";
+  case PHASE_MIGRATE:
+    return "one rank: the periodic wrap runs in the kick_drift kernel";
+  case PHASE_SORT:
+    return "radix sort by cell; with a skin only when a particle moved more than skin/2";
+  case PHASE_GHOSTS:
+    return "one rank: cells wrap periodically on the device, no ghosts";
+  case PHASE_NEIGHBOURS:
+    return "one bin scan builds the lists and sums the densities";
+  case PHASE_DENSITY:
+    return "in the neighbour scan";
+  case PHASE_RHO_SYNC:
+    return "one rank: no ghosts";
+  case PHASE_PARTICLE_FORCES:
+    return "in the finishing kernel (with the kick; at set-up before the check)";
+  default:
+    return NULL;
+  }
+}
+
+const backend_ops_t cuda_ops_one_rank = {
+    .name = "cuda",
+    .create = cuda_glue_create,
+    .destroy = cuda_glue_destroy,
+    .setup_begin = cuda_glue_setup_begin,
+    .phase =
+        {
+            [PHASE_KICK_DRIFT] = cuda_glue_kick_drift,
+            [PHASE_SORT] = sort,
+            [PHASE_PREDICT] = cuda_glue_predict,
+            [PHASE_NEIGHBOURS] = neighbours,
+            [PHASE_PAIR_FORCES] = pair_forces,
+            [PHASE_KICK] = cuda_glue_kick,
+            [PHASE_CHECK] = cuda_glue_check,
+        },
+    .phase_note = phase_note,
+    .thermo_sums = cuda_glue_thermo_sums,
+    .sync_host = cuda_glue_sync_host,
+    .want_pressure = cuda_glue_want_pressure,
+    .rebuild_lists = cuda_glue_rebuild_lists,
+};

@@ -1,0 +1,182 @@
+/* The CUDA backend's ops on several MPI ranks, one GPU each (issue 5, item 2): the device keeps the
+ * owned particles; each step only the leavers and the boundary set (owned particles within the
+ * ghost cutoff of a face) come to the host, where the CPU path's own exchanges run on them:
+ * migration (migrate.c), the 3-stage ghost build with periodic images (ghosts.c) and the density
+ * halo (ghosts_sync_scalar). So the images, stages and messages are the CPU path's; the ghosts go
+ * back to the device after the owned particles (docs/engine-cuda.md). Halo data is staged through
+ * pinned host buffers: the ghost build itself runs on the host, so it needs the boundary set there
+ * even with a CUDA-aware MPI (Open MPI 4.1 on the GPU machines is not one). While the host
+ * exchanges, the GPU computes the interior particles (cuda_step.cu). Every phase enters its
+ * collective exchange even after a local failure (st->failed), so the ranks stay matched. */
+#include "backend/cuda/cuda_glue.h"
+#include "domain/particle_store.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#if defined(OPEN_MPI) && OPEN_MPI
+#include <mpi-ext.h> /* MPIX_Query_cuda_support */
+#endif
+
+/* Whether the MPI library says it is CUDA-aware: "yes", "no" or "unknown" (not Open MPI). */
+static const char *mpi_cuda_aware(void) {
+#if defined(MPIX_CUDA_AWARE_SUPPORT) && MPIX_CUDA_AWARE_SUPPORT
+  return MPIX_Query_cuda_support() ? "yes" : "no";
+#elif defined(MPIX_CUDA_AWARE_SUPPORT)
+  return "no";
+#else
+  return "unknown";
+#endif
+}
+
+static int ready(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  if (c->halo_ready) return 0;
+  if (pstore_init(&c->halo_b, 0, 0) || pstore_init(&c->halo_m, 0, 0)) return -1;
+  /* Axes not cut between ranks wrap on the device: no ghost images along them. */
+  c->halo_dc = st->dc;
+  for (int d = 0; d < 3; d++)
+    if (st->dc.dims[d] == 1) c->halo_dc.nbr[d][0] = c->halo_dc.nbr[d][1] = MPI_PROC_NULL;
+  c->halo_ready = 1;
+  if (st->dc.rank == 0)
+    printf("mdpore: GPU halo staged through pinned host memory (MPI CUDA-aware: %s); interior "
+           "passes overlap the exchanges: %s\n",
+           mpi_cuda_aware(), cuda_sim_overlap(c->g) ? "yes" : "no (MDPORE_CUDA_OVERLAP=0)");
+  return 0;
+}
+
+void cuda_glue_halo_free(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  if (!c->halo_ready) return;
+  pstore_free(&c->halo_b);
+  pstore_free(&c->halo_m);
+  free(c->halo_rho);
+  c->halo_rho = NULL;
+  c->halo_ready = 0;
+}
+
+static int keep_forces(const sim_state_t *st) {
+  return st->in_setup && st->forces_loaded;
+}
+
+static int setup_begin(sim_state_t *st) {
+  return ready(st) || cuda_glue_setup_begin(st) ? -1 : 0;
+}
+
+/* Leavers out of the device, through the CPU path's migration (collective), arrivals in. */
+static int migrate(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  particles_t *m = &c->halo_m;
+  int n_stay = 0;
+  int rc = st->failed || cuda_halo_sort_owned(c->g, &n_stay) ||
+           pstore_reserve(m, cuda_sim_count(c->g) - n_stay + 1) ||
+           cuda_halo_take_leavers(c->g, n_stay, m);
+  if (rc) m->n_local = 0;
+  migrate_particles(&st->dc, m, &st->sbuf, &st->rbuf, &c->mr); /* collective */
+  return rc || c->mr.out_of_memory || cuda_halo_add_owned(c->g, m) ? -1 : 0;
+}
+
+static int sort(sim_state_t *st) {
+  if (st->failed) return 0;
+  return cuda_halo_resort(cuda_glue(st)->g);
+}
+
+/* Boundary set -> host, the CPU path's ghost stages (collective), ghosts -> device; the interior
+ * densities are launched first and run meanwhile. */
+static int ghosts(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  particles_t *hb = &c->halo_b;
+  int rc = st->failed || pstore_reserve(hb, cuda_sim_count(c->g) + 1) ||
+           cuda_halo_boundary(c->g, hb) || cuda_halo_density_early(c->g);
+  if (rc) hb->n_local = hb->n_ghost = 0;
+  /* ghosts_build is collective: every rank enters it even after a local failure. */
+  rc |= ghosts_build(&st->ghosts, &c->halo_dc, hb, st->plan.rcut, st->plan.ghost_v);
+  return rc || cuda_halo_set_ghosts(c->g, hb) ? -1 : 0;
+}
+
+/* The boundary part of the neighbour scan (everything without overlap), with the densities. */
+static int neighbours(sim_state_t *st) {
+  if (st->failed) return 0;
+  return cuda_halo_density(cuda_glue(st)->g);
+}
+
+/* Boundary densities out, the interior forces launched, the density halo (collective), ghost
+ * densities in. */
+static int rho_sync(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  particles_t *hb = &c->halo_b;
+  int rc = st->failed;
+  const int nh = hb->n_local + hb->n_ghost;
+  if (!rc && nh + 1 > c->halo_rho_cap) {
+    double *f = realloc(c->halo_rho, (size_t)(nh + 1) * sizeof(double));
+    if (f) {
+      c->halo_rho = f;
+      c->halo_rho_cap = nh + 1;
+    } else {
+      rc = 1;
+    }
+  }
+  if (!rc) rc = cuda_halo_rho_out(c->g, c->halo_rho);
+  if (!rc) rc = cuda_halo_forces_early(c->g, st->step, st->want_virial, keep_forces(st));
+  rc |= ghosts_sync_scalar(&st->ghosts, &c->halo_dc, c->halo_rho); /* collective */
+  return rc || cuda_halo_rho_in(c->g, c->halo_rho + hb->n_local) ? -1 : 0;
+}
+
+static int pair_forces(sim_state_t *st) {
+  cuda_glue_t *c = cuda_glue(st);
+  if (st->failed) return 0;
+  /* without a density halo the interior forces start here */
+  if (!st->plan.density && cuda_halo_forces_early(c->g, st->step, st->want_virial, keep_forces(st)))
+    return -1;
+  return cuda_halo_forces(c->g, st->step, st->want_virial, keep_forces(st));
+}
+
+static const char *phase_note(const plan_t *plan, int phase) {
+  (void)plan;
+  switch (phase) {
+  case PHASE_AFTER_DRIFT:
+    return "in the kick_drift kernel, per particle, with its position before the drift";
+  case PHASE_CHECK_DRIFT:
+    return "the device records the problems; the step's check reports them";
+  case PHASE_MIGRATE:
+    return "leavers to the host, the CPU path's migration, arrivals back to the device";
+  case PHASE_GHOSTS:
+    return "boundary set to the host, the CPU path's ghost stages, ghosts to the device; the "
+           "interior densities run meanwhile";
+  case PHASE_NEIGHBOURS:
+    return "boundary part of the bin scan (lists and densities)";
+  case PHASE_DENSITY:
+    return "in the neighbour scan";
+  case PHASE_RHO_SYNC:
+    return "through pinned host memory; the interior forces run meanwhile";
+  case PHASE_PARTICLE_FORCES:
+    return "in the finishing kernel (with the kick; at set-up before the check)";
+  default:
+    return NULL;
+  }
+}
+
+const backend_ops_t cuda_ops_ranks = {
+    .name = "cuda",
+    .create = cuda_glue_create,
+    .destroy = cuda_glue_destroy,
+    .setup_begin = setup_begin,
+    .phase =
+        {
+            [PHASE_KICK_DRIFT] = cuda_glue_kick_drift,
+            [PHASE_MIGRATE] = migrate,
+            [PHASE_SORT] = sort,
+            [PHASE_PREDICT] = cuda_glue_predict,
+            [PHASE_GHOSTS] = ghosts,
+            [PHASE_NEIGHBOURS] = neighbours,
+            [PHASE_RHO_SYNC] = rho_sync,
+            [PHASE_PAIR_FORCES] = pair_forces,
+            [PHASE_KICK] = cuda_glue_kick,
+            [PHASE_CHECK] = cuda_glue_check,
+        },
+    .phase_note = phase_note,
+    .thermo_sums = cuda_glue_thermo_sums,
+    .sync_host = cuda_glue_sync_host,
+    .want_pressure = cuda_glue_want_pressure,
+    .rebuild_lists = cuda_glue_rebuild_lists,
+};

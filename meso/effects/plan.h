@@ -1,0 +1,89 @@
+/* The step plan: what the engine does each step, built once from the effects a scene names.
+ * An effect that is not named contributes nothing: no array, no pass, no pair term, no message.
+ * The plan is an ordered list of phases (enum step_phase) for the set-up and for every step; each
+ * backend implements the phases behind one ops table (meso/backend/backend.h), the engine runs the
+ * list (engine/step.c) and `mdpore run --explain` prints the same list (engine/explain.c). */
+#ifndef MESO_EFFECTS_PLAN_H
+#define MESO_EFFECTS_PLAN_H
+
+#include "effects/effect_list.h"
+#include "scene/scene.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Pair terms the fused force kernel can evaluate (meso/backend/cpu/force_pass.c). */
+enum plan_pair_term {
+  PAIR_TERM_CONSERVATIVE = 1, /* A w_c(r): mdpd_attraction (A < 0) or dpd_conservative (a > 0) */
+  PAIR_TERM_MANYBODY = 2,     /* B (rho_i + rho_j) w_d(r): mdpd_repulsion                       */
+  PAIR_TERM_THERMOSTAT = 4    /* -gamma w_R^2 (e.v) + sigma w_R xi / sqrt(dt): dpd_thermostat     */
+};
+
+/* Constants of one species pair, precomputed once so the pair loop has no division or pow (s = 1).
+ */
+typedef struct {
+  double A;            /* conservative amplitude (0 when no conservative term is named) */
+  double B;            /* many-body amplitude                                           */
+  double gamma, sigma; /* sigma^2 = 2 gamma kT (fluctuation-dissipation)                 */
+  double rc, inv_rc, rc2;
+  double rd, inv_rd, rd2;
+  double wnorm; /* density-kernel normalisation for this rd (w_rho_norm) */
+  double cut2;  /* square of the largest cutoff any named pair term uses for this pair */
+} pair_coef_t;
+
+/* The phases of a step, in the order they run (a plan lists those its effects need). */
+enum step_phase {
+  PHASE_KICK_DRIFT,      /* v += dt/2 f/m, x += dt v; displacement and finiteness noted     */
+  PHASE_AFTER_DRIFT,     /* position constraints of the named effects (box_walls)           */
+  PHASE_CHECK_DRIFT,     /* collective check after the drift; the step index advances       */
+  PHASE_MIGRATE,         /* periodic wrap, particles to the rank that owns them             */
+  PHASE_SORT,            /* owned particles in cell order                                   */
+  PHASE_PREDICT,         /* v~ = v + (lambda - 1/2) dt f/m (v~ = v at set-up)               */
+  PHASE_GHOSTS,          /* ghost layer of width rcut (x, and v~ with the thermostat)      */
+  PHASE_NEIGHBOURS,      /* cell and neighbour lists                                        */
+  PHASE_DENSITY,         /* rho_i over r < rd (self term excluded)                          */
+  PHASE_RHO_SYNC,        /* ghosts get the densities of their owners                        */
+  PHASE_PAIR_FORCES,     /* the fused pair pass of the named pair terms (f = 0 without any) */
+  PHASE_PARTICLE_FORCES, /* per-particle forces of the named effects (body_force)           */
+  PHASE_KICK,            /* v += dt/2 f/m                                                   */
+  PHASE_CHECK,           /* collective check: non-finite values, lost particles, count      */
+  PHASE_COUNT
+};
+extern const char *const step_phase_names[PHASE_COUNT];
+
+typedef struct {
+  int named[EFFECT_COUNT]; /* copy of scene.effect */
+  int pair_terms;          /* OR of enum plan_pair_term */
+  int density;             /* 1: density pass + rho ghost sync (mdpd_repulsion) */
+  int density_kernel;      /* enum meso_density_kernel */
+  int ghost_v;             /* ghosts carry (predicted) velocities (dpd_thermostat) */
+  int use_vpred;       /* a separate predicted-velocity array (thermostat and vv_lambda != 0.5) */
+  int particle_forces; /* per-particle forces (body_force) */
+  int walls;           /* position constraints after the drift (box_walls) */
+  double rcut;         /* ghost-layer width = largest cutoff of the named effects */
+  double max_disp;     /* largest safe displacement per step (0.5 rcut) */
+  double weight_exp;   /* s of w_R = (1 - r/rc)^s (dpd_thermostat's exponent; 1 otherwise) */
+  int weight_exp_is_one;
+  /* The time step and the constants derived from it, computed once. */
+  double dt, half_dt; /* dt / 2: the half kicks */
+  double inv_sqrt_dt; /* 1 / sqrt(dt): the random force */
+  double vv_lambda;   /* Groot-Warren lambda */
+  double predict_c;   /* (lambda - 1/2) dt: v~ = v + predict_c f / m */
+  uint64_t seed;      /* of the pair random numbers */
+  int n_species;
+  double mass[SCENE_MAX_SPECIES], inv_mass[SCENE_MAX_SPECIES];
+  int mobile[SCENE_MAX_SPECIES];
+  pair_coef_t coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
+  particle_effects_t particle; /* parameters of the per-particle effects (both backends) */
+  /* The phase lists: set-up (forces of the first configuration) and every step. */
+  int n_setup, n_step;
+  unsigned char setup[PHASE_COUNT], step[PHASE_COUNT];
+} plan_t;
+
+/* Build and validate the plan. Returns 0, or -1 with a message in err (names the scene file). */
+int plan_build(plan_t *plan, const scene_t *scene, char *err, size_t errlen);
+
+/* 1 when the plan's step (or set-up, setup = 1) list holds the phase. */
+int plan_has_phase(const plan_t *plan, int setup, int phase);
+
+#endif
