@@ -52,6 +52,21 @@ int main(int argc, char **argv) {
   CHECK(dens && sync && force && part, "mDPD plan lacks a pass");
   CHECK(dens < sync && sync < force && force < part, "passes out of order");
   CHECK(strstr(t, "box_walls: reflect on faces z = 0 and z = 10"), "box walls line");
+  {
+    /* --explain prints the plan's own step list: every phase, numbered, in the order it runs. */
+    plan_t pl;
+    char perr[512];
+    CHECK(plan_build(&pl, &s, perr, sizeof perr) == 0, "plan: %s", perr);
+    const char *at = strstr(t, "every step");
+    for (int k = 0; at && k < pl.n_step; k++) {
+      char line[64];
+      snprintf(line, sizeof line, "%2d. %s:", k + 1, step_phase_names[pl.step[k]]);
+      const char *next = strstr(at, line);
+      CHECK(next != NULL, "explain lacks '%s' after the previous phase", line);
+      at = next;
+    }
+    CHECK(at != NULL, "explain has no step list");
+  }
   free(t);
   sim = sim_create(&s, MPI_COMM_SELF);
   CHECK(sim && sim_particles(sim)->rho != NULL, "mDPD scene has no rho array");
@@ -68,6 +83,25 @@ int main(int argc, char **argv) {
   s.box_hi[0] = 10;
   effect_name_in_scene(&s, EFFECT_DPD_CONSERVATIVE);
   CHECK(sim_create(&s, MPI_COMM_SELF) == NULL, "mdpd_attraction + dpd_conservative accepted");
+  s.effect[EFFECT_DPD_CONSERVATIVE] = 0;
+  /* The effects' own checks run on scenes built in code too: reverse Poiseuille flow along the
+   * wall-bounded axis z is refused by body_force's check, naming the key. */
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->reverse_axis = 2;
+  char err[512];
+  plan_t plan;
+  CHECK(plan_build(&plan, &s, err, sizeof err) != 0 &&
+            strstr(err, "effects.body_force.reverse_along") && strstr(err, "periodic axis"),
+        "reverse_along a non-periodic axis accepted (or unclear message: %s)", err);
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->reverse_axis = 1;
+  CHECK(plan_build(&plan, &s, err, sizeof err) == 0, "a valid scene refused: %s", err);
+  /* The plan lists the phases the effects need, in order, and --explain prints that list. */
+  CHECK(plan_has_phase(&plan, 0, PHASE_AFTER_DRIFT) && plan_has_phase(&plan, 0, PHASE_DENSITY) &&
+            plan_has_phase(&plan, 0, PHASE_PARTICLE_FORCES) &&
+            plan_has_phase(&plan, 1, PHASE_RHO_SYNC) && !plan_has_phase(&plan, 1, PHASE_KICK),
+        "phase lists");
+  CHECK(plan.half_dt == 0.5 * s.dt && plan.inv_sqrt_dt == 1.0 / sqrt(s.dt) &&
+            plan.predict_c == (s.vv_lambda - 0.5) * s.dt,
+        "derived time-step constants");
   MPI_Finalize();
   return 0;
 }

@@ -123,8 +123,8 @@ void cuda_glue_sync_host(sim_state_t *st) {
     st->host_stale = 0;
 }
 
-/* One rank: sort (set-up: with the loaded forces), or leave it to the neighbour phase when a skin
- * may keep the lists. */
+/* One rank: the set-up sorts here (with the loaded forces); a step leaves the sort to the neighbour
+ * phase. */
 static int sort(sim_state_t *st) {
   if (st->failed) return 0;
   return cuda_sim_sort(cuda_glue(st)->g, st->in_setup, st->forces_loaded && st->in_setup,
@@ -152,7 +152,8 @@ static const char *phase_note(const plan_t *plan, int phase) {
   case PHASE_MIGRATE:
     return "one rank: the periodic wrap runs in the kick_drift kernel";
   case PHASE_SORT:
-    return "radix sort by cell; with a skin only when a particle moved more than skin/2";
+    return "a step's radix sort by cell runs in the neighbour phase, after the prediction (it does "
+           "not carry the forces); with a skin only when a particle moved more than skin/2";
   case PHASE_GHOSTS:
     return "one rank: cells wrap periodically on the device, no ghosts";
   case PHASE_NEIGHBOURS:

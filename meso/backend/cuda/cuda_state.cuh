@@ -150,6 +150,7 @@ struct cuda_sim {
   /* One rank with a skin: the sort phase left the choice (keep the lists or sort and rebuild) to
    * the neighbour phase, which decides after the prediction, as the displacement check needs it. */
   int lists_maybe_valid;
+  int sort_pending;    /* a step's sort, done by the neighbour phase (after the prediction) */
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;

@@ -18,13 +18,14 @@ extern "C" int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial) {
   return 0;
 }
 
-/* Set-up: sort by cell (with the forces when they were loaded from a checkpoint). A step: sort,
- * unless a skin may keep the lists (cuda_sim_neighbours decides). */
+/* Set-up: sort by cell (with the forces when they were loaded from a checkpoint). A step: the sort
+ * waits for the neighbour phase, after the prediction, since it does not carry the forces that the
+ * prediction reads; with a skin that phase may keep the lists and skip it. */
 extern "C" int cuda_sim_sort(cuda_sim_t *g, int setup, int keep_forces, int want_virial) {
   if (setup) return cuda_set_virial(g, want_virial) || cuda_sort_cells(g, keep_forces) ? -1 : 0;
   g->lists_maybe_valid = g->prm.skin > 0.0 && g->lists_valid;
-  if (g->lists_maybe_valid) return 0;
-  return cuda_sort_cells(g, 0); /* the force pass rewrites f */
+  g->sort_pending = 1;
+  return 0;
 }
 
 extern "C" int cuda_sim_predict(cuda_sim_t *g, int setup) {
@@ -36,6 +37,8 @@ extern "C" int cuda_sim_predict(cuda_sim_t *g, int setup) {
  * until a particle has moved more than skin / 2; then (and always without a skin) the particles are
  * sorted by cell again and the bin scan builds new lists (with the densities). */
 extern "C" int cuda_sim_neighbours(cuda_sim_t *g) {
+  const int sort = g->sort_pending;
+  g->sort_pending = 0;
   if (g->lists_maybe_valid) {
     g->lists_maybe_valid = 0;
     const int r = cuda_pack_check(g);
@@ -44,8 +47,8 @@ extern "C" int cuda_sim_neighbours(cuda_sim_t *g) {
       cuda_density_from_lists(g);
       return 0;
     }
-    if (cuda_sort_cells(g, 0)) return -1;
   }
+  if (sort && cuda_sort_cells(g, 0)) return -1; /* the force pass rewrites f */
   cuda_pack(g);
   return cuda_density_pass(g);
 }
