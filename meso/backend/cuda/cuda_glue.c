@@ -41,7 +41,6 @@ int cuda_glue_create(sim_state_t *st) {
 void cuda_glue_destroy(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
   if (!c) return;
-  cuda_glue_halo_free(st);
   if (c->g) cuda_sim_destroy(c->g);
   free(c);
   st->impl = NULL;
@@ -142,13 +141,25 @@ static int pair_forces(sim_state_t *st) {
                               st->in_setup && st->forces_loaded);
 }
 
-static const char *phase_note(const plan_t *plan, int phase) {
-  (void)plan;
+/* --explain remarks shared by both tables: where the fused phases run. */
+const char *cuda_glue_phase_note(int phase) {
   switch (phase) {
   case PHASE_AFTER_DRIFT:
     return "in the kick_drift kernel, per particle, with its position before the drift";
   case PHASE_CHECK_DRIFT:
     return "the device records the problems; the step's check reports them";
+  case PHASE_DENSITY:
+    return "in the neighbour scan";
+  case PHASE_PARTICLE_FORCES:
+    return "in the finishing kernel (with the kick; at set-up before the check)";
+  default:
+    return NULL;
+  }
+}
+
+static const char *phase_note(const plan_t *plan, int phase) {
+  (void)plan;
+  switch (phase) {
   case PHASE_MIGRATE:
     return "one rank: the periodic wrap runs in the kick_drift kernel";
   case PHASE_SORT:
@@ -158,14 +169,10 @@ static const char *phase_note(const plan_t *plan, int phase) {
     return "one rank: cells wrap periodically on the device, no ghosts";
   case PHASE_NEIGHBOURS:
     return "one bin scan builds the lists and sums the densities";
-  case PHASE_DENSITY:
-    return "in the neighbour scan";
   case PHASE_RHO_SYNC:
     return "one rank: no ghosts";
-  case PHASE_PARTICLE_FORCES:
-    return "in the finishing kernel (with the kick; at set-up before the check)";
   default:
-    return NULL;
+    return cuda_glue_phase_note(phase);
   }
 }
 

@@ -36,7 +36,7 @@ int cuda_glue_thermo_sums(sim_state_t *st, double sums[17]);
 void cuda_glue_sync_host(sim_state_t *st);
 void cuda_glue_want_pressure(sim_state_t *st, int on);
 void cuda_glue_rebuild_lists(sim_state_t *st);
-void cuda_glue_halo_free(sim_state_t *st);
+const char *cuda_glue_phase_note(int phase);
 
 extern const backend_ops_t cuda_ops_one_rank, cuda_ops_ranks;
 

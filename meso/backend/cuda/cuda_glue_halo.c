@@ -45,14 +45,17 @@ static int ready(sim_state_t *st) {
   return 0;
 }
 
-void cuda_glue_halo_free(sim_state_t *st) {
+/* The host halo buffers, then the state both tables share. */
+static void destroy(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
-  if (!c->halo_ready) return;
-  pstore_free(&c->halo_b);
-  pstore_free(&c->halo_m);
-  free(c->halo_rho);
-  c->halo_rho = NULL;
-  c->halo_ready = 0;
+  if (c && c->halo_ready) {
+    pstore_free(&c->halo_b);
+    pstore_free(&c->halo_m);
+    free(c->halo_rho);
+    c->halo_rho = NULL;
+    c->halo_ready = 0;
+  }
+  cuda_glue_destroy(st);
 }
 
 static int keep_forces(const sim_state_t *st) {
@@ -134,10 +137,6 @@ static int pair_forces(sim_state_t *st) {
 static const char *phase_note(const plan_t *plan, int phase) {
   (void)plan;
   switch (phase) {
-  case PHASE_AFTER_DRIFT:
-    return "in the kick_drift kernel, per particle, with its position before the drift";
-  case PHASE_CHECK_DRIFT:
-    return "the device records the problems; the step's check reports them";
   case PHASE_MIGRATE:
     return "leavers to the host, the CPU path's migration, arrivals back to the device";
   case PHASE_GHOSTS:
@@ -145,21 +144,17 @@ static const char *phase_note(const plan_t *plan, int phase) {
            "interior densities run meanwhile";
   case PHASE_NEIGHBOURS:
     return "boundary part of the bin scan (lists and densities)";
-  case PHASE_DENSITY:
-    return "in the neighbour scan";
   case PHASE_RHO_SYNC:
     return "through pinned host memory; the interior forces run meanwhile";
-  case PHASE_PARTICLE_FORCES:
-    return "in the finishing kernel (with the kick; at set-up before the check)";
   default:
-    return NULL;
+    return cuda_glue_phase_note(phase);
   }
 }
 
 const backend_ops_t cuda_ops_ranks = {
     .name = "cuda",
     .create = cuda_glue_create,
-    .destroy = cuda_glue_destroy,
+    .destroy = destroy,
     .setup_begin = setup_begin,
     .phase =
         {
