@@ -118,6 +118,14 @@ int init_configuration(sim_t *sim, const scene_t *s) {
     }
     return offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
   }
+  if (s->init.kind == INIT_GEOMETRY) {
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    if (rank == 0)
+      fprintf(stderr, "%s: geometry: building walls from an image is not available yet (issue 10)\n",
+              s->file);
+    return -1;
+  }
   particle_set_t set;
   int rc = s->init.kind == INIT_LAMMPS_DATA ? lammps_data_read_bcast(s->init.path, s, comm, &set)
                                             : snapshot_read_bcast(s->init.path, s, comm, &set);

@@ -6,6 +6,7 @@
 
 #include "physics/hd.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 #define SCENE_MAX_SPECIES MESO_MAX_SPECIES
@@ -50,7 +51,33 @@ typedef struct {
   double lo[3], hi[3];
 } scene_fill_t;
 
-enum scene_init_kind { INIT_FILL = 0, INIT_LAMMPS_DATA = 1, INIT_SNAPSHOT = 2 };
+enum scene_init_kind { INIT_FILL = 0, INIT_LAMMPS_DATA = 1, INIT_SNAPSHOT = 2, INIT_GEOMETRY = 3 };
+
+/* The scene's geometry as a segmented image (docs/scene-format.md, `geometry:`): wall particles in
+ * the solid voxels near the pore space, copied from a database of pre-equilibrated patches, one
+ * wall species per solid phase, and fluid in the pore voxels (meso/build/image_walls.c). */
+enum scene_isolated_pores { ISOLATED_EMPTY = 0, ISOLATED_FILL = 1 };
+typedef struct {
+  int on;                       /* 1: a `geometry:` block was given                        */
+  char image[SCENE_PATH_LEN];   /* image file (any format mdpore image reads), relative to the
+                                      scene file                                               */
+  char labels[256];             /* label map ("pore=0,inorganic=1,organic=2"; "" = the file's
+                                      own or the default)                                      */
+  double rc_per_voxel;          /* voxel edge in rc                                         */
+  int axis_map[3];              /* box axis d is image axis axis_map[d] (default 0, 1, 2)   */
+  int flow_axis;                /* box axis the pore space must span (0..2)                */
+  double wall_thickness;        /* solid kept within this distance (rc) of a pore voxel;
+                                      <= 0: rc + rd of the fluid-wall pairs                    */
+  double wall_density;          /* wall particles per rc^3 (8)                               */
+  double fluid_density;         /* fluid particles per rc^3 (6.2)                            */
+  double min_wall_distance;     /* no fluid particle closer than this to a wall particle    */
+  int isolated_pores;           /* enum scene_isolated_pores: pores not spanning flow_axis  */
+  int fluid_species;            /* species of the fluid                                     */
+  int organic_species;          /* wall species of organic voxels (-1: none in the image)   */
+  int inorganic_species;        /* wall species of inorganic voxels (-1: none)              */
+  char patches[SCENE_PATH_LEN]; /* patch database file ("" = built and cached by mdpore)    */
+  uint64_t patch_seed;          /* seed of the patch choice and of the database             */
+} scene_geometry_t;
 
 typedef struct {
   int kind; /* enum scene_init_kind */
@@ -97,6 +124,7 @@ typedef struct {
   scene_effect_options_t effect_options[SCENE_MAX_EFFECTS]; /* parsed by each named effect */
 
   scene_init_t init;
+  scene_geometry_t geometry;
 
   double dt;
   long steps;
@@ -122,6 +150,9 @@ typedef struct {
  * stderr and returns non-zero. Every rank may call it (the file is small). */
 struct scene_catalog;
 int scene_parse_file(const char *path, const struct scene_catalog *catalog, scene_t *scene);
+
+/* A path as written in the scene file, resolved against the scene file's folder (absolute kept). */
+void scene_relative_path(const char *scene_file, const char *path, char *out, size_t len);
 
 /* Species index of a name, or -1. */
 int scene_species_index(const scene_t *scene, const char *name);

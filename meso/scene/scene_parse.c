@@ -5,6 +5,7 @@
 #include "physics/density_kernels.h"
 #include "scene/scene.h"
 #include "scene/scene_catalog.h"
+#include "scene/scene_geometry.h"
 
 #include <stdarg.h>
 
@@ -34,26 +35,6 @@ typedef struct {
 
 static void join(char *out, size_t len, const char *path, const char *key) {
   snprintf(out, len, "%s%s%s", path, *path ? "." : "", key);
-}
-
-/* Resolve a path relative to the directory of the scene file. */
-static void relative_to_scene(const char *scene_file, const char *p, char *out, size_t len) {
-  if (p[0] == '/') {
-    snprintf(out, len, "%s", p);
-    return;
-  }
-  char tmp[SCENE_PATH_LEN];
-  snprintf(tmp, sizeof tmp, "%s", scene_file);
-  const char *dir = dirname(tmp);
-  if (!strcmp(dir, ".")) {
-    snprintf(out, len, "%s", p);
-  } else if (strlen(dir) + strlen(p) + 2 <= len) {
-    strcpy(out, dir);
-    strcat(out, "/");
-    strcat(out, p);
-  } else {
-    snprintf(out, len, "%s", p);
-  }
 }
 
 static int parse_box(ytree_t *t, yaml_node_t *n, scene_t *s) {
@@ -404,21 +385,29 @@ static int parse_initial(ytree_t *t, yaml_node_t *n, scene_t *s) {
   TRY(yt_check_keys(t, n, "initial", keys));
   yaml_node_t *fill = yt_get(t, n, "fill"), *data = yt_get(t, n, "lammps_data"),
               *snap = yt_get(t, n, "snapshot");
-  if (!!fill + !!data + !!snap != 1)
+  if (s->geometry.on && !!fill + !!data + !!snap > 0)
+    return yt_error(t, n, "initial",
+                    "expected only 'temperature' here: the particles come from 'geometry' (got "
+                    "fill, lammps_data or snapshot as well)");
+  if (s->geometry.on) {
+    s->init.kind = INIT_GEOMETRY;
+  } else if (!!fill + !!data + !!snap != 1)
     return yt_error(t, n, "initial", "expected exactly one of fill, lammps_data, snapshot (got %d)",
                     !!fill + !!data + !!snap);
   char p[SCENE_PATH_LEN];
-  if (fill) {
+  if (s->geometry.on) {
+    /* nothing more: the geometry builder makes the particles */
+  } else if (fill) {
     s->init.kind = INIT_FILL;
     TRY(parse_fill(t, fill, s));
   } else if (data) {
     s->init.kind = INIT_LAMMPS_DATA;
     TRY(yt_string(t, data, "initial.lammps_data", p, sizeof p));
-    relative_to_scene(s->file, p, s->init.path, sizeof s->init.path);
+    scene_relative_path(s->file, p, s->init.path, sizeof s->init.path);
   } else {
     s->init.kind = INIT_SNAPSHOT;
     TRY(yt_string(t, snap, "initial.snapshot", p, sizeof p));
-    relative_to_scene(s->file, p, s->init.path, sizeof s->init.path);
+    scene_relative_path(s->file, p, s->init.path, sizeof s->init.path);
   }
   yaml_node_t *v = yt_get(t, n, "temperature");
   if (v) {
@@ -550,9 +539,9 @@ static void set_defaults(scene_t *s) {
 
 static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   yaml_node_t *root = yt_root(t), *v;
-  static const char *const keys[] = {"name",    "box",     "species", "pairs", "density_kernel",
-                                     "kT",      "effects", "initial", "run",   "output",
-                                     "restart", NULL};
+  static const char *const keys[] = {"name",   "box",     "species",  "pairs",   "density_kernel",
+                                     "kT",     "effects", "geometry", "initial", "run",
+                                     "output", "restart", NULL};
   TRY(yt_check_keys(t, root, "", keys));
   if ((v = yt_get(t, root, "name")))
     TRY(yt_string(t, v, "name", s->name, SCENE_NAME_LEN));
@@ -597,14 +586,17 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   if ((v = yt_get(t, root, "restart"))) {
     char p[SCENE_PATH_LEN];
     TRY(yt_string(t, v, "restart", p, sizeof p));
-    relative_to_scene(s->file, p, s->restart_from, sizeof s->restart_from);
+    scene_relative_path(s->file, p, s->restart_from, sizeof s->restart_from);
   }
+  if ((v = yt_get(t, root, "geometry"))) TRY(scene_parse_geometry(t, v, s));
   if ((v = yt_get(t, root, "initial")))
     TRY(parse_initial(t, v, s));
+  else if (s->geometry.on)
+    s->init.kind = INIT_GEOMETRY;
   else if (!s->restart_from[0])
     return yt_error(t, root, "initial",
-                    "expected an initial configuration (fill, lammps_data or snapshot) or a "
-                    "'restart' checkpoint (got neither)");
+                    "expected an initial configuration (fill, lammps_data or snapshot), a "
+                    "'geometry' image or a 'restart' checkpoint (got none of them)");
   if (s->init.temperature < 0) s->init.temperature = s->kT;
 
   if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));

@@ -1,7 +1,23 @@
-/* Small queries on a parsed scene: species lookup, physics hash. */
+/* Small queries on a parsed scene: species lookup, paths relative to the scene file, physics hash. */
 #include "scene/scene.h"
 
+#include <libgen.h>
+#include <stdio.h>
 #include <string.h>
+
+void scene_relative_path(const char *scene_file, const char *p, char *out, size_t len) {
+  if (p[0] == '/') {
+    snprintf(out, len, "%s", p);
+    return;
+  }
+  char tmp[SCENE_PATH_LEN];
+  snprintf(tmp, sizeof tmp, "%s", scene_file);
+  const char *dir = dirname(tmp);
+  if (!strcmp(dir, ".") || strlen(dir) + strlen(p) + 2 > len)
+    snprintf(out, len, "%s", p);
+  else
+    snprintf(out, len, "%s/%s", dir, p);
+}
 
 int scene_species_index(const scene_t *s, const char *name) {
   for (int i = 0; i < s->n_species; i++)
@@ -34,6 +50,7 @@ uint64_t scene_physics_hash(const scene_t *s) {
   h = fnv(h, s->effect, sizeof s->effect);
   for (int e = 0; e < SCENE_MAX_EFFECTS; e++) /* the options of the named effects, as parsed */
     if (s->effect[e]) h = fnv(h, &s->effect_options[e], sizeof s->effect_options[e]);
+  if (s->geometry.on) h = fnv(h, &s->geometry, sizeof s->geometry);
   h = fnv(h, &s->dt, sizeof s->dt);
   h = fnv(h, &s->seed, sizeof s->seed);
   return h;

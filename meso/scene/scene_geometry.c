@@ -1,0 +1,143 @@
+/* The `geometry:` block: image, label map, scale, axis map, flow axis, wall and fluid parameters,
+ * species of each phase, patch database (scene_geometry.h). */
+#include "scene/scene_geometry.h"
+
+#include <string.h>
+
+#define TRY(x)                                                                                     \
+  do {                                                                                             \
+    if ((x) != 0) return -1;                                                                       \
+  } while (0)
+
+static const char *const axis_words[] = {"x", "y", "z", NULL};
+
+/* A positive number at key `key` of map n, into *out (left alone when absent). */
+static int positive(ytree_t *t, yaml_node_t *n, const char *key, double *out, int allow_zero) {
+  yaml_node_t *v = yt_get(t, n, key);
+  if (!v) return 0;
+  char path[96];
+  snprintf(path, sizeof path, "geometry.%s", key);
+  TRY(yt_double(t, v, path, out));
+  if (!(*out > 0 || (allow_zero && *out == 0)))
+    return yt_error(t, v, path, "expected a number %s 0 (got %g)", allow_zero ? ">=" : ">", *out);
+  return 0;
+}
+
+static int species_of(ytree_t *t, yaml_node_t *m, const char *key, const scene_t *s, int *out) {
+  yaml_node_t *v = yt_get(t, m, key);
+  if (!v) return 0;
+  char path[96], name[SCENE_NAME_LEN];
+  snprintf(path, sizeof path, "geometry.species.%s", key);
+  TRY(yt_string(t, v, path, name, sizeof name));
+  if ((*out = scene_species_index(s, name)) < 0)
+    return yt_error(t, v, path, "expected one of the species listed under 'species' (got '%s')",
+                    name);
+  return 0;
+}
+
+int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"image",          "labels",
+                                     "rc_per_voxel",   "voxels_per_rc",
+                                     "axis_map",       "flow_axis",
+                                     "wall_thickness", "wall_density",
+                                     "fluid_density",  "min_wall_distance",
+                                     "isolated_pores", "species",
+                                     "patches",        NULL};
+  TRY(yt_check_keys(t, n, "geometry", keys));
+  scene_geometry_t *g = &s->geometry;
+  memset(g, 0, sizeof *g);
+  g->on = 1;
+  for (int d = 0; d < 3; d++) g->axis_map[d] = d;
+  g->wall_density = 8.0;
+  g->fluid_density = 6.2;
+  g->min_wall_distance = 0.0;
+  g->organic_species = g->inorganic_species = -1;
+  g->fluid_species = -1;
+  g->patch_seed = 1;
+  yaml_node_t *v;
+  char text[SCENE_PATH_LEN];
+  if (!(v = yt_get(t, n, "image")))
+    return yt_error(t, n, "geometry.image", "expected an image file (got nothing)");
+  TRY(yt_string(t, v, "geometry.image", text, sizeof text));
+  scene_relative_path(s->file, text, g->image, sizeof g->image);
+  if ((v = yt_get(t, n, "labels")))
+    TRY(yt_string(t, v, "geometry.labels", g->labels, sizeof g->labels));
+  yaml_node_t *rpv = yt_get(t, n, "rc_per_voxel"), *vpr = yt_get(t, n, "voxels_per_rc");
+  if (!!rpv + !!vpr != 1)
+    return yt_error(t, n, "geometry.rc_per_voxel",
+                    "expected exactly one of rc_per_voxel and voxels_per_rc (got %d)",
+                    !!rpv + !!vpr);
+  if (rpv) TRY(positive(t, n, "rc_per_voxel", &g->rc_per_voxel, 0));
+  if (vpr) {
+    double k = 0;
+    TRY(positive(t, n, "voxels_per_rc", &k, 0));
+    g->rc_per_voxel = 1.0 / k;
+  }
+  if ((v = yt_get(t, n, "axis_map"))) {
+    TRY(yt_expect_seq(t, v, "geometry.axis_map"));
+    if (yt_seq_size(v) != 3)
+      return yt_error(
+          t, v, "geometry.axis_map",
+          "expected three image axes, one per box axis x, y, z, e.g. [x, y, z] (got %d)",
+          yt_seq_size(v));
+    int used[3] = {0, 0, 0};
+    for (int d = 0; d < 3; d++) {
+      const int a = yt_enum(t, yt_seq_item(t, v, d), "geometry.axis_map", axis_words);
+      if (a < 0) return -1;
+      if (used[a]++)
+        return yt_error(t, v, "geometry.axis_map", "expected each image axis once (got '%s' twice)",
+                        axis_words[a]);
+      g->axis_map[d] = a;
+    }
+  }
+  if (!(v = yt_get(t, n, "flow_axis")))
+    return yt_error(t, n, "geometry.flow_axis",
+                    "expected the box axis the flow goes along, x, y or z (got nothing)");
+  if ((g->flow_axis = yt_enum(t, v, "geometry.flow_axis", axis_words)) < 0) return -1;
+  TRY(positive(t, n, "wall_thickness", &g->wall_thickness, 0));
+  TRY(positive(t, n, "wall_density", &g->wall_density, 0));
+  TRY(positive(t, n, "fluid_density", &g->fluid_density, 0));
+  TRY(positive(t, n, "min_wall_distance", &g->min_wall_distance, 1));
+  if ((v = yt_get(t, n, "isolated_pores"))) {
+    static const char *const modes[] = {"empty", "fill", NULL};
+    if ((g->isolated_pores = yt_enum(t, v, "geometry.isolated_pores", modes)) < 0) return -1;
+  }
+  if (!(v = yt_get(t, n, "species")))
+    return yt_error(t, n, "geometry.species",
+                    "expected {fluid: NAME, inorganic: NAME, organic: NAME} (got nothing)");
+  static const char *const sk[] = {"fluid", "organic", "inorganic", NULL};
+  TRY(yt_check_keys(t, v, "geometry.species", sk));
+  TRY(species_of(t, v, "fluid", s, &g->fluid_species));
+  TRY(species_of(t, v, "organic", s, &g->organic_species));
+  TRY(species_of(t, v, "inorganic", s, &g->inorganic_species));
+  if (g->fluid_species < 0)
+    return yt_error(t, v, "geometry.species.fluid", "expected the fluid's species (got nothing)");
+  if (g->organic_species < 0 && g->inorganic_species < 0)
+    return yt_error(t, v, "geometry.species",
+                    "expected a wall species for 'organic' or 'inorganic' voxels (got neither)");
+  const int walls[2] = {g->organic_species, g->inorganic_species};
+  for (int k = 0; k < 2; k++) {
+    if (walls[k] < 0) continue;
+    if (walls[k] == g->fluid_species || !s->species[walls[k]].frozen)
+      return yt_error(t, v, k ? "geometry.species.inorganic" : "geometry.species.organic",
+                      "expected a frozen species other than the fluid's (got '%s')",
+                      s->species[walls[k]].name);
+  }
+  if ((v = yt_get(t, n, "patches"))) {
+    static const char *const pk[] = {"file", "seed", NULL};
+    TRY(yt_check_keys(t, v, "geometry.patches", pk));
+    yaml_node_t *w;
+    if ((w = yt_get(t, v, "file"))) {
+      TRY(yt_string(t, w, "geometry.patches.file", text, sizeof text));
+      scene_relative_path(s->file, text, g->patches, sizeof g->patches);
+    }
+    if ((w = yt_get(t, v, "seed"))) {
+      long seed = 0;
+      TRY(yt_long(t, w, "geometry.patches.seed", &seed));
+      if (seed < 0)
+        return yt_error(t, w, "geometry.patches.seed", "expected a seed >= 0 (got %ld)", seed);
+      g->patch_seed = (uint64_t)seed;
+    }
+  }
+  return 0;
+}
