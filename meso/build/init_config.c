@@ -122,7 +122,8 @@ int init_configuration(sim_t *sim, const scene_t *s) {
     int rank;
     MPI_Comm_rank(comm, &rank);
     if (rank == 0)
-      fprintf(stderr, "%s: geometry: building walls from an image is not available yet (issue 10)\n",
+      fprintf(stderr,
+              "%s: geometry: building walls from an image is not available yet (issue 10)\n",
               s->file);
     return -1;
   }
