@@ -116,6 +116,11 @@ int mdp_image_downsample(const mdp_image_t *in, int factor, mdp_image_t *out, ch
 int mdp_image_pad(const mdp_image_t *in, const int widths[6], uint8_t label, mdp_image_t *out,
                   char *err);
 
+/* Reorder the axes (image_axes.c): output axis d is input axis axis_map[d], so out(i0, i1, i2) =
+ * in(j) with j[axis_map[d]] = i_d; a scene's geometry.axis_map turns image axes into box axes. */
+int mdp_image_permute_axes(const mdp_image_t *in, const int axis_map[3], mdp_image_t *out,
+                           char *err);
+
 /* ---- statistics (image_stats.c) ---- */
 typedef struct {
   long long n_voxels, n_pore, n_organic, n_inorganic;
