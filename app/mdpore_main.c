@@ -15,6 +15,7 @@ static const command_t commands[] = {
     {"run", cmd_run, "run a scene file (mDPD pore solver); --explain prints the step plan"},
     {"forces", cmd_forces, "evaluate forces and densities on a scene's initial configuration"},
     {"image", cmd_image, "segmented 3D images: info (porosity, connectivity), convert to HDF5"},
+    {"build", cmd_build, "build inputs: the wall patch database (build patches)"},
     {"foam", cmd_foam, "OpenFOAM Stokes-flow permeability of an image (continuum cross-check)"},
     {"fit", cmd_fit, "fit Darcy and non-Darcy laws to a flow-data table"},
     {"darcy", cmd_darcy, "continuum Darcy/non-Darcy solve on a grid of rock blocks"},

@@ -1,6 +1,7 @@
 /* Initial configuration: offer a global particle source to the engine, generating Maxwell-Boltzmann
  * velocities (momentum-free) where the source has none. */
 #include "build/init_config.h"
+#include "build/image_walls.h"
 #include "build/lammps_data.h"
 #include "io/snapshot.h"
 
@@ -95,6 +96,12 @@ static void set_get(const void *vctx, long i, int64_t *id, int *sp, double x[3],
   }
 }
 
+/* The geometry builder's global list: walls, then fluid; velocities generated (frozen walls: 0). */
+static void geometry_get(const void *ctx, long i, int64_t *id, int *sp, double x[3], double v[3]) {
+  image_walls_particle(ctx, i, id, sp, x);
+  v[0] = v[1] = v[2] = 0;
+}
+
 int init_offer_set(sim_t *sim, const scene_t *s, const particle_set_t *set, const char *source) {
   return offer_source(sim, s, set->n, set_get, set, set->has_v, source);
 }
@@ -119,13 +126,15 @@ int init_configuration(sim_t *sim, const scene_t *s) {
     return offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
   }
   if (s->init.kind == INIT_GEOMETRY) {
+    /* walls and fluid from the image (build/image_walls.h): every rank builds the same list */
     int rank;
     MPI_Comm_rank(comm, &rank);
-    if (rank == 0)
-      fprintf(stderr,
-              "%s: geometry: building walls from an image is not available yet (issue 10)\n",
-              s->file);
-    return -1;
+    image_walls_t g;
+    if (image_walls_build(s, comm, &g)) return -1;
+    if (rank == 0) image_walls_report(&g, stdout);
+    const int rc = offer_source(sim, s, image_walls_total(&g), geometry_get, &g, 0, s->file);
+    image_walls_free(&g);
+    return rc;
   }
   particle_set_t set;
   int rc = s->init.kind == INIT_LAMMPS_DATA ? lammps_data_read_bcast(s->init.path, s, comm, &set)

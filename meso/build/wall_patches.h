@@ -30,6 +30,46 @@ int wall_patches_load_or_build(const char *path, double edge, double density, ui
                                MPI_Comm comm, wall_patches_t *out, char *err, size_t errlen);
 void wall_patches_free(wall_patches_t *p);
 
+/* How a database was made (attributes of its file, besides edge, density and seed). */
+typedef struct {
+  long steps;              /* equilibration steps of each run (dt = 0.01)                    */
+  int runs;                /* independent runs (periodic boxes) the patches were cut from    */
+  int cubes;               /* m: cubes per box edge, box side m * edge                      */
+  double temperature;      /* kT at the last step of the last run                            */
+  double temperature_mean; /* mean kT over the second half of every run's steps             */
+} wall_patches_run_t;
+
+/* Equilibration steps of a database run (wall_patches.c says how this number was chosen). */
+#define WALL_PATCHES_STEPS 2000L
+/* The file layout's version (attribute format_version). */
+#define WALL_PATCHES_FORMAT 1
+/* Accepted requests: edge in [WALL_PATCHES_EDGE_MIN, WALL_PATCHES_EDGE_MAX] rc, density in
+ * (0, WALL_PATCHES_DENSITY_MAX] per rc^3. */
+#define WALL_PATCHES_EDGE_MIN 0.05
+#define WALL_PATCHES_EDGE_MAX 10.0
+#define WALL_PATCHES_DENSITY_MAX 30.0
+
+/* wall_patches_load_or_build with the number of equilibration steps of a build given (the public
+ * one uses WALL_PATCHES_STEPS; the tests use fewer), and how the database was made in `run` (may
+ * be NULL). A file that exists is read whatever its steps were. */
+int wall_patches_load_or_build_steps(const char *path, double edge, double density, uint64_t seed,
+                                     long steps, MPI_Comm comm, wall_patches_t *out,
+                                     wall_patches_run_t *run, char *err, size_t errlen);
+
+/* Build the database in memory on this process alone (MPI_COMM_SELF runs, CPU backend): the
+ * equilibration runs and the cutting. Deterministic for (edge, density, seed, steps). 0, or -1 with
+ * the reason in err. (wall_patches_run.c) */
+int wall_patches_build(double edge, double density, uint64_t seed, long steps, wall_patches_t *out,
+                       wall_patches_run_t *run, char *err, size_t errlen);
+
+/* Write a database atomically (temporary file + rename); the same database gives the same bytes.
+ * Read one back, checking every attribute and dataset, and that its edge, density and seed equal
+ * the request (run may be NULL). 0, or -1 with the reason, naming the file and the key, in err. */
+int wall_patches_write(const char *path, const wall_patches_t *p, const wall_patches_run_t *run,
+                       char *err, size_t errlen);
+int wall_patches_read(const char *path, double edge, double density, uint64_t seed,
+                      wall_patches_t *out, wall_patches_run_t *run, char *err, size_t errlen);
+
 /* The default cache file of a database: $MDPORE_CACHE_DIR, else $XDG_CACHE_HOME/mdpore, else
  * ~/.cache/mdpore, then "wall-patches-e<edge>-d<density>-s<seed>.h5". */
 void wall_patches_cache_path(double edge, double density, uint64_t seed, char *out, size_t len);

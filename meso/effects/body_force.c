@@ -61,11 +61,13 @@ static int check(const scene_t *s, scene_report_t *r) {
   return 0;
 }
 
-static void configure(const scene_t *s, plan_t *plan) {
+static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
+  (void)err, (void)errlen;
   body_force_params_t *b = &plan->particle.body_force;
   *b = *options_of(s);
   b->centre =
       b->reverse_axis >= 0 ? 0.5 * (s->box_lo[b->reverse_axis] + s->box_hi[b->reverse_axis]) : 0.0;
+  return 0;
 }
 
 static void describe(const scene_t *s, FILE *out) {

@@ -9,13 +9,15 @@ static int check(const scene_t *s, scene_report_t *r) {
   return 0;
 }
 
-static void configure(const scene_t *s, plan_t *plan) {
+static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
+  (void)err, (void)errlen;
   box_walls_params_t *w = &plan->particle.box_walls;
   for (int d = 0; d < 3; d++) {
     w->lo[d] = s->box_lo[d];
     w->hi[d] = s->box_hi[d];
     w->reflect[d] = !s->periodic[d];
   }
+  return 0;
 }
 
 static void describe(const scene_t *s, FILE *out) {

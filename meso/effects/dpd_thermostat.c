@@ -60,9 +60,11 @@ static void pair_coef(const scene_t *s, int a, int b, pair_coef_t *c) {
   c->sigma = sqrt(2.0 * c->gamma * s->kT); /* fluctuation-dissipation */
 }
 
-static void configure(const scene_t *s, plan_t *plan) {
+static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
+  (void)err, (void)errlen;
   const double e = options_of(s)->exponent;
   plan->weight_exp = e > 0 ? e : 1.0;
+  return 0;
 }
 
 static void describe(const scene_t *s, FILE *out) {

@@ -37,8 +37,9 @@ typedef struct effect {
   double (*cutoff)(const scene_t *scene, int a, int b);
   /* NEED_PAIR: fill this effect's constants of species pair (a, b) into c. */
   void (*pair_coef)(const scene_t *scene, int a, int b, pair_coef_t *c);
-  /* Put this effect's constants into the plan (its plan.particle parameters, pair-pass globals). */
-  void (*configure)(const scene_t *scene, plan_t *plan);
+  /* Put this effect's constants into the plan (its plan.particle parameters, pair-pass globals,
+   * arrays it reads per particle: plan_add_array). 0, or -1 with the reason in err. */
+  int (*configure)(const scene_t *scene, plan_t *plan, char *err, size_t errlen);
   /* One line (no newline) for --explain: what this effect does with this scene's numbers. */
   void (*describe)(const scene_t *scene, FILE *out);
 } effect_t;

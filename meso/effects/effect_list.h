@@ -13,6 +13,7 @@
 #define MESO_EFFECTS_EFFECT_LIST_H
 
 #include "physics/body_force.h"
+#include "physics/bounce_back.h"
 #include "physics/box_walls.h"
 
 /* X(name, ID, kind), in the order --explain lists them. */
@@ -22,7 +23,8 @@
   X(dpd_conservative, DPD_CONSERVATIVE, PAIR)                                                      \
   X(dpd_thermostat, DPD_THERMOSTAT, PAIR)                                                          \
   X(body_force, BODY_FORCE, PARTICLE_FORCE)                                                        \
-  X(box_walls, BOX_WALLS, AFTER_DRIFT)
+  X(box_walls, BOX_WALLS, AFTER_DRIFT)                                                             \
+  X(bounce_back, BOUNCE_BACK, AFTER_DRIFT)
 
 #define MESO_EFFECT_ENUM_(name, ID, kind) EFFECT_##ID,
 enum effect_id { MESO_EFFECT_LIST(MESO_EFFECT_ENUM_) EFFECT_COUNT };

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *const step_phase_names[PHASE_COUNT] = {
@@ -80,6 +81,26 @@ static void build_phases(plan_t *plan) {
   }
 }
 
+int plan_add_array(plan_t *plan, size_t offset, size_t bytes) {
+  if (plan->n_arrays >= PLAN_MAX_ARRAYS) return -1;
+  plan->arrays[plan->n_arrays].offset = offset;
+  plan->arrays[plan->n_arrays].bytes = bytes;
+  plan->n_arrays++;
+  return 0;
+}
+
+void *plan_array(const plan_t *plan, int k) {
+  return *(void *const *)((const char *)&plan->particle + plan->arrays[k].offset);
+}
+
+void plan_release(plan_t *plan) {
+  for (int k = 0; k < plan->n_arrays; k++) {
+    free(plan_array(plan, k));
+    *(void **)((char *)&plan->particle + plan->arrays[k].offset) = NULL;
+  }
+  plan->n_arrays = 0;
+}
+
 int plan_has_phase(const plan_t *plan, int setup, int phase) {
   const unsigned char *list = setup ? plan->setup : plan->step;
   const int n = setup ? plan->n_setup : plan->n_step;
@@ -126,8 +147,7 @@ static int check_scene_basics(const scene_t *s, char *err, size_t errlen) {
   return 0;
 }
 
-int plan_build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
-  memset(plan, 0, sizeof *plan);
+static int build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
   if (check_scene_basics(s, err, errlen)) return -1;
   report_buf_t buf = {s, err, errlen};
   scene_report_t report = {.error = buf_error, .warn = buf_warn, .ctx = &buf};
@@ -141,7 +161,7 @@ int plan_build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
     if (eff->scene.check && eff->scene.check(s, &report)) return -1;
     needs |= eff->needs;
     if (eff->needs & NEED_PAIR) plan->pair_terms |= (int)eff->pair_term;
-    if (eff->configure) eff->configure(s, plan);
+    if (eff->configure && eff->configure(s, plan, err, errlen)) return -1;
     for (int a = 0; a < s->n_species; a++)
       for (int b = 0; b < s->n_species; b++)
         if (eff->cutoff && eff->cutoff(s, a, b) > plan->rcut) plan->rcut = eff->cutoff(s, a, b);
@@ -201,4 +221,11 @@ int plan_build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
     }
   build_phases(plan);
   return 0;
+}
+
+int plan_build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
+  memset(plan, 0, sizeof *plan);
+  if (build(plan, s, err, errlen) == 0) return 0;
+  plan_release(plan); /* the arrays of the effects configured so far */
+  return -1;
 }

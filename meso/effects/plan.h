@@ -51,6 +51,8 @@ enum step_phase {
 };
 extern const char *const step_phase_names[PHASE_COUNT];
 
+#define PLAN_MAX_ARRAYS 8
+
 typedef struct {
   int named[EFFECT_COUNT]; /* copy of scene.effect */
   int pair_terms;          /* OR of enum plan_pair_term */
@@ -75,15 +77,38 @@ typedef struct {
   int mobile[SCENE_MAX_SPECIES];
   pair_coef_t coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
   particle_effects_t particle; /* parameters of the per-particle effects (both backends) */
+  /* Arrays the per-particle effects read (a pointer field inside `particle`, at byte `offset`,
+   * allocated by the effect's configure with malloc and owned by the plan): a device backend copies
+   * them and points its copy of `particle` at its own. */
+  int n_arrays;
+  struct {
+    size_t offset, bytes;
+  } arrays[PLAN_MAX_ARRAYS];
   /* The phase lists: set-up (forces of the first configuration) and every step. */
   int n_setup, n_step;
   unsigned char setup[PHASE_COUNT], step[PHASE_COUNT];
 } plan_t;
 
+#ifdef __cplusplus
+extern "C" { /* the CUDA backend reads the plan */
+#endif
+
 /* Build and validate the plan. Returns 0, or -1 with a message in err (names the scene file). */
 int plan_build(plan_t *plan, const scene_t *scene, char *err, size_t errlen);
 
+/* Register the array whose pointer sits at byte `offset` of plan->particle (bytes long): 0 or -1
+ * when the table is full. */
+int plan_add_array(plan_t *plan, size_t offset, size_t bytes);
+/* The host pointer of registered array k. */
+void *plan_array(const plan_t *plan, int k);
+/* Free the registered arrays (sim_destroy, and whoever builds a plan and drops it). */
+void plan_release(plan_t *plan);
+
 /* 1 when the plan's step (or set-up, setup = 1) list holds the phase. */
 int plan_has_phase(const plan_t *plan, int setup, int phase);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

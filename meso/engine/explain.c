@@ -131,8 +131,13 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
   plan_t plan;
   char err[512];
   int dims[3];
-  if (plan_build(&plan, s, err, sizeof err) || decomp_dims(s, nranks, dims, err, sizeof err)) {
+  if (plan_build(&plan, s, err, sizeof err)) {
     fprintf(out, "cannot plan this scene: %s\n", err);
+    return;
+  }
+  if (decomp_dims(s, nranks, dims, err, sizeof err)) {
+    fprintf(out, "cannot plan this scene: %s\n", err);
+    plan_release(&plan);
     return;
   }
   const backend_ops_t *ops = sim_backend_ops(s->backend, nranks);
@@ -149,4 +154,5 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
   print_list(s, &plan, ops, 1, out);
   fprintf(out, "every step, %d phases:\n", plan.n_step);
   print_list(s, &plan, ops, 0, out);
+  plan_release(&plan);
 }

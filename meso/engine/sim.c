@@ -60,6 +60,7 @@ void sim_destroy(sim_t *sim) {
   xbuf_free(&st->sbuf);
   xbuf_free(&st->rbuf);
   decomp_free(&st->dc);
+  plan_release(&st->plan);
   free(sim);
 }
 

@@ -24,6 +24,10 @@ typedef struct {
   double
       pressure[6]; /* full virial pressure tensor xx yy zz xy xz yz: (kinetic + pair virial) / V */
   double volume;
+  /* With a geometry image (filled by the run loop, analysis/penetration.c): mobile particles inside
+   * solid voxels and the depth of the deepest one (rc). */
+  long penetrations;
+  double penetration_depth;
 } thermo_t;
 
 /* Build the decomposition and empty particle storage for a scene. NULL + message on failure. */

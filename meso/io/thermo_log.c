@@ -7,13 +7,19 @@
 #include <string.h>
 #include <unistd.h>
 
-#define NCOL 15
+#define NCOL_MAX 17
 static const char *const columns = "step,time,T,KE,Pxx,Pyy,Pzz,Pxy,Pxz,Pyz,p,N,px,py,pz";
+/* With a geometry image: mobile particles inside solid voxels, and the deepest one's depth (rc). */
+static const char *const columns_geometry =
+    "step,time,T,KE,Pxx,Pyy,Pzz,Pxy,Pxz,Pyz,p,N,px,py,pz,penetrations,penetration_depth";
 
 int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, int append, int rank) {
   memset(log, 0, sizeof *log);
   log->file = log->dset = -1;
   if (rank != 0 || !path[0]) return 0;
+  log->ncol = s->geometry.on ? 17 : 15;
+  const char *const names = s->geometry.on ? columns_geometry : columns;
+  const int NCOL = log->ncol;
   const size_t L = strlen(path);
   log->hdf5 = L > 3 && !strcmp(path + L - 3, ".h5");
   const int exists = access(path, F_OK) == 0;
@@ -28,7 +34,7 @@ int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, int a
               "# mdpore thermo: scene %s, kernel %s, dt %g, seed %llu; P = full virial pressure "
               "tensor\n%s\n",
               s->name, s->density_kernel == MESO_KERNEL_LUCY ? "lucy" : "warren", s->dt,
-              (unsigned long long)s->seed, columns);
+              (unsigned long long)s->seed, names);
     fflush(log->fp);
   } else {
     if (append && exists) {
@@ -47,7 +53,7 @@ int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, int a
             H5Dcreate2(log->file, "thermo", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
         H5Pclose(pl);
         H5Sclose(sp);
-        if (log->dset >= 0) h5_attr_string(log->dset, "columns", columns);
+        if (log->dset >= 0) h5_attr_string(log->dset, "columns", names);
         h5_attr_string(log->file, "scene", s->name);
       }
     }
@@ -64,26 +70,31 @@ int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, int a
 void thermo_log_row(thermo_log_t *log, const thermo_t *t) {
   if (!log->active) return;
   const double *P = t->pressure;
-  const double row[NCOL] = {(double)t->step,
-                            t->time,
-                            t->temperature,
-                            t->ke,
-                            P[0],
-                            P[1],
-                            P[2],
-                            P[3],
-                            P[4],
-                            P[5],
-                            (P[0] + P[1] + P[2]) / 3.0,
-                            (double)t->n_total,
-                            t->momentum[0],
-                            t->momentum[1],
-                            t->momentum[2]};
+  const int NCOL = log->ncol;
+  const double row[NCOL_MAX] = {(double)t->step,
+                                t->time,
+                                t->temperature,
+                                t->ke,
+                                P[0],
+                                P[1],
+                                P[2],
+                                P[3],
+                                P[4],
+                                P[5],
+                                (P[0] + P[1] + P[2]) / 3.0,
+                                (double)t->n_total,
+                                t->momentum[0],
+                                t->momentum[1],
+                                t->momentum[2],
+                                (double)t->penetrations,
+                                t->penetration_depth};
   if (!log->hdf5) {
     fprintf(log->fp, "%ld,%.10g", t->step, t->time);
     for (int k = 2; k < NCOL; k++) {
       if (k == 11)
         fprintf(log->fp, ",%ld", t->n_total);
+      else if (k == 15)
+        fprintf(log->fp, ",%ld", t->penetrations);
       else
         fprintf(log->fp, ",%.10g", row[k]);
     }

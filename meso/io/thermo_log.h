@@ -1,6 +1,7 @@
 /* Thermo time series, written by rank 0: CSV (".csv", metadata lines start with '#') or HDF5
  * (".h5", dataset /thermo of rows x 15 with a "columns" attribute). Columns: step, time, T, KE,
- * Pxx, Pyy, Pzz, Pxy, Pxz, Pyz, p, N, px, py, pz      (p = trace / 3) Rows are appended and flushed
+ * Pxx, Pyy, Pzz, Pxy, Pxz, Pyz, p, N, px, py, pz      (p = trace / 3), and with a `geometry:` image
+ * penetrations, penetration_depth (mobile particles inside solid voxels). Rows are appended and flushed
  * as the run goes; a restart appends to an existing log. */
 #ifndef MESO_IO_THERMO_LOG_H
 #define MESO_IO_THERMO_LOG_H
@@ -15,6 +16,7 @@ typedef struct {
   FILE *fp;
   hid_t file, dset;
   long rows;
+  int ncol; /* 15, or 17 with the penetration columns of a geometry scene */
 } thermo_log_t;
 
 /* Rank 0 opens (append = continue a restarted run). 0 or -1 + message. */

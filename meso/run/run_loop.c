@@ -7,6 +7,7 @@
 #include "build/init_config.h"
 #include "io/snapshot.h"
 #include "io/thermo_log.h"
+#include "analysis/penetration.h"
 #include "run/progress.h"
 #include "run/run_stats.h"
 
@@ -49,6 +50,34 @@ static int write_outputs(sim_t *sim, long step, int fresh_start, int last, snaps
   return rc;
 }
 
+/* The penetration count of a geometry scene at a thermo sample (collective): into the thermo row
+ * and the summary's tally; with geometry.strict a penetration stops the run, naming the particle,
+ * the voxel and the step. Returns 1 to stop. */
+static int penetration_sample(const penetration_map_t *m, sim_t *sim, thermo_t *th, run_stats_t *st,
+                              const scene_t *s, int rank) {
+  if (!m->on) return 0;
+  penetration_t pen;
+  penetration_count(m, sim, &pen);
+  th->penetrations = pen.count;
+  th->penetration_depth = pen.max_depth;
+  st->penetration_samples++;
+  if (pen.count == 0) return 0;
+  st->penetration_bad_samples++;
+  if (pen.count > st->penetration_max) st->penetration_max = pen.count;
+  if (pen.max_depth > st->penetration_depth) st->penetration_depth = pen.max_depth;
+  if (rank == 0 && (s->geometry.strict || st->penetration_bad_samples == 1))
+    fprintf(stderr,
+            "mdpore: step %ld: %ld mobile particle(s) inside solid voxels of %s; deepest: particle "
+            "%lld at (%g, %g, %g), voxel (%d, %d, %d), %.3g rc deep. %s\n",
+            th->step, pen.count, s->geometry.image, (long long)pen.id, pen.x[0], pen.x[1], pen.x[2],
+            pen.voxel[0], pen.voxel[1], pen.voxel[2], pen.max_depth,
+            s->geometry.strict ? "Stopping (geometry.strict). Try a boundary effect (bounce_back), "
+                                 "a smaller dt, or a thicker wall."
+                               : "The run goes on (geometry.strict: true stops it); the summary "
+                                 "counts them.");
+  return s->geometry.strict != 0;
+}
+
 int run_scene(const scene_t *scene, MPI_Comm comm) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
@@ -84,13 +113,24 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     return 1;
   }
   run_stats_init(&st, s, first, last, size);
+  penetration_map_t pmap;
+  char perr[1024] = "";
+  err = penetration_map_create(&pmap, s, perr, sizeof perr);
+  MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm);
+  if (err) {
+    if (rank == 0) fprintf(stderr, "mdpore: %s\n", perr[0] ? perr : "penetration map failed");
+    sim_destroy(sim);
+    return 1;
+  }
+  st.penetration_on = pmap.on;
   snapshot_series_init(&snaps, s->snapshot.path);
   progress_start(&pr, s->progress, rank, first, last);
 
   thermo_t th;
   sim_thermo(sim, &th);
+  err = penetration_sample(&pmap, sim, &th, &st, s, rank);
   st.n_total = th.n_total;
-  if (!restart) {
+  if (!restart && !err) {
     if (due(&s->thermo, first)) thermo_log_row(&log, &th);
     err = write_outputs(sim, first, 1, first == last, &snaps, &dump_started);
   }
@@ -121,6 +161,10 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
      * the latest sample rather than asking for one). */
     if (log_row || stat) {
       sim_thermo(sim, &th);
+      if (penetration_sample(&pmap, sim, &th, &st, s, rank)) {
+        err = 1;
+        break;
+      }
       if (log_row) thermo_log_row(&log, &th);
       if (stat && rank == 0) run_stats_add(&st, &th);
     }
@@ -145,6 +189,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     MPI_Bcast(&err, 1, MPI_INT, 0, comm);
   }
   run_stats_free(&st);
+  penetration_map_free(&pmap);
   snapshot_series_free(&snaps);
   if (s->profile.nbins > 0) profile_free(&prof);
   sim_destroy(sim);

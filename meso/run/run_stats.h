@@ -31,6 +31,11 @@ typedef struct {
   double loop_seconds, total_seconds;
   long n_total, steps_done;
   int nranks;
+  /* Geometry scenes: penetration samples taken, samples with a penetration, the most particles
+   * and the deepest seen at once (analysis/penetration.h). */
+  int penetration_on;
+  long penetration_samples, penetration_bad_samples, penetration_max;
+  double penetration_depth;
 } run_stats_t;
 
 void run_stats_init(run_stats_t *st, const scene_t *scene, long first, long last, int nranks);

@@ -62,6 +62,13 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
     fprintf(out, "no samples in the averaging window (steps >= %ld every %ld)\n", st->window_start,
             st->sample_every);
   }
+  if (st->penetration_on)
+    fprintf(
+        out,
+        "penetrations: %ld of %ld samples had mobile particles inside solid voxels (at most %ld at "
+        "once, deepest %.3g rc)%s\n",
+        st->penetration_bad_samples, st->penetration_samples, st->penetration_max,
+        st->penetration_depth, st->penetration_bad_samples ? "  <-- NOT ZERO" : "");
   fprintf(out, "performance: %.2f M particle-steps/s (%.2f s in the step loop, %.2f s total)\n",
           pss / 1e6, st->loop_seconds, st->total_seconds);
   fflush(out);
@@ -107,6 +114,12 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
       fprintf(fp, ", \"formula\": \"(L_n / 2) <P_nn - (P_t1 + P_t2) / 2>\"},\n");
     }
   }
+  if (st->penetration_on)
+    fprintf(fp,
+            "  \"penetrations\": {\"samples\": %ld, \"samples_with_penetration\": %ld, "
+            "\"max_particles\": %ld, \"max_depth_rc\": %.6g},\n",
+            st->penetration_samples, st->penetration_bad_samples, st->penetration_max,
+            st->penetration_depth);
   fprintf(fp,
           "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "
           "\"particles\": %ld, "

@@ -77,6 +77,7 @@ typedef struct {
   int inorganic_species;        /* wall species of inorganic voxels (-1: none)              */
   char patches[SCENE_PATH_LEN]; /* patch database file ("" = built and cached by mdpore)    */
   uint64_t patch_seed;          /* seed of the patch choice and of the database             */
+  int strict; /* 1: a mobile particle inside a solid voxel stops the run (default: counted) */
 } scene_geometry_t;
 
 typedef struct {

@@ -2,6 +2,7 @@
  * species of each phase, patch database (scene_geometry.h). */
 #include "scene/scene_geometry.h"
 
+#include <math.h>
 #include <string.h>
 
 #define TRY(x)                                                                                     \
@@ -36,13 +37,10 @@ static int species_of(ytree_t *t, yaml_node_t *m, const char *key, const scene_t
 }
 
 int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"image",          "labels",
-                                     "rc_per_voxel",   "voxels_per_rc",
-                                     "axis_map",       "flow_axis",
-                                     "wall_thickness", "wall_density",
-                                     "fluid_density",  "min_wall_distance",
-                                     "isolated_pores", "species",
-                                     "patches",        NULL};
+  static const char *const keys[] = {
+      "image",          "labels",         "rc_per_voxel", "voxels_per_rc", "axis_map",
+      "flow_axis",      "wall_thickness", "wall_density", "fluid_density", "min_wall_distance",
+      "isolated_pores", "species",        "patches",      "strict",        NULL};
   TRY(yt_check_keys(t, n, "geometry", keys));
   scene_geometry_t *g = &s->geometry;
   memset(g, 0, sizeof *g);
@@ -50,7 +48,11 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   for (int d = 0; d < 3; d++) g->axis_map[d] = d;
   g->wall_density = 8.0;
   g->fluid_density = 6.2;
-  g->min_wall_distance = 0.0;
+  /* 0.25 rc: about the closest approach of two particles in an mDPD liquid at these densities
+   * (g(r) is near zero below it) and half the mean spacing of wall particles at density 8; fluid
+   * started nearer a wall particle feels the largest forces of the first steps, and this keeps the
+   * fill uniform (only a thin skin at the pore surface is redrawn; docs/walls.md). */
+  g->min_wall_distance = 0.25;
   g->organic_species = g->inorganic_species = -1;
   g->fluid_species = -1;
   g->patch_seed = 1;
@@ -112,6 +114,10 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   TRY(species_of(t, v, "inorganic", s, &g->inorganic_species));
   if (g->fluid_species < 0)
     return yt_error(t, v, "geometry.species.fluid", "expected the fluid's species (got nothing)");
+  if (s->species[g->fluid_species].frozen)
+    return yt_error(t, yt_get(t, v, "fluid"), "geometry.species.fluid",
+                    "expected a species that is not frozen (got '%s', frozen)",
+                    s->species[g->fluid_species].name);
   if (g->organic_species < 0 && g->inorganic_species < 0)
     return yt_error(t, v, "geometry.species",
                     "expected a wall species for 'organic' or 'inorganic' voxels (got neither)");
@@ -123,6 +129,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
                       "expected a frozen species other than the fluid's (got '%s')",
                       s->species[walls[k]].name);
   }
+  if ((v = yt_get(t, n, "strict"))) TRY(yt_bool(t, v, "geometry.strict", &g->strict));
   if ((v = yt_get(t, n, "patches"))) {
     static const char *const pk[] = {"file", "seed", NULL};
     TRY(yt_check_keys(t, v, "geometry.patches", pk));
@@ -140,4 +147,52 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
     }
   }
   return 0;
+}
+
+int scene_geometry_read_image(const scene_t *s, mdp_image_t *img, char *err, size_t errlen) {
+  const scene_geometry_t *g = &s->geometry;
+  char e[MDP_IMAGE_ERR_LEN] = "";
+  mdp_image_read_opts_t opts;
+  mdp_image_read_opts_init(&opts);
+  if (g->labels[0]) snprintf(opts.labels, sizeof opts.labels, "%s", g->labels);
+  mdp_image_t raw;
+  memset(&raw, 0, sizeof raw);
+  memset(img, 0, sizeof *img);
+  if (mdp_image_read(g->image, &opts, &raw, e)) {
+    snprintf(err, errlen, "%s: key 'geometry.image': %s", s->file, e);
+    return -1;
+  }
+  const int rc = mdp_image_permute_axes(&raw, g->axis_map, img, e);
+  mdp_image_free(&raw);
+  if (rc) {
+    snprintf(err, errlen, "%s: key 'geometry.axis_map': %s", s->file, e);
+    return -1;
+  }
+  const int n[3] = {img->nx, img->ny, img->nz};
+  for (int d = 0; d < 3; d++) {
+    const double want = n[d] * g->rc_per_voxel, got = s->box_hi[d] - s->box_lo[d];
+    if (fabs(got - want) > 1e-9 * want) {
+      snprintf(err, errlen,
+               "%s: key 'box.hi': expected a box of %g x %g x %g rc (the image's %d x %d x %d "
+               "voxels times rc_per_voxel %g, after axis_map) (got %g along %c)",
+               s->file, n[0] * g->rc_per_voxel, n[1] * g->rc_per_voxel, n[2] * g->rc_per_voxel,
+               n[0], n[1], n[2], g->rc_per_voxel, got, "xyz"[d]);
+      mdp_image_free(img);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+void scene_geometry_voxel_of(const scene_t *s, const mdp_image_t *img, const double x[3],
+                             int ijk[3]) {
+  const int n[3] = {img->nx, img->ny, img->nz};
+  for (int d = 0; d < 3; d++) {
+    int i = (int)floor((x[d] - s->box_lo[d]) / s->geometry.rc_per_voxel);
+    if (s->periodic[d])
+      i = ((i % n[d]) + n[d]) % n[d];
+    else
+      i = i < 0 ? 0 : i >= n[d] ? n[d] - 1 : i;
+    ijk[d] = i;
+  }
 }

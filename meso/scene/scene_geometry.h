@@ -4,10 +4,23 @@
 #define MESO_SCENE_SCENE_GEOMETRY_H
 
 #include "common/yaml_tree.h"
+#include "mdpore_image.h"
 #include "scene/scene.h"
+
+#include <stddef.h>
 
 /* Parse `geometry:` into scene->geometry (species must be parsed first). 0, or -1 after
  * "FILE:LINE:COL: key 'geometry.K': expected ...". */
 int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s);
+
+/* The geometry's image as the box sees it: read with the scene's label map, axes permuted by
+ * geometry.axis_map, and checked against the box (box length = voxels x rc_per_voxel on every
+ * axis). 0, or -1 with a message naming the scene file, the key and what was expected in err. */
+int scene_geometry_read_image(const scene_t *s, mdp_image_t *img, char *err, size_t errlen);
+
+/* Box voxel (i, j, k) of a position (periodic axes wrapped, others clamped), for a geometry image
+ * read by scene_geometry_read_image. */
+void scene_geometry_voxel_of(const scene_t *s, const mdp_image_t *img, const double x[3],
+                             int ijk[3]);
 
 #endif

@@ -136,6 +136,23 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   cudaDeviceProp prop;
   if (cudaGetDeviceProperties(&prop, dev) == cudaSuccess)
     snprintf(g->device_name, sizeof g->device_name, "%s", prop.name);
+  /* The per-particle effects' arrays (e.g. bounce_back's solid map): a device copy each, and the
+   * device's parameters point at it. */
+  for (int k = 0; k < plan->n_arrays; k++) {
+    const size_t bytes = plan->arrays[k].bytes;
+    if (cuda_alloc(g, &g->effect_arrays[k], bytes ? bytes : 1) ||
+        cuda_check(
+            cudaMemcpy(g->effect_arrays[k], plan_array(plan, k), bytes, cudaMemcpyHostToDevice),
+            "effect array")) {
+      snprintf(err, len, "CUDA backend: out of device memory for an effect array of %zu bytes",
+               bytes);
+      g->n_effect_arrays = k + 1;
+      cuda_sim_destroy(g);
+      return NULL;
+    }
+    g->n_effect_arrays = k + 1;
+    *(void **)((char *)&q->pe + plan->arrays[k].offset) = g->effect_arrays[k];
+  }
   if (cuda_alloc(g, (void **)&g->cell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->gcell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->counter, sizeof(int)) ||

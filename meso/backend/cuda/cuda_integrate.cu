@@ -29,8 +29,8 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
   /* the periodic wrap (the CPU path's migration: decomp_wrap) */
   for (int d = 0; d < 3; d++)
     if (q.box_periodic[d]) x[d] = box_wrap(x[d], q.box_lo[d], q.box_hi[d], q.box_len[d]);
-  /* the position constraints of the named effects (box_walls) */
-  if (q.walls && particle_effects_after_drift(&q.pe, x, v, x_old))
+  /* the position constraints of the named effects (box_walls, bounce_back) on mobile particles */
+  if (q.walls && q.mobile[s] && particle_effects_after_drift(&q.pe, x, v, x_old))
     dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
   for (int d = 0; d < 3; d++) {
     p.x[d][i] = x[d];

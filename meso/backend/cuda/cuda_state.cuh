@@ -155,6 +155,9 @@ struct cuda_sim {
   struct dev_problem *problem;
   size_t bytes;
   char device_name[256];
+  /* Device copies of the plan's per-particle effect arrays (plan.arrays), pointed at by prm.pe. */
+  void *effect_arrays[PLAN_MAX_ARRAYS];
+  int n_effect_arrays;
 };
 
 /* Entry k of the list of particle i: chunks of NBR_CHUNK entries, chunk-major (chunk c of particle

@@ -201,6 +201,7 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->rho_stage,    (void **)&g->pos0,
                    (void **)&g->rebuild};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
+  for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
   free(g);
 }

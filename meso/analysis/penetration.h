@@ -1,0 +1,37 @@
+/* Penetration count (issue 10, item 3): mobile particles inside the solid voxels of the scene's
+ * geometry image, and how deep. Whatever boundary a scene uses, this number must stay 0; the run
+ * loop puts it in the thermo log and the summary, and with geometry.strict stops the run naming the
+ * particle, the voxel and the step. */
+#ifndef MESO_ANALYSIS_PENETRATION_H
+#define MESO_ANALYSIS_PENETRATION_H
+
+#include "engine/sim.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+  int on;
+  int n[3];
+  double h;     /* voxel edge (rc) */
+  float *depth; /* [n0 n1 n2]: 0 for pore voxels; for a solid voxel, the distance (rc) from its
+                    centre to the nearest pore voxel's centre (26-connected layers x h) */
+  const scene_t *scene;
+} penetration_map_t;
+
+typedef struct {
+  long count;       /* mobile particles in solid voxels (all ranks) */
+  double max_depth; /* depth of the deepest voxel holding one (rc) */
+  int64_t id;       /* the deepest one (-1 when none) */
+  double x[3];
+  int voxel[3];
+} penetration_t;
+
+/* The map of the scene's geometry image (off when the scene has none). 0, or -1 with the reason. */
+int penetration_map_create(penetration_map_t *m, const scene_t *scene, char *err, size_t errlen);
+void penetration_map_free(penetration_map_t *m);
+
+/* Count over the particles of sim (collective; identical result on every rank). */
+void penetration_count(const penetration_map_t *m, sim_t *sim, penetration_t *out);
+
+#endif
