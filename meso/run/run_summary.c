@@ -40,14 +40,31 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
   if (samples > 0) {
     fprintf(out, "averages over steps %ld..%ld (%ld samples, block-averaged standard errors):\n",
             st->window_start, st->last_step, samples);
-    fprintf(out, "  T = %.4f +- %.4f   p = %.4f +- %.4f\n", b[STAT_T].mean, b[STAT_T].err,
-            b[STAT_P].mean, b[STAT_P].err);
-    fprintf(out, "  Pxx = %.4f +- %.4f   Pyy = %.4f +- %.4f   Pzz = %.4f +- %.4f\n",
-            b[STAT_PXX].mean, b[STAT_PXX].err, b[STAT_PYY].mean, b[STAT_PYY].err, b[STAT_PZZ].mean,
-            b[STAT_PZZ].err);
-    fprintf(out, "  Pxy = %.4f +- %.4f   Pxz = %.4f +- %.4f   Pyz = %.4f +- %.4f\n",
-            b[STAT_PXY].mean, b[STAT_PXY].err, b[STAT_PXZ].mean, b[STAT_PXZ].err, b[STAT_PYZ].mean,
-            b[STAT_PYZ].err);
+    /* name = mean +- err; with fewer samples than an error bar needs, the mean alone, said so */
+    static const struct {
+      const char *name;
+      int stat;
+    } rows[2][3] = {{{"T", STAT_T}, {"p", STAT_P}, {NULL, 0}},
+                    {{"Pxx", STAT_PXX}, {"Pyy", STAT_PYY}, {"Pzz", STAT_PZZ}}};
+    static const int off_diag[3] = {STAT_PXY, STAT_PXZ, STAT_PYZ};
+    static const char *const off_names[3] = {"Pxy", "Pxz", "Pyz"};
+    for (int r = 0; r < 3; r++) {
+      const char *sep = "  ";
+      for (int c = 0; c < 3; c++) {
+        const char *name = r < 2 ? rows[r][c].name : off_names[c];
+        if (!name) continue;
+        const block_average_t *v = &b[r < 2 ? rows[r][c].stat : off_diag[c]];
+        if (isfinite(v->err))
+          fprintf(out, "%s%s = %.4f +- %.4f", sep, name, v->mean, v->err);
+        else
+          fprintf(out, "%s%s = %.4f (no error bar)", sep, name, v->mean);
+        sep = "   ";
+      }
+      fprintf(out, "\n");
+    }
+    if (!isfinite(b[STAT_T].err))
+      fprintf(out, "  (%ld sample(s): too few for an error bar; run longer or sample more often)\n",
+              samples);
     if (st->gamma_axis >= 0 && !interfaces)
       fprintf(out,
               "  density = %.4g +- %.2g (uniform along %c: no interface, no surface tension)\n",
