@@ -27,6 +27,13 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
   const double xi = cl->px[q], yi = cl->py[q], zi = cl->pz[q];
   const int si = p->species[i];
   const pair_coef_t *row = plan->coef[si];
+  if (!plan->mobile[si]) { /* frozen: never integrated, so its force is not needed; the pairs
+                              with mobile partners are evaluated from their side */
+    p->f[0][i] = p->f[1][i] = p->f[2][i] = 0.0;
+    if (per_virial)
+      for (int c6 = 0; c6 < 6; c6++) p->virial[6 * (size_t)i + c6] = 0.0;
+    return;
+  }
   const double rho_i = (terms & PAIR_TERM_MANYBODY) ? p->rho[i] : 0.0;
   const double vxi = k->vx[i], vyi = k->vy[i], vzi = k->vz[i];
   const int64_t id_i = p->id[i];

@@ -66,7 +66,9 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
                                                              : a.rho[i];
     const int64_t id_i = a.id[i];
     meso_real sfx = 0, sfy = 0, sfz = 0;
-    const int m = a.count[i];
+    /* a frozen particle is never integrated: no force of its own (the pairs with mobile partners
+     * are evaluated from their side), so wall-wall pairs are never computed */
+    const int m = q.mobile[pi.species] ? a.count[i] : 0;
     for (int k = 0; k < m; k++) {
       const uint32_t e = a.nbr[nbr_index(i, k, a.cap)];
       const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
