@@ -57,8 +57,32 @@ static int split(char *line, char **fields, int max) {
   return n;
 }
 
+/* A metadata key given a second time: an error naming both lines (a later line must not silently
+ * override an earlier one). seen[i] is the line of the first occurrence, 0 if none yet. */
+static int repeated_key(const flow_table *t, const char *key, int lineno, int first, char *err,
+                        int errlen) {
+  return fail(err, errlen, "%s:%d: key '%s' given again (first at line %d)", t->path, lineno, key,
+              first);
+}
+
+/* The metadata key of a "# key: value" line (index into seen[]: text keys 0..3, numeric keys 4..7),
+ * or -1 if it is not one. */
+static int metadata_key(const char *text) {
+  const char *colon = strchr(text, ':');
+  if (!colon) return -1;
+  const char *k = text, *e = colon;
+  while (k < e && isspace((unsigned char)*k)) k++;
+  while (e > k && isspace((unsigned char)e[-1])) e--;
+  for (int i = 0; i < 8; i++) {
+    const char *key = i < 4 ? flow_table_text_keys[i] : flow_table_num_keys[i - 4];
+    if (strlen(key) == (size_t)(e - k) && !strncmp(k, key, (size_t)(e - k))) return i;
+  }
+  return -1;
+}
+
 /* "# key: value" header lines. Returns 0 if handled (metadata, the format line or a free comment,
- * which is kept in t->comments), -1 on a bad value or when out of memory. */
+ * which is kept in t->comments), -1 on a bad value, a repeated metadata key, or when out of memory.
+ * seen[0..3] (text keys) and seen[4..7] (numeric keys) hold the line of each key, 0 if not seen. */
 static int header_line(flow_table *t, char *text, int lineno, int *seen, char *err, int errlen) {
   text = trim(text);
   if (!strcmp(text, FLOW_TABLE_FORMAT_LINE)) return 0;
@@ -72,7 +96,8 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
   }
   for (int i = 0; i < 4 && colon; i++) {
     if (strcmp(key, flow_table_text_keys[i])) continue;
-    seen[i] = 1;
+    if (seen[i]) return repeated_key(t, key, lineno, seen[i], err, errlen);
+    seen[i] = lineno;
     if (!*val) return fail(err, errlen, "%s:%d: header '%s' is empty", t->path, lineno, key);
     if (i == 0) snprintf(t->sample, sizeof t->sample, "%s", val);
     if (i == 1) {
@@ -97,7 +122,8 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
   for (int i = 0; i < 4 && colon; i++) {
     if (strcmp(key, flow_table_num_keys[i])) continue;
     double v;
-    seen[4 + i] = 1;
+    if (seen[4 + i]) return repeated_key(t, key, lineno, seen[4 + i], err, errlen);
+    seen[4 + i] = lineno;
     if (parse_number(val, &v) || !(v > 0))
       return fail(err, errlen, "%s:%d: header '%s': expected a positive number, got '%s'", t->path,
                   lineno, key, val);
@@ -185,7 +211,15 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
     char *line = trim(buf);
     if (!*line) continue;
     if (*line == '#') {
-      if (have_header) continue; /* comments between rows are allowed, metadata is not */
+      if (have_header) { /* comments between rows are allowed, metadata is not */
+        const int k = metadata_key(line + 1);
+        if (k >= 0 && seen[k]) {
+          rc = repeated_key(t, k < 4 ? flow_table_text_keys[k] : flow_table_num_keys[k - 4], lineno,
+                            seen[k], err, errlen);
+          break;
+        }
+        continue;
+      }
       if ((rc = header_line(t, line + 1, lineno, seen, err, errlen))) break;
       continue;
     }

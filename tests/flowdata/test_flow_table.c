@@ -1,7 +1,8 @@
 /* Flow-table writer and reader (flowdata/): write -> read gives every double back bit for bit and
  * keeps metadata and comments; the sample tables given as arguments survive read -> write -> read;
  * the writer refuses, with a message naming the row, column or key, what the reader would refuse,
- * and leaves the target file untouched then. Usage: test_flow_table [SAMPLE.csv ...] */
+ * and leaves the target file untouched then; the reader refuses a metadata key given twice, naming
+ * both lines. Usage: test_flow_table [SAMPLE.csv ...] */
 #include "flowdata/flow_table.h"
 
 #include <math.h>
@@ -199,8 +200,55 @@ static void test_refusals(void) {
   check_refused(&empty, "empty table", (const char *const[]){"no data rows", NULL});
 }
 
+/* The reader must refuse `content` with all `texts` in its message. */
+static void check_read_refused(const char *path, const char *content, const char *const *texts) {
+  FILE *f = fopen(path, "w");
+  fputs(content, f);
+  fclose(f);
+  flow_table t;
+  err[0] = 0;
+  CHECK(flow_table_read(path, &t, err, sizeof err) != 0, "%s: the reader accepted it", path);
+  for (const char *const *s = texts; *s; s++)
+    CHECK(strstr(err, *s), "%s: message '%s' lacks '%s'", path, err, *s);
+  printf("read refused (%s): %s\n", path, err);
+}
+
+/* A metadata key given twice is an error naming both lines, whether the values differ or not, in
+ * the header or between the rows (a later line must never override an earlier one silently). */
+static void test_duplicate_keys(void) {
+#define HEAD_A "# mdpore flow table v1\n# sample: s\n# axis: x\n# unit_system: reduced\n"
+#define HEAD_B "# length_unit: rc\n# viscosity: 1.2\n# density: 6\n"
+#define COLS_ROWS                                                                                  \
+  "pressure_gradient,darcy_velocity,darcy_velocity_stderr,run_length\n0.1,0.004,1e-4,1\n"
+  check_read_refused("dup_viscosity.csv", HEAD_A HEAD_B "# viscosity: 4.8\n" COLS_ROWS,
+                     (const char *const[]){"dup_viscosity.csv:8: key 'viscosity' given again "
+                                           "(first at line 6)",
+                                           NULL});
+  check_read_refused("dup_sample_same.csv", HEAD_A "#   sample :  s\n" HEAD_B COLS_ROWS,
+                     (const char *const[]){"dup_sample_same.csv:5: key 'sample' given again "
+                                           "(first at line 2)",
+                                           NULL});
+  check_read_refused("dup_between_rows.csv",
+                     HEAD_A HEAD_B COLS_ROWS "# unit_system: SI\n0.2,0.008,1e-4,1\n",
+                     (const char *const[]){"dup_between_rows.csv:10: key 'unit_system' given "
+                                           "again (first at line 4)",
+                                           NULL});
+  /* keys that are not metadata may repeat: they are free comments */
+  FILE *f = fopen("repeated_comment.csv", "w");
+  fputs(HEAD_A "# note: a\n# note: b\n" HEAD_B COLS_ROWS, f);
+  fclose(f);
+  flow_table t;
+  CHECK(flow_table_read("repeated_comment.csv", &t, err, sizeof err) == 0, "%s", err);
+  CHECK(t.n_comments == 2, "two free comments expected, got %d", t.n_comments);
+  flow_table_free(&t);
+#undef HEAD_A
+#undef HEAD_B
+#undef COLS_ROWS
+}
+
 int main(int argc, char **argv) {
   test_roundtrip();
+  test_duplicate_keys();
   for (int i = 1; i < argc; i++) test_sample(argv[i]);
   test_refusals();
   if (failures) {

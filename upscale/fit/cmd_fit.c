@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "fit_check.h"
 #include "fit_report.h"
 #include "fit_tao.h"
 #include "flowdata/flow_table.h"
@@ -118,15 +119,8 @@ static int run_fit(const fit_args *a) {
     fprintf(stderr, "mdpore fit: %s\n", err);
     return 1;
   }
-  int need = 0;
-  for (int i = 0; i < a->nk; i++)
-    if (flow_law_nparams(a->kinds[i]) + 1 > need) need = flow_law_nparams(a->kinds[i]) + 1;
-  if (t.n < need) {
-    fprintf(
-        stderr,
-        "mdpore fit: %s: %d data rows, but fitting %d-parameter laws needs at least %d (one more "
-        "point than parameters, for chi2/dof)\n",
-        t.path, t.n, need - 1, need);
+  if (fit_check_table(&t, a->kinds, a->nk, err, sizeof err)) {
+    fprintf(stderr, "mdpore fit: %s\n", err);
     flow_table_free(&t);
     return 1;
   }

@@ -42,6 +42,44 @@ static const char *criterion_name(fit_criterion c) {
   return c == SELECT_AIC ? "aic" : "bic";
 }
 
+/* "beta = 0 (at its bound >= 0: the data do not support this term)" for a parameter at a bound. */
+static void bound_text(const flow_table *t, const fit_result *r, int p, char *buf, int len) {
+  char unit[96];
+  fit_param_unit(t, r->kind, p, unit, sizeof unit);
+  /* a bound where the law reduces to the nested simpler one (beta = 0, G0 = 0, n = 1): the term is
+   * absent */
+  const double nested_at = r->kind == LAW_POWER ? 1.0 : 0.0;
+  const int vanishes = p == 1 && fit_nested_law(r->kind, NULL) >= 0 && r->bound[p] == nested_at;
+  const double v = r->theta[p] + 0.0, b = r->bound[p] + 0.0; /* + 0.0: no "-0" */
+  snprintf(buf, len, "%s = %.4g%s%s (at its bound %s %.4g%s%s: %s)", fit_param_name(r->kind, p), v,
+           v != 0 ? " " : "", v != 0 ? unit : "", r->bound_upper[p] ? "<=" : ">=", b,
+           b != 0 ? " " : "", b != 0 ? unit : "",
+           vanishes ? "the data do not support this term"
+                    : "the bound, not the data, sets its value");
+}
+
+/* Why the chosen law is the chosen one, for the text and JSON reports. */
+static void chosen_text(const fit_result *r, int nr, int chosen, fit_criterion crit, char *buf,
+                        int len) {
+  const char *cn = crit == SELECT_AIC ? "AIC" : "BIC";
+  const int lowest = fit_lowest(r, nr, crit);
+  int n = 0;
+  buf[0] = 0;
+  if (chosen < 0) {
+    snprintf(buf, len, "no eligible fit converged");
+    return;
+  }
+  n += snprintf(buf + n, len - n, "lowest %s among the eligible fits", cn);
+  if (lowest >= 0 && lowest != chosen && n < len)
+    n += snprintf(buf + n, len - n, "; %s has a lower %s but is not eligible (%s)",
+                  flow_law_name(r[lowest].kind), cn, r[lowest].not_eligible);
+  const int np = flow_law_nparams(r[chosen].kind);
+  if ((r[chosen].at_bound[0] || (np > 1 && r[chosen].at_bound[1])) && n < len)
+    snprintf(buf + n, len - n,
+             "; the chosen law has a parameter at its bound (no simpler nested law was fitted: "
+             "add darcy to --models to compare)");
+}
+
 static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
   char unit[96];
   int np = flow_law_nparams(r->kind);
@@ -55,6 +93,8 @@ static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
     return;
   }
   json_int(j, "iterations", r->iterations);
+  json_bool(j, "eligible", r->eligible);
+  if (!r->eligible && r->converged) json_string(j, "not_eligible_why", r->not_eligible);
   json_object(j, "parameters");
   for (int i = 0; i < np; i++) {
     json_object(j, fit_param_name(r->kind, i));
@@ -62,6 +102,11 @@ static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
     json_number(j, "stderr", r->se[i]);
     fit_param_unit(t, r->kind, i, unit, sizeof unit);
     json_string(j, "unit", unit);
+    json_bool(j, "at_bound", r->at_bound[i]);
+    if (r->at_bound[i]) {
+      json_number(j, "bound", r->bound[i]);
+      json_string(j, "bound_side", r->bound_upper[i] ? "upper" : "lower");
+    }
     json_object_end(j);
   }
   json_object_end(j);
@@ -87,16 +132,16 @@ static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
   json_number(j, "bic", r->bic);
   json_number(j, "bic_weight", r->weight);
   /* a sampled curve so that plotting needs no copy of the law formulas */
-  double gmax = 0, cg[64], cq[64];
+  double gmax = 0, cg[FIT_CURVE_POINTS], cq[FIT_CURVE_POINTS];
   for (int i = 0; i < t->n; i++) gmax = fmax(gmax, fabs(t->G[i]));
   fluid_props fl = {t->viscosity, t->density};
-  for (int i = 0; i < 64; i++) {
-    cg[i] = 1.1 * gmax * i / 63.0;
+  for (int i = 0; i < FIT_CURVE_POINTS; i++) { /* the same samples fit_law checked to be finite */
+    cg[i] = 1.1 * gmax * i / (FIT_CURVE_POINTS - 1.0);
     cq[i] = flow_law_q_exact(&r->law, &fl, cg[i]);
   }
   json_object(j, "curve");
-  json_numbers(j, "G", cg, 64);
-  json_numbers(j, "q", cq, 64);
+  json_numbers(j, "G", cg, FIT_CURVE_POINTS);
+  json_numbers(j, "q", cq, FIT_CURVE_POINTS);
   json_object_end(j);
   double res[t->n];
   for (int i = 0; i < t->n; i++)
@@ -134,6 +179,9 @@ int fit_write_json(const char *path, const flow_table *t, const fit_result *r, i
     json_string(&j, "chosen", flow_law_name(r[chosen].kind));
   else
     json_null(&j, "chosen");
+  char why[1024];
+  chosen_text(r, nr, chosen, crit, why, sizeof why);
+  json_string(&j, "chosen_why", why);
   json_object(&j, "data");
   json_numbers(&j, "G", t->G, t->n);
   json_numbers(&j, "q", t->q, t->n);
@@ -149,7 +197,7 @@ int fit_write_json(const char *path, const flow_table *t, const fit_result *r, i
 
 void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr, int chosen,
                      fit_criterion crit) {
-  char unit[96];
+  char unit[96], text[512];
   fprintf(out, "mdpore fit: %s  (sample '%s', axis %s, %s units, %d points, mu = %g, rho = %g)\n",
           t->path, t->sample, t->axis, t->si ? "SI" : "reduced", t->n, t->viscosity, t->density);
   fprintf(out, "%-12s %-58s %9s %10s %10s %7s\n", "law", "parameters (value +- standard error)",
@@ -161,23 +209,43 @@ void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr
     }
     char params[256] = "";
     int np = flow_law_nparams(r[i].kind), len = 0;
-    for (int p = 0; p < np; p++) {
+    for (int p = 0; p < np && len < (int)sizeof params; p++) {
       fit_param_unit(t, r[i].kind, p, unit, sizeof unit);
-      len += snprintf(params + len, sizeof params - len, "%s%s = %.4g +- %.2g %s", p ? "; " : "",
-                      fit_param_name(r[i].kind, p), r[i].theta[p], r[i].se[p], unit);
+      if (r[i].at_bound[p]) /* no "+- error": at a bound it is not a confidence interval */
+        len += snprintf(params + len, sizeof params - len, "%s%s = %.4g [at bound]", p ? "; " : "",
+                        fit_param_name(r[i].kind, p), r[i].theta[p] + 0.0);
+      else
+        len += snprintf(params + len, sizeof params - len, "%s%s = %.4g +- %.2g %s", p ? "; " : "",
+                        fit_param_name(r[i].kind, p), r[i].theta[p] + 0.0, r[i].se[p], unit);
     }
-    fprintf(out, "%-12s %-58s %9.3g %10.4g %10.4g %7.3f%s%s\n", flow_law_name(r[i].kind), params,
+    fprintf(out, "%-12s %-58s %9.3g %10.4g %10.4g %7.3f%s%s%s\n", flow_law_name(r[i].kind), params,
             r[i].chi2_dof, r[i].aic, r[i].bic, r[i].weight, i == chosen ? "  <- chosen" : "",
-            r[i].converged ? "" : "  (not converged)");
+            r[i].converged ? "" : "  (not converged)",
+            r[i].converged && !r[i].eligible ? "  (not eligible)" : "");
+    for (int p = 0; p < np; p++)
+      if (r[i].at_bound[p]) {
+        bound_text(t, &r[i], p, text, sizeof text);
+        fprintf(out, "%-12s   %s\n", "", text);
+      }
+    if (r[i].converged && !r[i].eligible)
+      fprintf(out, "%-12s   not eligible: %s\n", "", r[i].not_eligible);
     double m2 = r[i].kind != LAW_POWER ? fit_k_in_m2(t, r[i].theta[0]) : NAN;
-    if (isfinite(m2))
-      fprintf(out, "%-12s   k = %.4g m^2 = %.4g mD = %.4g nD (+- %.2g nD)\n", "", m2,
-              m2 * MD_PER_M2, m2 * MD_PER_M2 * 1e6, fit_k_in_m2(t, r[i].se[0]) * MD_PER_M2 * 1e6);
+    double se_nd = fit_k_in_m2(t, r[i].se[0]) * MD_PER_M2 * 1e6;
+    if (isfinite(m2) && isfinite(m2 * MD_PER_M2 * 1e6) && isfinite(se_nd)) {
+      fprintf(out, "%-12s   k = %.4g m^2 = %.4g mD = %.4g nD", "", m2, m2 * MD_PER_M2,
+              m2 * MD_PER_M2 * 1e6);
+      if (r[i].at_bound[0])
+        fprintf(out, " (at its bound)\n");
+      else
+        fprintf(out, " (+- %.2g nD)\n", se_nd);
+    }
   }
   fprintf(out, "chosen by %s: %s", crit == SELECT_AIC ? "AIC" : "BIC",
-          chosen >= 0 ? flow_law_name(r[chosen].kind) : "none (no fit converged)");
+          chosen >= 0 ? flow_law_name(r[chosen].kind) : "none (no eligible fit converged)");
   if (chosen >= 0 && r[chosen].kind == LAW_THRESHOLD && r[chosen].theta[1] <= 0)
     fprintf(out, " (G0 <= 0: an intercept, not a threshold)");
+  chosen_text(r, nr, chosen, crit, text, sizeof text);
+  if (chosen >= 0) fprintf(out, "\n  why: %s", text);
   fprintf(out,
           "\nnote: a threshold or Forchheimer term fitted at strong pore-scale forcing may be a "
           "forcing artefact (physics.md section 4).\n");

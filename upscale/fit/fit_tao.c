@@ -111,6 +111,58 @@ static double normal_matrix(const fit_data *d, const fit_model *m, const double 
   return chi2;
 }
 
+/* Flags the parameters within FIT_AT_BOUND_TOL of a bound of the TAO problem, and the bound as a
+ * reported parameter value (upper or lower for the reported parameter, which may be a decreasing
+ * function of the internal one: forchheimer k = mu / a). */
+static void find_bounds(fit_result *r) {
+  const fit_model *m = &r->model;
+  for (int j = 0; j < m->np; j++) {
+    const double lo = m->lower[j], hi = m->upper[j], x = r->x[j];
+    double b;
+    int lower;
+    if (isfinite(lo) && x - lo <= FIT_AT_BOUND_TOL * fmax(1.0, fabs(lo)))
+      b = lo, lower = 1;
+    else if (isfinite(hi) && hi - x <= FIT_AT_BOUND_TOL * fmax(1.0, fabs(hi)))
+      b = hi, lower = 0;
+    else
+      continue;
+    double xb[2] = {r->x[0], r->x[1]}, T[2][2];
+    flow_law lb;
+    xb[j] = b;
+    fit_model_law(m, xb, &lb, T);
+    r->at_bound[j] = 1;
+    r->bound[j] = fit_param_value(&lb, j);
+    r->bound_upper[j] = lower ? T[j][j] < 0 : !(T[j][j] < 0);
+  }
+}
+
+/* The first reported value of a fit that is not finite, or NULL: everything the reports print. */
+static const char *nonfinite_value(const fit_result *r, const fit_data *d, const fluid_props *fl,
+                                   char *buf, int len) {
+  const int np = flow_law_nparams(r->kind);
+  for (int a = 0; a < np; a++) {
+    const char *name = fit_param_name(r->kind, a);
+    if (!isfinite(r->theta[a])) return snprintf(buf, len, "value of %s", name), buf;
+    if (!isfinite(r->se[a])) return snprintf(buf, len, "standard error of %s", name), buf;
+    if (r->at_bound[a] && !isfinite(r->bound[a]))
+      return snprintf(buf, len, "bound of %s", name), buf;
+    for (int b = 0; b < np; b++)
+      if (!isfinite(r->cov[a][b])) return snprintf(buf, len, "covariance"), buf;
+  }
+  if (!isfinite(r->chi2) || !isfinite(r->aic) || !isfinite(r->bic) || !isfinite(r->chi2_dof))
+    return "chi2";
+  double gmax = 0;
+  for (int i = 0; i < d->n; i++) {
+    gmax = fmax(gmax, fabs(d->G[i]));
+    if (!isfinite(flow_law_q_exact(&r->law, fl, d->G[i]))) return "flux at a data point";
+  }
+  for (int i = 0; i < FIT_CURVE_POINTS; i++)
+    if (!isfinite(flow_law_q_exact(&r->law, fl, 1.1 * gmax * i / (FIT_CURVE_POINTS - 1.0))))
+      return "flux on the reported curve";
+  if (r->kind == LAW_POWER && !isfinite(r->model.g_ref)) return "reference gradient";
+  return NULL;
+}
+
 int fit_law(const fit_data *d, const fluid_props *fl, flow_law_kind kind, fit_result *r) {
   memset(r, 0, sizeof *r);
   r->kind = kind;
@@ -134,18 +186,29 @@ int fit_law(const fit_data *d, const fluid_props *fl, flow_law_kind kind, fit_re
   if (!r->converged) snprintf(r->why, sizeof r->why, "TAO did not converge (reason %d)", reason);
   double A[2][2], T[2][2], C[2][2] = {{0, 0}, {0, 0}};
   r->chi2 = normal_matrix(d, &r->model, r->x, A);
-  /* covariance of x: A^-1 (1x1 or 2x2 inverse) */
+  /* covariance of x: A^-1 (1x1 or 2x2 inverse); a singular A leaves parameters undetermined */
+  int singular = 0;
   if (np == 1) {
-    C[0][0] = A[0][0] > 0 ? 1.0 / A[0][0] : INFINITY;
+    if (A[0][0] > 0)
+      C[0][0] = 1.0 / A[0][0];
+    else
+      singular = 1;
   } else {
     double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-    if (fabs(det) > 1e-300) {
+    if (fabs(det) > 1e-300 && isfinite(det)) {
       C[0][0] = A[1][1] / det;
       C[1][1] = A[0][0] / det;
       C[0][1] = C[1][0] = -A[0][1] / det;
     } else {
-      C[0][0] = C[1][1] = INFINITY; /* parameters not determined (e.g. all points below G0) */
+      singular = 1;
     }
+  }
+  if (singular) {
+    r->ok = r->converged = 0;
+    snprintf(r->why, sizeof r->why,
+             "the data do not determine the parameters (singular normal matrix at the optimum, "
+             "e.g. every point below G0)");
+    return -1;
   }
   fit_model_law(&r->model, r->x, &r->law, T);
   for (int a = 0; a < np; a++) {
@@ -162,25 +225,79 @@ int fit_law(const fit_data *d, const fluid_props *fl, flow_law_kind kind, fit_re
   r->chi2_dof = r->chi2 / r->dof;
   r->aic = r->chi2 + 2.0 * np;
   r->bic = r->chi2 + np * log((double)d->n);
+  find_bounds(r);
+  char buf[64];
+  const char *bad = nonfinite_value(r, d, fl, buf, sizeof buf);
+  if (bad) {
+    r->ok = r->converged = 0;
+    snprintf(r->why, sizeof r->why,
+             "the fit gave a non-finite %s (the data do not determine this law's parameters)", bad);
+    return -1;
+  }
   return 0;
+}
+
+int fit_nested_law(flow_law_kind kind, const char **at) {
+  static const char *where[LAW_COUNT] = {NULL, "G0 = 0", "beta = 0", "n = 1"};
+  if (at) *at = kind >= 0 && kind < LAW_COUNT ? where[kind] : NULL;
+  return kind == LAW_THRESHOLD || kind == LAW_FORCHHEIMER || kind == LAW_POWER ? LAW_DARCY : -1;
+}
+
+static double criterion(const fit_result *r, fit_criterion crit) {
+  return crit == SELECT_AIC ? r->aic : r->bic;
+}
+
+int fit_lowest(const fit_result *r, int nr, fit_criterion crit) {
+  int best = -1;
+  for (int i = 0; i < nr; i++)
+    if (r[i].ok && r[i].converged &&
+        (best < 0 || criterion(&r[i], crit) < criterion(&r[best], crit)))
+      best = i;
+  return best;
+}
+
+int fit_choose(fit_result *r, int nr, fit_criterion crit) {
+  for (int i = 0; i < nr; i++) {
+    r[i].eligible = r[i].ok && r[i].converged;
+    r[i].not_eligible[0] = 0;
+  }
+  for (int i = 0; i < nr; i++) {
+    const int np = flow_law_nparams(r[i].kind);
+    if (!r[i].eligible || !(r[i].at_bound[0] || (np > 1 && r[i].at_bound[1]))) continue;
+    const char *at;
+    const int simple = fit_nested_law(r[i].kind, &at);
+    for (int s = 0; s < nr && simple >= 0; s++) {
+      if ((int)r[s].kind != simple || !r[s].ok || !r[s].converged) continue;
+      char which[64] = "";
+      for (int p = 0, len = 0; p < np; p++)
+        if (r[i].at_bound[p])
+          len += snprintf(which + len, sizeof which - len, "%s%s", len ? " and " : "",
+                          fit_param_name(r[i].kind, p));
+      r[i].eligible = 0;
+      snprintf(r[i].not_eligible, sizeof r[i].not_eligible,
+               "%s at %s bound; the simpler %s law (the %s law at %s) was fitted and is preferred",
+               which, r[i].at_bound[0] + (np > 1 && r[i].at_bound[1]) > 1 ? "their" : "its",
+               flow_law_name(r[s].kind), flow_law_name(r[i].kind), at);
+      break;
+    }
+  }
+  int best = -1;
+  double best_bic = INFINITY;
+  for (int i = 0; i < nr; i++) {
+    if (!r[i].eligible) continue;
+    if (best < 0 || criterion(&r[i], crit) < criterion(&r[best], crit)) best = i;
+    if (r[i].bic < best_bic) best_bic = r[i].bic;
+  }
+  double sum = 0;
+  for (int i = 0; i < nr; i++)
+    if (r[i].eligible) sum += exp(-0.5 * (r[i].bic - best_bic));
+  for (int i = 0; i < nr; i++)
+    r[i].weight = r[i].eligible && sum > 0 ? exp(-0.5 * (r[i].bic - best_bic)) / sum : 0;
+  return best;
 }
 
 int fit_all(const fit_data *d, const fluid_props *fl, const flow_law_kind *kinds, int nk,
             fit_criterion crit, fit_result *r) {
-  int best = -1;
-  double best_bic = INFINITY;
-  for (int i = 0; i < nk; i++) {
-    fit_law(d, fl, kinds[i], &r[i]);
-    if (!r[i].ok || !r[i].converged) continue;
-    double c = crit == SELECT_AIC ? r[i].aic : r[i].bic;
-    if (best < 0 || c < (crit == SELECT_AIC ? r[best].aic : r[best].bic)) best = i;
-    if (r[i].bic < best_bic) best_bic = r[i].bic;
-  }
-  double sum = 0;
-  for (int i = 0; i < nk; i++)
-    if (r[i].ok && r[i].converged) sum += exp(-0.5 * (r[i].bic - best_bic));
-  for (int i = 0; i < nk; i++)
-    r[i].weight =
-        (r[i].ok && r[i].converged && sum > 0) ? exp(-0.5 * (r[i].bic - best_bic)) / sum : 0;
-  return best;
+  for (int i = 0; i < nk; i++) fit_law(d, fl, kinds[i], &r[i]);
+  return fit_choose(r, nk, crit);
 }

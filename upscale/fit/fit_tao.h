@@ -21,17 +21,49 @@ typedef struct {
   int dof;
   double chi2_dof;
   double aic, bic; /* chi2 + 2p, chi2 + p ln N (Gaussian errors of known size) */
-  double weight;   /* Schwarz (BIC) weight among the fitted models */
+  double weight;   /* Schwarz (BIC) weight among the eligible models (0 if not eligible) */
+  /* Parameters at a bound of the TAO problem (within FIT_AT_BOUND_TOL of it in the scaled internal
+   * parameters): the bound then fixes the value, not the data, and the standard error is not a
+   * confidence interval. bound[] is the bound as a reported parameter value; bound_upper[] says
+   * whether it is an upper (1) or lower (0) bound of the reported parameter. */
+  int at_bound[2];
+  int bound_upper[2];
+  double bound[2];
+  int eligible;           /* may be chosen (fit_choose): converged, and not at a bound when a nested
+                            simpler law was fitted */
+  char not_eligible[240]; /* why not, for a converged fit that is not eligible */
 } fit_result;
+
+/* A parameter within this distance of a bound (relative to max(1, |bound|), in the scaled internal
+ * parameters, which are of order one at the initial guess) is at the bound. */
+#define FIT_AT_BOUND_TOL 1e-6
+/* Points of the sampled law curve in the JSON report, on 0 .. 1.1 max|G|. */
+#define FIT_CURVE_POINTS 64
 
 typedef enum { SELECT_BIC = 0, SELECT_AIC } fit_criterion;
 
 /* Fits one law. Must be called between PetscInitialize and PetscFinalize; runs on PETSC_COMM_SELF.
- */
+ * Flags parameters at a bound. A fit whose parameters are not determined (singular normal matrix)
+ * or that gives any non-finite reported value (parameter, standard error, covariance, chi2, the law
+ * at the data points or on the reported curve up to 1.1 max|G|) is refused: r->ok = 0, r->why says
+ * why, and -1 is returned, so that no report ever prints nan or inf. */
 int fit_law(const fit_data *d, const fluid_props *fl, flow_law_kind kind, fit_result *r);
 
-/* Fits every law in `kinds` (count nk) and returns the index (into r) of the chosen model: the
- * lowest criterion among converged fits, or -1 if none converged. Fills r[i].weight. */
+/* The law with fewer parameters that `kind` reduces to at one value of its second parameter
+ * (darcy: threshold at G0 = 0, forchheimer at beta = 0, power at n = 1), or -1 if none. */
+int fit_nested_law(flow_law_kind kind, const char **at);
+
+/* Chooses among fitted results (r[0..nr-1], already filled by fit_law): sets r[i].eligible and
+ * r[i].not_eligible, the BIC weights among the eligible fits, and returns the index of the lowest
+ * criterion among them, or -1 if none. Eligible: ok and converged, and no parameter at a bound
+ * unless the nested simpler law (fit_nested_law) is not among the usable fits. */
+int fit_choose(fit_result *r, int nr, fit_criterion crit);
+
+/* The index of the lowest criterion among ok and converged fits, eligible or not (-1 if none): the
+ * law that would have been chosen without the at-bound rule. */
+int fit_lowest(const fit_result *r, int nr, fit_criterion crit);
+
+/* Fits every law in `kinds` (count nk) and returns fit_choose's choice. */
 int fit_all(const fit_data *d, const fluid_props *fl, const flow_law_kind *kinds, int nk,
             fit_criterion crit, fit_result *r);
 
