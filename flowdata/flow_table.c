@@ -17,7 +17,7 @@ const char *const flow_table_columns[FLOW_NCOLS] = {"pressure_gradient", "darcy_
 const char *const flow_table_text_keys[4] = {"sample", "axis", "length_unit", "unit_system"};
 const char *const flow_table_num_keys[4] = {"viscosity", "density", "voxel_size", "length_unit_m"};
 
-static int fail(char *err, int errlen, const char *fmt, ...) {
+int flow_table_fail(char *err, int errlen, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(err, errlen, fmt, ap);
@@ -61,8 +61,8 @@ static int split(char *line, char **fields, int max) {
  * override an earlier one). seen[i] is the line of the first occurrence, 0 if none yet. */
 static int repeated_key(const flow_table *t, const char *key, int lineno, int first, char *err,
                         int errlen) {
-  return fail(err, errlen, "%s:%d: key '%s' given again (first at line %d)", t->path, lineno, key,
-              first);
+  return flow_table_fail(err, errlen, "%s:%d: key '%s' given again (first at line %d)", t->path,
+                         lineno, key, first);
 }
 
 /* The metadata key of a "# key: value" line (index into seen[]: text keys 0..3, numeric keys 4..7),
@@ -98,12 +98,13 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
     if (strcmp(key, flow_table_text_keys[i])) continue;
     if (seen[i]) return repeated_key(t, key, lineno, seen[i], err, errlen);
     seen[i] = lineno;
-    if (!*val) return fail(err, errlen, "%s:%d: header '%s' is empty", t->path, lineno, key);
+    if (!*val)
+      return flow_table_fail(err, errlen, "%s:%d: header '%s' is empty", t->path, lineno, key);
     if (i == 0) snprintf(t->sample, sizeof t->sample, "%s", val);
     if (i == 1) {
       if (strcmp(val, "x") && strcmp(val, "y") && strcmp(val, "z"))
-        return fail(err, errlen, "%s:%d: header 'axis': expected x, y or z, got '%s'", t->path,
-                    lineno, val);
+        return flow_table_fail(err, errlen, "%s:%d: header 'axis': expected x, y or z, got '%s'",
+                               t->path, lineno, val);
       snprintf(t->axis, sizeof t->axis, "%s", val);
     }
     if (i == 2) snprintf(t->length_unit, sizeof t->length_unit, "%s", val);
@@ -113,9 +114,9 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
       else if (!strcmp(val, "reduced"))
         t->si = 0;
       else
-        return fail(err, errlen,
-                    "%s:%d: header 'unit_system': expected 'reduced' or 'SI', got '%s'", t->path,
-                    lineno, val);
+        return flow_table_fail(err, errlen,
+                               "%s:%d: header 'unit_system': expected 'reduced' or 'SI', got '%s'",
+                               t->path, lineno, val);
     }
     return 0;
   }
@@ -125,8 +126,9 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
     if (seen[4 + i]) return repeated_key(t, key, lineno, seen[4 + i], err, errlen);
     seen[4 + i] = lineno;
     if (parse_number(val, &v) || !(v > 0))
-      return fail(err, errlen, "%s:%d: header '%s': expected a positive number, got '%s'", t->path,
-                  lineno, key, val);
+      return flow_table_fail(err, errlen,
+                             "%s:%d: header '%s': expected a positive number, got '%s'", t->path,
+                             lineno, key, val);
     if (i == 0) t->viscosity = v;
     if (i == 1) t->density = v;
     if (i == 2) t->voxel_size = v;
@@ -135,7 +137,7 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
   }
   /* a free comment, or a "key: value" line with another key: kept as free text */
   if (flow_table_add_comment(t, whole))
-    return fail(err, errlen, "%s:%d: out of memory", t->path, lineno);
+    return flow_table_fail(err, errlen, "%s:%d: out of memory", t->path, lineno);
   return 0;
 }
 
@@ -195,7 +197,7 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
   flow_table_init(t);
   snprintf(t->path, sizeof t->path, "%s", path);
   FILE *f = fopen(path, "r");
-  if (!f) return fail(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+  if (!f) return flow_table_fail(err, errlen, "%s: cannot open: %s", path, strerror(errno));
   char buf[FLOW_TABLE_MAX_LINE];
   int lineno = 0, have_header = 0, rc = 0, ncols = 0;
   int seen[8] = {0};
@@ -204,8 +206,8 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
   while (fgets(buf, sizeof buf, f)) {
     lineno++;
     if (!strchr(buf, '\n') && !feof(f)) {
-      rc =
-          fail(err, errlen, "%s:%d: line longer than %d characters", path, lineno, (int)sizeof buf);
+      rc = flow_table_fail(err, errlen, "%s:%d: line longer than %d characters", path, lineno,
+                           (int)sizeof buf);
       break;
     }
     char *line = trim(buf);
@@ -226,7 +228,7 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
     int nf = split(line, fields, 256);
     if (!have_header) { /* the column header */
       if (nf > 256) {
-        rc = fail(err, errlen, "%s:%d: more than 256 columns", path, lineno);
+        rc = flow_table_fail(err, errlen, "%s:%d: more than 256 columns", path, lineno);
         break;
       }
       ncols = nf;
@@ -236,18 +238,20 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
           int match = !strcmp(fields[i], flow_table_columns[c]) ||
                       (c == FLOW_COL_G && !strcmp(fields[i], "body_force_density"));
           if (match && where[c] >= 0) {
-            rc = fail(err, errlen, "%s:%d: column '%s' appears twice", path, lineno, fields[i]);
+            rc = flow_table_fail(err, errlen, "%s:%d: column '%s' appears twice", path, lineno,
+                                 fields[i]);
             break;
           }
           if (match) where[c] = i;
         }
         if (rc) break;
         if (where[c] < 0) {
-          rc = fail(err, errlen,
-                    "%s:%d: missing column '%s'%s (header must name: pressure_gradient (or "
-                    "body_force_density), darcy_velocity, darcy_velocity_stderr, run_length)",
-                    path, lineno, flow_table_columns[c],
-                    c == FLOW_COL_G ? " (or 'body_force_density')" : "");
+          rc = flow_table_fail(
+              err, errlen,
+              "%s:%d: missing column '%s'%s (header must name: pressure_gradient (or "
+              "body_force_density), darcy_velocity, darcy_velocity_stderr, run_length)",
+              path, lineno, flow_table_columns[c],
+              c == FLOW_COL_G ? " (or 'body_force_density')" : "");
           break;
         }
       }
@@ -257,8 +261,9 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
       continue;
     }
     if (nf != ncols) {
-      rc = fail(err, errlen, "%s:%d: expected %d comma-separated fields (as in the header), got %d",
-                path, lineno, ncols, nf);
+      rc = flow_table_fail(err, errlen,
+                           "%s:%d: expected %d comma-separated fields (as in the header), got %d",
+                           path, lineno, ncols, nf);
       break;
     }
     double v[FLOW_NCOLS];
@@ -266,19 +271,20 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
       const char *s = fields[where[c]];
       const char *name = c == FLOW_COL_G ? t->driving_column : flow_table_columns[c];
       if (parse_number(s, &v[c]))
-        rc = fail(err, errlen, "%s:%d: column %d '%s': expected a number, got '%s'", path, lineno,
-                  where[c] + 1, name, s);
+        rc = flow_table_fail(err, errlen, "%s:%d: column %d '%s': expected a number, got '%s'",
+                             path, lineno, where[c] + 1, name, s);
       else if (c == FLOW_COL_SIGMA && !(v[c] > 0))
-        rc =
-            fail(err, errlen, "%s:%d: column %d '%s': expected a positive standard error, got '%s'",
-                 path, lineno, where[c] + 1, name, s);
+        rc = flow_table_fail(err, errlen,
+                             "%s:%d: column %d '%s': expected a positive standard error, got '%s'",
+                             path, lineno, where[c] + 1, name, s);
       else if (c == FLOW_COL_RUN && !(v[c] > 0))
-        rc = fail(err, errlen, "%s:%d: column %d '%s': expected a positive run length, got '%s'",
-                  path, lineno, where[c] + 1, name, s);
+        rc = flow_table_fail(err, errlen,
+                             "%s:%d: column %d '%s': expected a positive run length, got '%s'",
+                             path, lineno, where[c] + 1, name, s);
     }
     if (rc) break;
     if (push_row(t, v, lineno)) {
-      rc = fail(err, errlen, "%s: out of memory", path);
+      rc = flow_table_fail(err, errlen, "%s: out of memory", path);
       break;
     }
   }
@@ -288,10 +294,10 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
                                      "unit_system", "viscosity", "density"};
     for (int i = 0; i < 6 && !rc; i++)
       if (!seen[i])
-        rc = fail(err, errlen, "%s: missing header line '# %s: ...'", path, required[i]);
+        rc = flow_table_fail(err, errlen, "%s: missing header line '# %s: ...'", path, required[i]);
     if (!rc && !have_header)
-      rc = fail(err, errlen, "%s: no column header line (and no data)", path);
-    if (!rc && t->n == 0) rc = fail(err, errlen, "%s: the table has no data rows", path);
+      rc = flow_table_fail(err, errlen, "%s: no column header line (and no data)", path);
+    if (!rc && t->n == 0) rc = flow_table_fail(err, errlen, "%s: the table has no data rows", path);
   }
   if (rc) flow_table_free(t);
   return rc;

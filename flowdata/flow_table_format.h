@@ -17,4 +17,8 @@ extern const char *const flow_table_columns[FLOW_NCOLS];
 extern const char *const flow_table_text_keys[4];
 extern const char *const flow_table_num_keys[4];
 
+/* printf-style message into err (errlen bytes); returns -1 (the reader's and writer's errors). */
+int flow_table_fail(char *err, int errlen, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
 #endif

@@ -12,14 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 
-static int fail(char *err, int errlen, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(err, errlen, fmt, ap);
-  va_end(ap);
-  return -1;
-}
-
 /* Why `v` cannot be written and read back (NULL if it can): the reader takes finite numbers only,
  * and glibc's strtod flags subnormal ones as out of range. `positive`: it must also be > 0. */
 static const char *number_problem(double v, int positive) {
@@ -58,45 +50,48 @@ static const char *comment_reads_as(const char *c) {
 /* Everything the reader checks, so that a written table always reads back. */
 static int check_table(const char *path, const flow_table *t, char *err, int errlen) {
   const char *why;
-  if (t->n < 1) return fail(err, errlen, "%s: the table has no data rows (nothing to write)", path);
+  if (t->n < 1)
+    return flow_table_fail(err, errlen, "%s: the table has no data rows (nothing to write)", path);
   if ((why = text_problem(t->sample, 0)))
-    return fail(err, errlen, "%s: metadata 'sample' %s", path, why);
+    return flow_table_fail(err, errlen, "%s: metadata 'sample' %s", path, why);
   if (strcmp(t->axis, "x") && strcmp(t->axis, "y") && strcmp(t->axis, "z"))
-    return fail(err, errlen, "%s: metadata 'axis': expected x, y or z, got '%s'", path, t->axis);
+    return flow_table_fail(err, errlen, "%s: metadata 'axis': expected x, y or z, got '%s'", path,
+                           t->axis);
   if ((why = text_problem(t->length_unit, 0)))
-    return fail(err, errlen, "%s: metadata 'length_unit' %s", path, why);
+    return flow_table_fail(err, errlen, "%s: metadata 'length_unit' %s", path, why);
   if (t->si != 0 && t->si != 1)
-    return fail(err, errlen,
-                "%s: metadata 'unit_system': expected si 0 (reduced) or 1 (SI), got %d", path,
-                t->si);
+    return flow_table_fail(err, errlen,
+                           "%s: metadata 'unit_system': expected si 0 (reduced) or 1 (SI), got %d",
+                           path, t->si);
   const double num[4] = {t->viscosity, t->density, t->voxel_size, t->length_unit_m};
   for (int i = 0; i < 4; i++) {
     if (i >= 2 && isnan(num[i])) continue; /* optional, not given */
     if ((why = number_problem(num[i], 1)))
-      return fail(err, errlen, "%s: metadata '%s': %s, got %.17g", path, flow_table_num_keys[i],
-                  why, num[i]);
+      return flow_table_fail(err, errlen, "%s: metadata '%s': %s, got %.17g", path,
+                             flow_table_num_keys[i], why, num[i]);
   }
   if (strcmp(t->driving_column, "pressure_gradient") &&
       strcmp(t->driving_column, "body_force_density"))
-    return fail(
+    return flow_table_fail(
         err, errlen,
         "%s: driving column: expected 'pressure_gradient' or 'body_force_density', got '%s'", path,
         t->driving_column);
   for (int c = 0; c < t->n_comments; c++) {
     const char *key = comment_reads_as(t->comments[c]);
     if ((why = text_problem(t->comments[c], 1)))
-      return fail(err, errlen, "%s: comment %d %s", path, c + 1, why);
+      return flow_table_fail(err, errlen, "%s: comment %d %s", path, c + 1, why);
     if (key)
-      return fail(err, errlen, "%s: comment %d '%s' would be read back as %s%s%s", path, c + 1,
-                  t->comments[c], *key ? "metadata '" : "the format line", key, *key ? "'" : "");
+      return flow_table_fail(err, errlen, "%s: comment %d '%s' would be read back as %s%s%s", path,
+                             c + 1, t->comments[c], *key ? "metadata '" : "the format line", key,
+                             *key ? "'" : "");
   }
   for (int r = 0; r < t->n; r++) {
     const double v[FLOW_NCOLS] = {t->G[r], t->q[r], t->sigma[r], t->run_length[r]};
     for (int c = 0; c < FLOW_NCOLS; c++) {
       if (!(why = number_problem(v[c], c == FLOW_COL_SIGMA || c == FLOW_COL_RUN))) continue;
       const char *name = c == FLOW_COL_G ? t->driving_column : flow_table_columns[c];
-      return fail(err, errlen, "%s: row %d, column '%s': %s, got %.17g", path, r + 1, name, why,
-                  v[c]);
+      return flow_table_fail(err, errlen, "%s: row %d, column '%s': %s, got %.17g", path, r + 1,
+                             name, why, v[c]);
     }
   }
   return 0;
@@ -105,12 +100,12 @@ static int check_table(const char *path, const flow_table *t, char *err, int err
 int flow_table_write(const char *path, const flow_table *t, char *err, int errlen) {
   if (check_table(path, t, err, errlen)) return -1;
   char tmp[4200];
-  if (strlen(path) > 4096) return fail(err, errlen, "%.100s...: path too long", path);
+  if (strlen(path) > 4096) return flow_table_fail(err, errlen, "%.100s...: path too long", path);
   atomic_tmp_name(path, tmp, sizeof tmp);
   FILE *f = fopen(tmp, "w");
   if (!f)
-    return fail(err, errlen, "%s: cannot write the temporary file %s: %s", path, tmp,
-                strerror(errno));
+    return flow_table_fail(err, errlen, "%s: cannot write the temporary file %s: %s", path, tmp,
+                           strerror(errno));
   fprintf(f, "# %s\n", FLOW_TABLE_FORMAT_LINE);
   fprintf(f, "# sample: %s\n# axis: %s\n# unit_system: %s\n# length_unit: %s\n", t->sample, t->axis,
           t->si ? "SI" : "reduced", t->length_unit);
@@ -124,6 +119,7 @@ int flow_table_write(const char *path, const flow_table *t, char *err, int errle
   for (int r = 0; r < t->n; r++)
     fprintf(f, "%.17g,%.17g,%.17g,%.17g\n", t->G[r], t->q[r], t->sigma[r], t->run_length[r]);
   if (atomic_commit(f, tmp, path))
-    return fail(err, errlen, "%s: writing %s or renaming it over the table failed", path, tmp);
+    return flow_table_fail(err, errlen, "%s: writing %s or renaming it over the table failed", path,
+                           tmp);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include "scene/scene_geometry.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <mpi.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,21 +12,22 @@
  * from the pore voxels, times the voxel edge. */
 static int depth_map(penetration_map_t *m, const mdp_image_t *img) {
   const size_t n = mdp_image_count(img);
-  int *queue = malloc((n ? n : 1) * sizeof(int));
+  size_t *queue = n > SIZE_MAX / sizeof(size_t) ? NULL : malloc((n ? n : 1) * sizeof(size_t));
   if (!queue) return -1;
   size_t head = 0, tail = 0;
   for (size_t i = 0; i < n; i++) {
     if (mdp_image_is_pore(img, i)) {
       m->depth[i] = 0.0f;
-      queue[tail++] = (int)i;
+      queue[tail++] = i;
     } else {
       m->depth[i] = -1.0f;
     }
   }
   const int *N = m->n;
   while (head < tail) {
-    const int v = queue[head++];
-    const int c[3] = {v % N[0], (v / N[0]) % N[1], v / (N[0] * N[1])};
+    const size_t v = queue[head++];
+    const int c[3] = {(int)(v % (size_t)N[0]), (int)((v / (size_t)N[0]) % (size_t)N[1]),
+                      (int)(v / ((size_t)N[0] * (size_t)N[1]))};
     for (int dz = -1; dz <= 1; dz++)
       for (int dy = -1; dy <= 1; dy++)
         for (int dx = -1; dx <= 1; dx++) {
@@ -42,7 +44,7 @@ static int depth_map(penetration_map_t *m, const mdp_image_t *img) {
           const size_t w = (size_t)q[0] + (size_t)N[0] * ((size_t)q[1] + (size_t)N[1] * q[2]);
           if (m->depth[w] >= 0.0f) continue;
           m->depth[w] = m->depth[v] + (float)m->h;
-          queue[tail++] = (int)w;
+          queue[tail++] = w;
         }
   }
   free(queue);
@@ -59,6 +61,7 @@ int penetration_map_create(penetration_map_t *m, const scene_t *s, char *err, si
   m->n[1] = img.ny;
   m->n[2] = img.nz;
   m->h = s->geometry.rc_per_voxel;
+  scene_geometry_grid(s, &img, &m->grid);
   const size_t n = mdp_image_count(&img);
   m->depth = malloc((n ? n : 1) * sizeof(float));
   if (!m->depth || depth_map(m, &img)) {
@@ -95,16 +98,16 @@ void penetration_count(const penetration_map_t *m, sim_t *sim, penetration_t *ou
   for (int i = 0; i < p->n_local; i++) {
     if (s->species[p->species[i]].frozen) continue;
     const double x[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
-    int v[3];
-    scene_geometry_voxel_of(s, &(mdp_image_t){.nx = m->n[0], .ny = m->n[1], .nz = m->n[2]}, x, v);
-    const float d =
-        m->depth[(size_t)v[0] + (size_t)m->n[0] * ((size_t)v[1] + (size_t)m->n[1] * v[2])];
+    const long idx = voxel_grid_index(&m->grid, x);
+    const float d = idx >= 0 ? m->depth[idx] : 0.0f;
     if (d <= 0.0f) continue;
     count++;
     if (d > deepest.depth) {
       deepest.depth = d;
       best = i;
-      memcpy(best_voxel, v, sizeof best_voxel);
+      best_voxel[0] = (int)(idx % m->n[0]);
+      best_voxel[1] = (int)((idx / m->n[0]) % m->n[1]);
+      best_voxel[2] = (int)(idx / ((long)m->n[0] * m->n[1]));
     }
   }
   MPI_Allreduce(&count, &out->count, 1, MPI_LONG, MPI_SUM, comm);

@@ -6,12 +6,14 @@
 #define MESO_ANALYSIS_PENETRATION_H
 
 #include "engine/sim.h"
+#include "physics/voxel_grid.h"
 
 #include <stddef.h>
 #include <stdint.h>
 
 typedef struct {
   int on;
+  voxel_grid_t grid; /* the image's voxels over the box */
   int n[3];
   double h;     /* voxel edge (rc) */
   float *depth; /* [n0 n1 n2]: 0 for pore voxels; for a solid voxel, the distance (rc) from its

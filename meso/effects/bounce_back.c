@@ -34,14 +34,7 @@ static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
   for (size_t i = 0; i < n; i++) solid[i] = !mdp_image_is_pore(&img, i);
   bounce_back_params_t *b = &plan->particle.bounce_back;
   b->solid = solid;
-  b->n[0] = img.nx;
-  b->n[1] = img.ny;
-  b->n[2] = img.nz;
-  for (int d = 0; d < 3; d++) {
-    b->lo[d] = s->box_lo[d];
-    b->periodic[d] = s->periodic[d];
-  }
-  b->inv_h = 1.0 / s->geometry.rc_per_voxel;
+  scene_geometry_grid(s, &img, &b->grid);
   mdp_image_free(&img);
   if (plan_add_array(plan, offsetof(particle_effects_t, bounce_back.solid), n)) {
     free(solid);

@@ -7,32 +7,20 @@
 #define MESO_PHYSICS_BOUNCE_BACK_H
 
 #include "hd.h"
+#include "voxel_grid.h"
 
-#include <math.h>
 #include <stdint.h>
 
 typedef struct {
   const uint8_t *solid; /* [n0 n1 n2], box axes, x fastest: 1 = solid voxel (plan-owned array) */
-  int n[3];             /* voxels along the box axes */
-  double lo[3];         /* box corner */
-  double inv_h;         /* 1 / voxel edge (rc) */
-  int periodic[3];
+  voxel_grid_t grid;
 } bounce_back_params_t;
 
 /* 1 when x lies in a solid voxel (periodic axes wrapped; outside a non-periodic face: not solid,
  * the box walls' business). */
 MESO_HD int bounce_back_in_solid(const bounce_back_params_t *b, const double x[3]) {
-  long idx = 0, stride = 1;
-  for (int d = 0; d < 3; d++) {
-    long i = (long)floor((x[d] - b->lo[d]) * b->inv_h);
-    if (b->periodic[d])
-      i = ((i % b->n[d]) + b->n[d]) % b->n[d];
-    else if (i < 0 || i >= b->n[d])
-      return 0;
-    idx += i * stride;
-    stride *= b->n[d];
-  }
-  return b->solid[idx] != 0;
+  const long idx = voxel_grid_index(&b->grid, x);
+  return idx >= 0 && b->solid[idx] != 0;
 }
 
 /* After the drift: back to x_old with v reversed when x is in the solid. Returns 1 when the

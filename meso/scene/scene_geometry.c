@@ -184,15 +184,13 @@ int scene_geometry_read_image(const scene_t *s, mdp_image_t *img, char *err, siz
   return 0;
 }
 
-void scene_geometry_voxel_of(const scene_t *s, const mdp_image_t *img, const double x[3],
-                             int ijk[3]) {
-  const int n[3] = {img->nx, img->ny, img->nz};
+void scene_geometry_grid(const scene_t *s, const mdp_image_t *img, voxel_grid_t *grid) {
+  grid->n[0] = img->nx;
+  grid->n[1] = img->ny;
+  grid->n[2] = img->nz;
   for (int d = 0; d < 3; d++) {
-    int i = (int)floor((x[d] - s->box_lo[d]) / s->geometry.rc_per_voxel);
-    if (s->periodic[d])
-      i = ((i % n[d]) + n[d]) % n[d];
-    else
-      i = i < 0 ? 0 : i >= n[d] ? n[d] - 1 : i;
-    ijk[d] = i;
+    grid->lo[d] = s->box_lo[d];
+    grid->periodic[d] = s->periodic[d];
   }
+  grid->inv_h = 1.0 / s->geometry.rc_per_voxel;
 }

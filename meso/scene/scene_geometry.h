@@ -5,6 +5,7 @@
 
 #include "common/yaml_tree.h"
 #include "mdpore_image.h"
+#include "physics/voxel_grid.h"
 #include "scene/scene.h"
 
 #include <stddef.h>
@@ -18,9 +19,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s);
  * axis). 0, or -1 with a message naming the scene file, the key and what was expected in err. */
 int scene_geometry_read_image(const scene_t *s, mdp_image_t *img, char *err, size_t errlen);
 
-/* Box voxel (i, j, k) of a position (periodic axes wrapped, others clamped), for a geometry image
- * read by scene_geometry_read_image. */
-void scene_geometry_voxel_of(const scene_t *s, const mdp_image_t *img, const double x[3],
-                             int ijk[3]);
+/* The voxel grid of such an image over the box (physics/voxel_grid.h). */
+void scene_geometry_grid(const scene_t *s, const mdp_image_t *img, voxel_grid_t *grid);
 
 #endif

@@ -18,6 +18,7 @@
  * when that fails (the checker of tests/engine/bad_scenes/geometry). */
 #include "build/image_walls.h"
 #include "build/init_config.h"
+#include "analysis/penetration.h"
 #include "effects/scene_load.h"
 #include "engine/sim.h"
 #include "io/gather.h"
@@ -44,7 +45,7 @@ static const char *scene_text =
     "  default: {A: -40, B: 25, gamma: 4.5, rc: 1, rd: 0.75}\n"
     "  liquid-quartz: {A: -30}\n"
     "  liquid-kerogen: {A: -20}\n"
-    "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}}\n"
+    "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}, bounce_back: {}}\n"
     "geometry:\n"
     "  image: " IMG "\n"
     "  labels: pore=0,inorganic=1,organic=2\n"
@@ -291,19 +292,32 @@ int main(int argc, char **argv) {
   }
   const long n_total = image_walls_total(&g);
   image_walls_free(&g);
-  /* a short run: no engine error */
+  /* a short run with the bounce_back boundary: no engine error, and no fluid particle inside a
+   * solid voxel after any step */
   sim_t *sim = sim_create(&s, MPI_COMM_WORLD);
   CHECK(sim && init_configuration(sim, &s) == 0 && sim_setup(sim) == 0);
+  penetration_map_t pmap;
+  char perr[1024];
+  CHECK(penetration_map_create(&pmap, &s, perr, sizeof perr) == 0 && pmap.on);
   int step_rc = 0;
-  for (long k = 0; k < s.steps && !step_rc; k++) step_rc = sim_step(sim);
+  long worst = 0;
+  for (long k = 0; k < s.steps && !step_rc; k++) {
+    step_rc = sim_step(sim);
+    penetration_t pen;
+    penetration_count(&pmap, sim, &pen);
+    if (pen.count > worst) worst = pen.count;
+  }
+  penetration_map_free(&pmap);
   CHECK(step_rc == 0);
+  CHECK(worst == 0);
   thermo_t th;
   sim_thermo(sim, &th);
   CHECK(th.step == s.steps && th.n_total == n_total);
   if (rank == 0)
-    printf("image walls: %ld steps: T = %.3f, N = %ld, p = %.3f; model %.2f s, builds %.2f s, "
+    printf("image walls: %ld steps (bounce_back): penetrations at most %ld; T = %.3f, N = %ld, "
+           "p = %.3f; model %.2f s, builds %.2f s, "
            "run %.2f s\n",
-           th.step, th.temperature, th.n_total,
+           th.step, worst, th.temperature, th.n_total,
            (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3, t_model - t0, t_built - t_model,
            MPI_Wtime() - t_built);
   sim_destroy(sim);
