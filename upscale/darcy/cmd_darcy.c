@@ -11,18 +11,73 @@
 #include "darcy_output.h"
 #include "darcy_post.h"
 #include "darcy_solve.h"
+#include "darcy_units.h"
+#include "darcy_upscale.h"
 
 static const char *usage_text =
-    "usage: mdpore darcy CONFIG.yaml [--quiet] [PETSc options with prefix -darcy_, e.g. "
-    "-darcy_snes_monitor]\n"
+    "usage: mdpore darcy CONFIG.yaml [--upscale] [--quiet] [PETSc options with prefix -darcy_, "
+    "e.g.\n"
+    "       -darcy_snes_monitor]\n"
     "Solves steady single-phase flow on a 2D/3D grid of blocks (two-point flux finite volumes, one "
     "flow\n"
     "law per block; docs/darcy-config.md) and writes pressures, face fluxes, per-block pressure "
     "drops\n"
-    "and gradients (HDF5) and a JSON summary with the effective permeability.\n";
+    "and gradients (HDF5) and a JSON summary with the effective permeability.\n"
+    "--upscale: the effective permeability tensor of the grid instead, with fixed, linear and "
+    "periodic\n"
+    "boundary conditions (OPM upscale_perm's families; the config's `upscale:` key may pick "
+    "some),\n"
+    "in the config's permeability unit and, under SI, in mD.\n";
+
+/* One family's tensor, rows i (flow) by columns j (driving gradient), in m^2 (or rc^2) and mD. */
+static void print_tensor(const darcy_config *c, const darcy_upscale_result *r, int f) {
+  const int d = r->dim;
+  printf("  %s: %s\n    %s, %d solves, %d CG iterations, %.3g s, asymmetry %.2e\n",
+         darcy_upscale_names[f], darcy_upscale_conditions(f),
+         r->converged[f] ? "converged" : "NOT converged", d, r->linear_its[f], r->seconds[f],
+         r->asymmetry[f]);
+  for (int mD = 0; mD <= c->si; mD++)
+    for (int i = 0; i < d; i++) {
+      printf("    %-6s [", i ? "" : mD ? "mD" : darcy_unit_label(QTY_PERMEABILITY, c->si));
+      for (int j = 0; j < d; j++) {
+        if (r->defined[f][i][j])
+          printf(" %13.6g", r->k[f][i][j] / (mD ? DARCY_MD_IN_M2 : 1.0));
+        else
+          printf(" %13s", "-");
+      }
+      printf(" ]\n");
+    }
+}
+
+/* --upscale: the tensor families, written and printed on rank 0. */
+static int run_upscale(const char *config, darcy_config *c, int quiet, int rank, int size) {
+  darcy_upscale_result r;
+  if (darcy_upscale(PETSC_COMM_WORLD, &c->problem, c->upscale, &r)) return 1;
+  int rc = 0;
+  if (rank == 0) {
+    if (c->hdf5_path[0] && darcy_write_upscale_hdf5(c->hdf5_path, c, &r)) rc = 1;
+    if (c->json_path[0] && darcy_write_upscale_json(c->json_path, config, c, &r, size)) rc = 1;
+    if (!quiet) {
+      printf("mdpore darcy --upscale: %s: %d x %d x %d blocks, permeability tensor K[i][j] (row "
+             "i: flow, column j: driving gradient)\n",
+             config, c->problem.n[0], c->problem.n[1], c->problem.n[2]);
+      for (int f = 0; f < UPSCALE_COUNT; f++)
+        if (r.done[f]) print_tensor(c, &r, f);
+      if (c->hdf5_path[0]) printf("  wrote %s\n", c->hdf5_path);
+      if (c->json_path[0]) printf("  wrote %s\n", c->json_path);
+    }
+    for (int f = 0; f < UPSCALE_COUNT; f++)
+      if (r.done[f] && !r.converged[f]) {
+        fprintf(stderr, "mdpore darcy: the %s-conditions solve did not converge (%s)\n",
+                darcy_upscale_names[f], r.reason[f]);
+        rc = 1;
+      }
+  }
+  return rc;
+}
 
 int cmd_darcy(int argc, char **argv) {
-  int rank = 0, size = 1, quiet = 0;
+  int rank = 0, size = 1, quiet = 0, upscale = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   const char *config = NULL;
@@ -37,6 +92,8 @@ int cmd_darcy(int argc, char **argv) {
     }
     if (!strcmp(argv[i], "--quiet"))
       quiet = 1;
+    else if (!strcmp(argv[i], "--upscale"))
+      upscale = 1;
     else if (argv[i][0] == '-' && argv[i][1] != '-')
       pargv[pargc++] = argv[i];
     else if (argv[i][0] != '-' && !config)
@@ -56,7 +113,9 @@ int cmd_darcy(int argc, char **argv) {
     return 2;
   }
   darcy_config c;
-  int rc = darcy_config_read(config, &c, rank != 0); /* every rank reads it (small); 0 reports */
+  /* every rank reads it (small); 0 reports */
+  int rc = upscale ? darcy_config_read_upscale(config, &c, rank != 0)
+                   : darcy_config_read(config, &c, rank != 0);
   if (rc) {
     free(pargv);
     return 1;
@@ -64,6 +123,14 @@ int cmd_darcy(int argc, char **argv) {
   if (PetscInitialize(&pargc, &pargv, NULL, NULL)) {
     free(pargv);
     return 1;
+  }
+  if (c.upscale) {
+    rc = run_upscale(config, &c, quiet, rank, size);
+    MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    darcy_problem_free(&c.problem);
+    PetscFinalize();
+    free(pargv);
+    return rc;
   }
   double *pressure = NULL;
   darcy_stats st;
@@ -82,11 +149,15 @@ int cmd_darcy(int argc, char **argv) {
              st.converged ? "converged" : "NOT converged", st.reason, st.newton_its, st.linear_its,
              st.residual);
       for (int a = 0; a < c.problem.dim; a++)
-        if (post.keff_defined[a])
-          printf("  effective permeability along %c: %.6g (inflow %.6g, outflow %.6g)\n", "xyz"[a],
-                 post.keff[a], post.q_in[a], post.q_out[a]);
-      printf("  mass balance relative error %.2e; pressure in [%.6g, %.6g]\n",
-             post.mass_balance_rel, post.pmin, post.pmax);
+        if (post.keff_defined[a]) {
+          const char *ku = darcy_unit_label(QTY_PERMEABILITY, c.si);
+          const char *ru = darcy_unit_label(c.problem.dim == 3 ? QTY_RATE : QTY_RATE_2D, c.si);
+          printf("  effective permeability along %c: %.6g %s", "xyz"[a], post.keff[a], ku);
+          if (c.si) printf(" (%.6g mD)", post.keff[a] / DARCY_MD_IN_M2);
+          printf(" (inflow %.6g %s, outflow %.6g %s)\n", post.q_in[a], ru, post.q_out[a], ru);
+        }
+      printf("  mass balance relative error %.2e; pressure in [%.6g, %.6g] %s\n",
+             post.mass_balance_rel, post.pmin, post.pmax, darcy_unit_label(QTY_PRESSURE, c.si));
       if (c.hdf5_path[0]) printf("  wrote %s\n", c.hdf5_path);
       if (c.json_path[0]) printf("  wrote %s\n", c.json_path);
     }

@@ -2,7 +2,6 @@
  * mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got ...)" (common/yaml_tree.h). */
 #include "darcy_config.h"
 
-#include <hdf5.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdio.h>
@@ -10,6 +9,9 @@
 #include <string.h>
 
 #include "common/yaml_tree.h"
+#include "darcy_k_dataset.h"
+#include "darcy_units.h"
+#include "darcy_upscale.h"
 #include "fit_json_law.h"
 
 #define TRY(x)                                                                                     \
@@ -52,6 +54,37 @@ static int need_number(ytree_t *t, yaml_node_t *map, const char *path, const cha
   join(sub, sizeof sub, path, key);
   yaml_node_t *n = yt_need(t, map, key, sub, "a number");
   return n ? yt_double(t, n, sub, v) : -1;
+}
+
+/* A number with an optional unit at node n: "1e-15" (base unit of the system) or "10 mD". Under SI
+ * a plain permeability above 1e-7 m^2 (100 kD, beyond any rock) gets a warning: it was probably
+ * meant in another unit. */
+static int quantity(ytree_t *t, yaml_node_t *n, const char *path, darcy_quantity q, int si,
+                    double *v) {
+  char b[64], why[128] = "not a number", list[96];
+  int had = 0;
+  if (n && n->type == YAML_SCALAR_NODE && !yt_is_null(n) &&
+      !darcy_unit_parse((const char *)n->data.scalar.value, q, si, v, &had, why, sizeof why)) {
+    if (q == QTY_PERMEABILITY && si && !had && *v > 1e-7)
+      yt_warn(t, n, path,
+              "%g m^2 is more permeable than any rock (a plain number is in m^2 under "
+              "units: SI; write e.g. '%g mD' for millidarcy)",
+              *v, *v);
+    return 0;
+  }
+  return yt_error(t, n, path,
+                  "expected a %s: a number in %s or a number with a unit (%s) (got %s: %s)",
+                  darcy_quantity_name(q), darcy_unit_label(q, si),
+                  darcy_unit_list(q, si, list, sizeof list), yt_describe(n, b, sizeof b), why);
+}
+
+/* A required quantity map.key (full path path.key). */
+static int need_quantity(ytree_t *t, yaml_node_t *map, const char *path, const char *key,
+                         darcy_quantity q, int si, double *v) {
+  char sub[PATH_LEN];
+  join(sub, sizeof sub, path, key);
+  yaml_node_t *n = yt_need(t, map, key, sub, "a number (with an optional unit)");
+  return n ? quantity(t, n, sub, q, si, v) : -1;
 }
 
 /* A required text value map.key into out. */
@@ -112,8 +145,18 @@ static int parse_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_config 
     TRY(yt_check_keys(t, n, path, allowed));
     law->kind = kind;
     double v0 = 0, v1 = 0;
-    TRY(need_number(t, n, path, pk[kind][0], &v0));
-    if (pk[kind][1]) TRY(need_number(t, n, path, pk[kind][1], &v1));
+    /* k, G0 and beta carry units; the power law's K (unit depends on n) and n are plain */
+    static const int pq[LAW_COUNT][2] = {{QTY_PERMEABILITY, -1},
+                                         {QTY_PERMEABILITY, QTY_GRADIENT},
+                                         {QTY_PERMEABILITY, QTY_INV_LENGTH},
+                                         {-1, -1}};
+    for (int m = 0; m < 2 && pk[kind][m]; m++) {
+      double *v = m ? &v1 : &v0;
+      if (pq[kind][m] >= 0)
+        TRY(need_quantity(t, n, path, pk[kind][m], (darcy_quantity)pq[kind][m], c->si, v));
+      else
+        TRY(need_number(t, n, path, pk[kind][m], v));
+    }
     if (kind == LAW_POWER)
       law->K = v0, law->n = v1;
     else
@@ -126,9 +169,10 @@ static int parse_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_config 
   return 0;
 }
 
-/* A required list of 2 or 3 numbers map.key; the item nodes go to `at` (for later messages). */
+/* A required list of 2 or 3 numbers map.key, each a quantity qty (with an optional unit) or, qty < 0,
+ * a plain number; the item nodes go to `at` (for later messages). */
 static int need_number_list(ytree_t *t, yaml_node_t *map, const char *path, const char *key,
-                            double v[3], yaml_node_t *at[3], int *count) {
+                            int qty, int si, double v[3], yaml_node_t *at[3], int *count) {
   char sub[PATH_LEN], item[PATH_LEN + 8], b[64];
   join(sub, sizeof sub, path, key);
   yaml_node_t *s = yt_need(t, map, key, sub, "a list of 2 or 3 numbers");
@@ -142,7 +186,10 @@ static int need_number_list(ytree_t *t, yaml_node_t *map, const char *path, cons
   for (int i = 0; i < n; i++) {
     snprintf(item, sizeof item, "%s[%d]", sub, i);
     at[i] = yt_seq_item(t, s, i);
-    TRY(yt_double(t, at[i], item, &v[i]));
+    if (qty >= 0)
+      TRY(quantity(t, at[i], item, (darcy_quantity)qty, si, &v[i]));
+    else
+      TRY(yt_double(t, at[i], item, &v[i]));
   }
   *count = n;
   return 0;
@@ -156,8 +203,8 @@ static int parse_grid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   double cells[3], size[3];
   yaml_node_t *cn[3], *sn[3];
   int nc, ns;
-  TRY(need_number_list(t, g, "grid", "cells", cells, cn, &nc));
-  TRY(need_number_list(t, g, "grid", "size", size, sn, &ns));
+  TRY(need_number_list(t, g, "grid", "cells", -1, c->si, cells, cn, &nc));
+  TRY(need_number_list(t, g, "grid", "size", QTY_LENGTH, c->si, size, sn, &ns));
   if (nc != ns)
     return yt_error(t, yt_get(t, g, "size"), "grid.size",
                     "expected %d entries like grid.cells (got %d)", nc, ns);
@@ -202,7 +249,7 @@ static int parse_boundary(ytree_t *t, yaml_node_t *root, darcy_config *c) {
     join(path, sizeof path, "boundary", face_names[f]);
     double v;
     TRY(yt_check_keys(t, fn, path, fk));
-    TRY(need_number(t, fn, path, "pressure", &v));
+    TRY(need_quantity(t, fn, path, "pressure", QTY_PRESSURE, c->si, &v));
     long n = darcy_face_count(p, f);
     p->fixed[f] = 1;
     p->bc_p[f] = malloc(n * sizeof(double));
@@ -232,7 +279,7 @@ static int parse_sources(ytree_t *t, yaml_node_t *s, darcy_config *c) {
     double idx[3] = {0, 0, 0}, rate;
     int ni;
     TRY(yt_check_keys(t, it, path, keys));
-    TRY(need_number_list(t, it, path, "block", idx, at, &ni));
+    TRY(need_number_list(t, it, path, "block", -1, c->si, idx, at, &ni));
     TRY(need_number(t, it, path, "rate", &rate));
     join(sub, sizeof sub, path, "block");
     if (ni != p->dim)
@@ -247,71 +294,31 @@ static int parse_sources(ytree_t *t, yaml_node_t *s, darcy_config *c) {
   return 0;
 }
 
-/* HDF5 dataset of Darcy permeabilities, shape (ny, nx) or (nz, ny, nx), C order = our block order.
- */
+/* laws.hdf5: {file: k.h5, dataset: name, unit: mD} -- Darcy permeability per block (darcy_k_dataset.h:
+ * shape, unit attribute, axis_order attribute). */
 static int read_k_dataset(ytree_t *t, yaml_node_t *n, darcy_config *c) {
-  static const char *const keys[] = {"file", "dataset", NULL};
-  char dset[PATH_LEN], full[FILE_LEN];
+  static const char *const keys[] = {"file", "dataset", "unit", NULL};
+  char dset[PATH_LEN], full[FILE_LEN], unit[32] = "", msg[1024];
   TRY(yt_check_keys(t, n, "laws.hdf5", keys));
   yaml_node_t *fn = yt_need(t, n, "file", "laws.hdf5.file", "an HDF5 file name");
   if (!fn || file_name(t, fn, "laws.hdf5.file", full, sizeof full)) return -1;
   TRY(need_string(t, n, "laws.hdf5", "dataset", "a dataset name", dset, sizeof dset));
-  yaml_node_t *dn = yt_get(t, n, "dataset");
+  yaml_node_t *un = yt_get(t, n, "unit");
+  if (un) TRY(yt_string(t, un, "laws.hdf5.unit", unit, sizeof unit));
   darcy_problem *p = &c->problem;
   long nb = darcy_nblocks(p);
   double *k = malloc(nb * sizeof(double));
-  int rc = -1;
-  H5E_auto2_t old;
-  void *old_data;
-  H5Eget_auto2(H5E_DEFAULT, &old, &old_data);
-  H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-  hid_t f = H5Fopen(full, H5F_ACC_RDONLY, H5P_DEFAULT), d = -1, sp = -1;
-  if (f < 0) {
-    yt_error(t, fn, "laws.hdf5.file", "expected a readable HDF5 file (got '%s')", full);
-    goto out;
+  kset_key key;
+  int rc = darcy_k_dataset_read(full, dset, p, c->si, unit, k, msg, sizeof msg, &key);
+  if (rc) {
+    static const char *const paths[] = {"laws.hdf5.file", "laws.hdf5.dataset", "laws.hdf5.unit"};
+    yaml_node_t *at = key == KSET_KEY_FILE   ? fn
+                      : key == KSET_KEY_UNIT ? un
+                                             : yt_get(t, n, "dataset");
+    yt_error(t, at, paths[key], "%s", msg);
+  } else {
+    for (long b = 0; b < nb; b++) p->laws[b] = (flow_law){.kind = LAW_DARCY, .k = k[b]};
   }
-  d = H5Dopen2(f, dset, H5P_DEFAULT);
-  if (d < 0) {
-    yt_error(t, dn, "laws.hdf5.dataset", "expected a dataset of '%s' (got '%s': no such dataset)",
-             full, dset);
-    goto out;
-  }
-  sp = H5Dget_space(d);
-  hsize_t dims[3] = {0, 0, 0};
-  int rank = H5Sget_simple_extent_ndims(sp);
-  int ok = rank == p->dim;
-  if (ok) H5Sget_simple_extent_dims(sp, dims, NULL);
-  for (int a = 0; a < rank && ok; a++) ok = (long)dims[a] == p->n[rank - 1 - a];
-  if (!ok) {
-    if (p->dim == 3)
-      yt_error(t, dn, "laws.hdf5.dataset",
-               "expected a dataset of shape (nz, ny, nx) = (%d, %d, %d) to match grid.cells (got "
-               "rank %d)",
-               p->n[2], p->n[1], p->n[0], rank);
-    else
-      yt_error(t, dn, "laws.hdf5.dataset",
-               "expected a dataset of shape (ny, nx) = (%d, %d) to match grid.cells (got rank %d)",
-               p->n[1], p->n[0], rank);
-    goto out;
-  }
-  if (H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, k) < 0) {
-    yt_error(t, dn, "laws.hdf5.dataset", "expected a dataset of numbers (cannot read '%s')", dset);
-    goto out;
-  }
-  for (long b = 0; b < nb; b++) {
-    if (!(k[b] > 0 && isfinite(k[b]))) {
-      yt_error(t, dn, "laws.hdf5.dataset",
-               "expected permeabilities > 0 (got element %ld of '%s' = %g)", b, dset, k[b]);
-      goto out;
-    }
-    p->laws[b] = (flow_law){.kind = LAW_DARCY, .k = k[b]};
-  }
-  rc = 0;
-out:
-  if (sp >= 0) H5Sclose(sp);
-  if (d >= 0) H5Dclose(d);
-  if (f >= 0) H5Fclose(f);
-  H5Eset_auto2(H5E_DEFAULT, old, old_data);
   free(k);
   return rc;
 }
@@ -458,28 +465,76 @@ static int parse_fluid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   yaml_node_t *f = yt_need(t, root, "fluid", "fluid", "a mapping {viscosity: MU, density: RHO}");
   if (!f) return -1;
   TRY(yt_check_keys(t, f, "fluid", keys));
-  TRY(need_number(t, f, "fluid", "viscosity", &fl->mu));
+  TRY(need_quantity(t, f, "fluid", "viscosity", QTY_VISCOSITY, c->si, &fl->mu));
   if (!(fl->mu > 0))
     return yt_error(t, yt_get(t, f, "viscosity"), "fluid.viscosity",
                     "expected a viscosity > 0 (got %g)", fl->mu);
   fl->rho = 0.0;
   yaml_node_t *d = yt_get(t, f, "density");
-  return d ? yt_double(t, d, "fluid.density", &fl->rho) : 0;
+  return d ? quantity(t, d, "fluid.density", QTY_DENSITY, c->si, &fl->rho) : 0;
 }
 
-static int parse_document(ytree_t *t, darcy_config *c) {
+/* upscale: {conditions: [fixed, linear, periodic]} (default: all three). */
+static int parse_upscale(ytree_t *t, yaml_node_t *u, darcy_config *c) {
+  static const char *const keys[] = {"conditions", NULL};
+  char b[64];
+  if (!u) return 0;
+  TRY(yt_check_keys(t, u, "upscale", keys));
+  yaml_node_t *l = yt_get(t, u, "conditions");
+  c->upscale = (1 << UPSCALE_COUNT) - 1;
+  if (!l) return 0;
+  if (l->type != YAML_SEQUENCE_NODE || !yt_seq_size(l))
+    return yt_error(t, l, "upscale.conditions",
+                    "expected a non-empty list of fixed, linear, periodic (got %s)",
+                    yt_describe(l, b, sizeof b));
+  c->upscale = 0;
+  for (int i = 0; i < yt_seq_size(l); i++) {
+    char path[48];
+    snprintf(path, sizeof path, "upscale.conditions[%d]", i);
+    int f = yt_enum(t, yt_seq_item(t, l, i), path, darcy_upscale_names);
+    if (f < 0) return -1;
+    c->upscale |= 1 << f;
+  }
+  return 0;
+}
+
+/* Upscaling: no sources, Darcy laws; the boundary section, if any, is not used. */
+static int check_upscale(ytree_t *t, yaml_node_t *root, darcy_config *c) {
+  char why[256];
+  yaml_node_t *n;
+  if ((n = yt_get(t, root, "sources")))
+    return yt_error(t, n, "sources",
+                    "expected no sources when upscaling (a permeability tensor is defined "
+                    "without them; got a sources list)");
+  if ((n = yt_get(t, root, "boundary")))
+    yt_warn(t, n, "boundary",
+            "not used when upscaling: each family (%s%s%s) sets its own boundary conditions",
+            c->upscale & 1 ? "fixed " : "", c->upscale & 2 ? "linear " : "",
+            c->upscale & 4 ? "periodic" : "");
+  if (darcy_upscale_check(&c->problem, c->upscale, why, sizeof why))
+    return yt_error(t, yt_get(t, root, "laws"), "laws", "expected laws that can be upscaled: %s",
+                    why);
+  return 0;
+}
+
+static int parse_document(ytree_t *t, darcy_config *c, int upscale_cli) {
   static const char *const keys[] = {"units", "grid",   "fluid",  "boundary", "sources",
-                                     "laws",  "solver", "output", NULL};
+                                     "laws",  "solver", "output", "upscale",  NULL};
   darcy_problem *p = &c->problem;
   yaml_node_t *root = yt_root(t), *n;
   TRY(yt_check_keys(t, root, "", keys));
   if (!(n = yt_need(t, root, "units", "units", "SI or reduced"))) return -1;
   if ((c->si = yt_enum(t, n, "units", unit_words)) < 0) return -1;
+  TRY(parse_upscale(t, yt_get(t, root, "upscale"), c));
+  if (upscale_cli && !c->upscale) c->upscale = (1 << UPSCALE_COUNT) - 1;
   TRY(parse_fluid(t, root, c));
   TRY(parse_grid(t, root, c));
-  TRY(parse_boundary(t, root, c));
-  TRY(parse_sources(t, yt_get(t, root, "sources"), c));
+  if (!c->upscale) {
+    TRY(parse_boundary(t, root, c));
+    TRY(parse_sources(t, yt_get(t, root, "sources"), c));
+  }
   TRY(parse_laws(t, root, c));
+  if (c->upscale) TRY(check_upscale(t, root, c));
   TRY(parse_solver(t, yt_get(t, root, "solver"), c));
   TRY(parse_output(t, root, c));
   for (long b = 0; b < darcy_nblocks(p); b++)
@@ -492,12 +547,20 @@ static int parse_document(ytree_t *t, darcy_config *c) {
   return 0;
 }
 
-int darcy_config_read(const char *path, darcy_config *c, int quiet) {
+static int read_config(const char *path, darcy_config *c, int quiet, int upscale_cli) {
   memset(c, 0, sizeof *c);
   ytree_t t;
   if (yt_load(&t, path, quiet)) return -1;
-  const int rc = parse_document(&t, c);
+  const int rc = parse_document(&t, c, upscale_cli);
   if (rc) darcy_problem_free(&c->problem);
   yt_free(&t);
   return rc;
+}
+
+int darcy_config_read(const char *path, darcy_config *c, int quiet) {
+  return read_config(path, c, quiet, 0);
+}
+
+int darcy_config_read_upscale(const char *path, darcy_config *c, int quiet) {
+  return read_config(path, c, quiet, 1);
 }

@@ -7,16 +7,17 @@ static const int step[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0,
 
 face_flux_result darcy_face(const darcy_problem *p, int i, int j, int k, int face, double p_c,
                             double p_nb, double *area) {
-  int axis = face / 2;
-  int ni = i + step[face][0], nj = j + step[face][1], nk = k + step[face][2];
-  int nb[3] = {ni, nj, nk};
+  int axis = face / 2, c[3] = {i, j, k};
+  int nb[3] = {i + step[face][0], j + step[face][1], k + step[face][2]};
   *area = p->h[(axis + 1) % 3] * p->h[(axis + 2) % 3];
   double half = 0.5 * p->h[axis];
   const flow_law *la = &p->laws[darcy_index(p, i, j, k)];
   face_flux_result r = {0.0, 0.0, 0.0};
-  if (nb[axis] >= 0 && nb[axis] < p->n[axis]) { /* interior face: two halves in series */
-    r = face_flux(la, half, &p->laws[darcy_index(p, ni, nj, nk)], half, &p->fluid, p->g_lin,
-                  p_c - p_nb);
+  if (darcy_has_neighbour(p, c, face)) { /* interior face: two halves in series */
+    nb[axis] = (nb[axis] + p->n[axis]) % p->n[axis];
+    double jump = p->periodic ? (face % 2 ? 1.0 : -1.0) * p->drive[axis] * p->h[axis] : 0.0;
+    r = face_flux(la, half, &p->laws[darcy_index(p, nb[0], nb[1], nb[2])], half, &p->fluid,
+                  p->g_lin, p_c - p_nb + jump);
   } else if (p->fixed[face]) { /* fixed pressure at the face: one half */
     double pb = p->bc_p[face][darcy_face_index(p, face, i, j, k)];
     r = face_flux(la, half, NULL, 0.0, &p->fluid, p->g_lin, p_c - pb);
@@ -28,19 +29,29 @@ face_flux_result darcy_face(const darcy_problem *p, int i, int j, int k, int fac
  * zero gradient (smoothed threshold) would otherwise give singular Jacobian rows in stagnant
  * blocks. */
 static double linear_conductance(const darcy_problem *p, int i, int j, int k, int face) {
-  int axis = face / 2;
-  int ni = i + step[face][0], nj = j + step[face][1], nk = k + step[face][2];
-  int nb[3] = {ni, nj, nk};
+  int axis = face / 2, c[3] = {i, j, k};
+  int nb[3] = {i + step[face][0], j + step[face][1], k + step[face][2]};
   double half = 0.5 * p->h[axis], r = half / p->k_lin[darcy_index(p, i, j, k)];
-  if (nb[axis] >= 0 && nb[axis] < p->n[axis]) r += half / p->k_lin[darcy_index(p, ni, nj, nk)];
+  if (darcy_has_neighbour(p, c, face)) {
+    nb[axis] = (nb[axis] + p->n[axis]) % p->n[axis];
+    r += half / p->k_lin[darcy_index(p, nb[0], nb[1], nb[2])];
+  }
   return 1.0 / (p->fluid.mu * r);
 }
 
+/* Pressure of the neighbour across `face` from the local (ghosted) array: on a periodic DMDA the
+ * ghosts at -1 and n hold the wrapped values. */
 static double neighbour_p(PetscScalar ***pr, const darcy_problem *p, int i, int j, int k,
                           int face) {
-  int ni = i + step[face][0], nj = j + step[face][1], nk = k + step[face][2];
-  if (ni < 0 || nj < 0 || nk < 0 || ni >= p->n[0] || nj >= p->n[1] || nk >= p->n[2]) return 0.0;
-  return pr[nk][nj][ni];
+  int c[3] = {i, j, k};
+  if (!darcy_has_neighbour(p, c, face)) return 0.0;
+  return pr[k + step[face][2]][j + step[face][1]][i + step[face][0]];
+}
+
+/* The tie of a periodic problem's block (0,0,0) to p~ = 0, in equation units (see darcy_problem.h).
+ */
+static int anchored(const darcy_problem *p, int i, int j, int k) {
+  return p->periodic && i == 0 && j == 0 && k == 0;
 }
 
 PetscErrorCode darcy_residual_local(DMDALocalInfo *info, PetscScalar ***pr, PetscScalar ***f,
@@ -57,6 +68,7 @@ PetscErrorCode darcy_residual_local(DMDALocalInfo *info, PetscScalar ***pr, Pets
           out += area * r.q;
         }
         f[k][j][i] = p->eq_scale * (out - (p->source ? p->source[darcy_index(p, i, j, k)] : 0.0));
+        if (anchored(p, i, j, k)) f[k][j][i] += pr[k][j][i];
       }
   PetscFunctionReturn(0);
 }
@@ -66,17 +78,18 @@ PetscErrorCode darcy_jacobian_local(DMDALocalInfo *info, PetscScalar ***pr, Mat 
   (void)J;
   const darcy_problem *p = ctx;
   PetscFunctionBeginUser;
+  /* values are added: on a periodic axis of 2 blocks both faces lead to the same neighbour */
+  PetscCall(MatZeroEntries(Jpre));
   for (int k = info->zs; k < info->zs + info->zm; k++)
     for (int j = info->ys; j < info->ys + info->ym; j++)
       for (int i = info->xs; i < info->xs + info->xm; i++) {
         MatStencil row = {.k = k, .j = j, .i = i}, cols[7];
         PetscScalar vals[7];
-        int nc = 1;
-        double diag = 0.0, area;
+        int nc = 1, c[3] = {i, j, k};
+        double diag = anchored(p, i, j, k) ? 1.0 : 0.0, area;
         for (int face = 0; face < 2 * p->dim; face++) {
           int ni = i + step[face][0], nj = j + step[face][1], nk = k + step[face][2];
-          int inside =
-              ni >= 0 && nj >= 0 && nk >= 0 && ni < p->n[0] && nj < p->n[1] && nk < p->n[2];
+          int inside = darcy_has_neighbour(p, c, face); /* periodic: PETSc wraps -1 and n */
           if (!inside && !p->fixed[face]) continue;
           face_flux_result r =
               darcy_face(p, i, j, k, face, pr[k][j][i], neighbour_p(pr, p, i, j, k, face), &area);
@@ -90,7 +103,7 @@ PetscErrorCode darcy_jacobian_local(DMDALocalInfo *info, PetscScalar ***pr, Mat 
         }
         cols[0] = row;
         vals[0] = diag;
-        PetscCall(MatSetValuesStencil(Jpre, 1, &row, nc, cols, vals, INSERT_VALUES));
+        PetscCall(MatSetValuesStencil(Jpre, 1, &row, nc, cols, vals, ADD_VALUES));
       }
   PetscCall(MatAssemblyBegin(Jpre, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Jpre, MAT_FINAL_ASSEMBLY));

@@ -26,10 +26,21 @@ typedef struct {
   double p_scale;  /* characteristic pressure difference (for absolute tolerances) */
   double rtol;     /* solver relative tolerance */
   int max_it;      /* Newton iterations */
+  /* Periodic problem (upscaling, darcy_upscale.h): every axis of the grid wraps, no face is fixed,
+   * and the pressure is p = p~ - drive . x with p~ periodic: the unknowns are p~, every face along
+   * an axis adds drive[axis] h[axis] to the drop p~_a - p~_b, and block (0,0,0) is tied to p~ = 0
+   * through one typical conductance (exact: no flow through that tie at the solution). */
+  int periodic;
+  double drive[3]; /* mean driving gradient -grad p of a periodic problem */
 } darcy_problem;
 
 static inline long darcy_index(const darcy_problem *p, int i, int j, int k) {
   return i + (long)p->n[0] * (j + (long)p->n[1] * k);
+}
+/* Whether the neighbour across `face` of block c[3] is a block (wrapping on a periodic problem). */
+static inline int darcy_has_neighbour(const darcy_problem *p, const int c[3], int face) {
+  int axis = face / 2, m = c[axis] + (face % 2 ? 1 : -1);
+  return p->periodic ? axis < p->dim : (m >= 0 && m < p->n[axis]);
 }
 static inline long darcy_nblocks(const darcy_problem *p) {
   return (long)p->n[0] * p->n[1] * p->n[2];

@@ -102,9 +102,11 @@ static PetscErrorCode solve(MPI_Comm comm, darcy_problem *p, double **pressure, 
   Vec x;
   PetscFunctionBeginUser;
   memset(st, 0, sizeof *st);
-  PetscCall(DMDACreate3d(comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE,
-                         DMDA_STENCIL_STAR, p->n[0], p->n[1], p->n[2], PETSC_DECIDE, PETSC_DECIDE,
-                         PETSC_DECIDE, 1, 1, NULL, NULL, NULL, &da));
+  DMBoundaryType bt[3];
+  for (int a = 0; a < 3; a++)
+    bt[a] = p->periodic && a < p->dim ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE;
+  PetscCall(DMDACreate3d(comm, bt[0], bt[1], bt[2], DMDA_STENCIL_STAR, p->n[0], p->n[1], p->n[2],
+                         PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, 1, 1, NULL, NULL, NULL, &da));
   PetscCall(DMSetUp(da));
   PetscCall(DMSetApplicationContext(da, p));
   PetscCall(DMCreateGlobalVector(da, &x));
