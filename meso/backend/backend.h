@@ -57,6 +57,10 @@ typedef struct backend_ops {
   void (*sync_host)(sim_state_t *st);             /* refresh st->p from the device (NULL: none) */
   void (*want_pressure)(sim_state_t *st, int on); /* the next steps end in a thermo sample */
   void (*rebuild_lists)(sim_state_t *st);         /* sort + new lists next step (bitwise restart) */
+  /* Local flux sums along `axis` (output.flux): per species s, the mobile particle count
+   * sums[s] and sum v_axis sums[MESO_MAX_SPECIES + s] (frozen species: 0). NULL: the engine sums
+   * st->p. 0 or -1. */
+  int (*flux_sums)(sim_state_t *st, int axis, double sums[2 * MESO_MAX_SPECIES]);
 } backend_ops_t;
 
 /* The CPU backend (backend/cpu/cpu_backend.c). */

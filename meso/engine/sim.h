@@ -52,6 +52,13 @@ int sim_step(sim_t *sim);
 /* Collective reduction of the thermodynamic state at the current step. */
 void sim_thermo(sim_t *sim, thermo_t *out);
 
+/* Collective flux sums along `axis` (output.flux; analysis/flux.c turns them into q): per species
+ * s, the global count of its mobile particles count[s] and the sum of their velocity components
+ * vsum[s] (frozen species: 0). On the backend's device when it has the reduction. Identical on
+ * every rank. 0, or -1 (message printed) when the device reduction failed. */
+int sim_flux_sums(sim_t *sim, int axis, double count[SCENE_MAX_SPECIES],
+                  double vsum[SCENE_MAX_SPECIES]);
+
 /* Accessors for outputs and analyses. */
 particles_t *sim_particles(sim_t *sim);
 const scene_t *sim_scene(const sim_t *sim);

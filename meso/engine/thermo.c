@@ -1,8 +1,9 @@
-/* Global thermodynamic state (sim_thermo): kinetic energy and temperature of the mobile particles,
- * momentum, and the full virial pressure tensor
+/* Global reductions of the state for the outputs. sim_thermo: kinetic energy and temperature of
+ * the mobile particles, momentum, and the full virial pressure tensor
  *   P_ab = ( sum_i m v_a v_b + 1/2 sum_{i != j} r_ij,a F_ij,b ) / V
  * with all pair force parts (conservative, dissipative, random; physics.md section 2). Temperature
- * counts 3 (N_mobile - 1) degrees of freedom (total momentum is conserved without body force). */
+ * counts 3 (N_mobile - 1) degrees of freedom (total momentum is conserved without body force).
+ * sim_flux_sums: per species, mobile count and sum of v along one axis (the flux output). */
 #include "engine/sim_internal.h"
 
 #include <string.h>
@@ -50,4 +51,32 @@ void sim_thermo(sim_t *sim, thermo_t *out) {
   out->volume = 1.0;
   for (int d = 0; d < 3; d++) out->volume *= st->scene.box_hi[d] - st->scene.box_lo[d];
   for (int k = 0; k < 6; k++) out->pressure[k] = (g[K0 + k] + g[NV + k]) / out->volume;
+}
+
+int sim_flux_sums(sim_t *sim, int axis, double count[SCENE_MAX_SPECIES],
+                  double vsum[SCENE_MAX_SPECIES]) {
+  sim_state_t *st = &sim->st;
+  const particles_t *p = &st->p;
+  const plan_t *plan = &st->plan;
+  double v[2 * MESO_MAX_SPECIES] = {0}, g[2 * MESO_MAX_SPECIES];
+  int bad = 0;
+  if (sim->ops->flux_sums) {
+    bad = sim->ops->flux_sums(st, axis, v) != 0; /* message printed */
+  } else {
+    for (int i = 0; i < p->n_local; i++) {
+      const int s = p->species[i];
+      if (!plan->mobile[s]) continue;
+      v[s] += 1.0;
+      v[MESO_MAX_SPECIES + s] += p->v[axis][i];
+    }
+  }
+  /* Reduce on rank 0 and broadcast (as sim_thermo): the same bits on every rank. */
+  MPI_Reduce(v, g, 2 * MESO_MAX_SPECIES, MPI_DOUBLE, MPI_SUM, 0, st->dc.cart);
+  MPI_Bcast(g, 2 * MESO_MAX_SPECIES, MPI_DOUBLE, 0, st->dc.cart);
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, st->dc.cart);
+  for (int s = 0; s < SCENE_MAX_SPECIES; s++) {
+    count[s] = g[s];
+    vsum[s] = g[MESO_MAX_SPECIES + s];
+  }
+  return bad ? -1 : 0;
 }

@@ -9,6 +9,7 @@
 #include "io/thermo_log.h"
 #include "analysis/penetration.h"
 #include "run/progress.h"
+#include "run/run_flux.h"
 #include "run/run_stats.h"
 
 #include <stdio.h>
@@ -28,6 +29,7 @@ void run_apply_output_dir(scene_t *s, const char *dir) {
   prefix(s->snapshot.path, dir);
   prefix(s->dump.path, dir);
   prefix(s->checkpoint.path, dir);
+  prefix(s->flux.path, dir);
   prefix(s->summary_path, dir);
 }
 
@@ -123,6 +125,17 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     return 1;
   }
   st.penetration_on = pmap.on;
+  run_flux_t rf;
+  if (run_flux_open(&rf, sim, restart, first, rank)) {
+    run_flux_close(&rf);
+    thermo_log_close(&log);
+    run_stats_free(&st);
+    penetration_map_free(&pmap);
+    if (s->profile.nbins > 0) profile_free(&prof);
+    sim_destroy(sim);
+    return 1;
+  }
+  st.flux = &rf;
   snapshot_series_init(&snaps, s->snapshot.path);
   progress_start(&pr, s->progress, rank, first, last);
 
@@ -132,6 +145,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   st.n_total = th.n_total;
   if (!restart && !err) {
     if (due(&s->thermo, first)) thermo_log_row(&log, &th);
+    if (run_flux_due(&rf, first) && run_flux_sample(&rf, sim, first, rank) < 0) err = 1;
     err = write_outputs(sim, first, 1, first == last, &snaps, &dump_started);
   }
   double loop = 0;
@@ -142,7 +156,8 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     sim_announce_thermo(sim, log_row || stat);
     /* A checkpoint after this step: build the neighbour lists in this step, as a restart from it
      * will, so that the restarted run sums the forces in the same order (bitwise restarts). */
-    if (s->checkpoint.every > 0 && (due(&s->checkpoint, step) || step == last))
+    if (s->checkpoint.every > 0 &&
+        (due(&s->checkpoint, step) || step == last || run_flux_check_at(&rf, step)))
       sim_rebuild_lists(sim);
     MPI_Barrier(comm);
     const double t0 = MPI_Wtime();
@@ -170,15 +185,25 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     }
     progress_update(&pr, step, th.step, th.temperature,
                     (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3);
-    err = write_outputs(sim, step, !restart, step == last, &snaps, &dump_started);
+    /* The flux sample; with run.target_error it may end the run here (every rank together; the
+     * outputs of a last step, the checkpoint included, are written first). */
+    int stop = 0;
+    if (run_flux_due(&rf, step) && (stop = run_flux_sample(&rf, sim, step, rank)) < 0) {
+      err = 1;
+      break;
+    }
+    err = write_outputs(sim, step, !restart, step == last || stop, &snaps, &dump_started);
     if (!err && s->profile.nbins > 0 && s->checkpoint.every > 0 && due(&s->checkpoint, step) &&
         rank == 0)
       profile_write(&prof, s->profile.path);
+    if (stop) break;
   }
   progress_end(&pr);
   thermo_log_close(&log);
   if (!err) {
     st.steps_done = sim_step_index(sim) - first;
+    st.last_step = sim_step_index(sim); /* earlier than planned after an early stop */
+    run_flux_finish(&rf, rank);
     st.loop_seconds = loop;
     st.total_seconds = MPI_Wtime() - t_start;
     if (rank == 0) {
@@ -188,6 +213,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     }
     MPI_Bcast(&err, 1, MPI_INT, 0, comm);
   }
+  run_flux_close(&rf);
   run_stats_free(&st);
   penetration_map_free(&pmap);
   snapshot_series_free(&snaps);

@@ -10,8 +10,8 @@
 /* Collective. Returns the exit code: 0, or non-zero after a message (engine failure, I/O error). */
 int run_scene(const scene_t *scene, MPI_Comm comm);
 
-/* Prefix relative output paths (thermo, profile, snapshot, dump, checkpoint, summary) with `dir`.
- */
+/* Prefix relative output paths (thermo, profile, snapshot, dump, checkpoint, flux, summary) with
+ * `dir`. */
 void run_apply_output_dir(scene_t *scene, const char *dir);
 
 #endif

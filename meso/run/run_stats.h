@@ -1,6 +1,7 @@
 /* What the run driver averages for its final summary (rank 0): thermo samples in the sampling
  * window (steps >= output.profile.start, or the second half of the run without a profile), the
- * surface tension series when a profile axis is set, and the loop timing. */
+ * surface tension series when a profile axis is set, the loop timing, and the flux analysis
+ * (output.flux; its own window: from the MSER-5 truncation on). */
 #ifndef MESO_RUN_RUN_STATS_H
 #define MESO_RUN_RUN_STATS_H
 
@@ -36,6 +37,8 @@ typedef struct {
   int penetration_on;
   long penetration_samples, penetration_bad_samples, penetration_max;
   double penetration_depth;
+  /* output.flux: its series and final analysis (run/run_flux.h; NULL or off: none). */
+  const struct run_flux *flux;
 } run_stats_t;
 
 void run_stats_init(run_stats_t *st, const scene_t *scene, long first, long last, int nranks);

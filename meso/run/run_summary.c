@@ -2,6 +2,7 @@
  * block-averaged standard errors (Flyvbjerg-Petersen, analysis/block_average.c). */
 #include "common/atomic_file.h"
 #include "physics/density_kernels.h"
+#include "run/run_flux.h"
 #include "run/run_stats.h"
 
 #include <math.h>
@@ -22,8 +23,82 @@ static void json_stat(FILE *fp, const char *name, double mean, double err, int l
   fprintf(fp, "}%s\n", last ? "" : ",");
 }
 
+static const char *const flux_method =
+    "MSER-5 truncation of the transient (White 1997); mean after it; standard error by block "
+    "averaging at the plateau of the blocked error (Flyvbjerg & Petersen 1989)";
+
+/* The flux lines of the human summary. */
+static void flux_text(FILE *out, const run_flux_t *f) {
+  const steady_state_t *r = &f->result;
+  const char ax = "xyz"[f->def.axis];
+  fprintf(out,
+          "flux along %c: q = %.6g +- %.2g (superficial Darcy velocity q = Q / A_total, A_total = "
+          "%.6g = whole cross-section), G = %.6g (%s)\n",
+          ax, r->avg.mean, r->avg.err, f->def.area, f->def.G,
+          flux_gradient_source_name(f->def.gradient_source));
+  if (r->n > 0)
+    fprintf(out,
+            "  steady from step %.0f (MSER-5%s), %ld of %ld samples used, block length %ld%s\n",
+            f->steps.x[r->start], r->steady ? "" : ": NO steady state found", r->n - r->start, r->n,
+            r->avg.block_len, r->avg.plateau ? "" : " (no plateau: error underestimated)");
+  if (f->target > 0)
+    fprintf(out, "  target relative error %g: %s (relative error %.3g)%s\n", f->target,
+            f->reached ? "reached" : "NOT reached within the step budget", r->rel_err,
+            f->stopped_early ? ", stopped early" : "");
+}
+
+/* The summary's "flux" object. */
+static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
+  const steady_state_t *r = &f->result;
+  fprintf(fp, "  \"flux\": {\"axis\": \"%c\", \"q\": ", "xyz"[f->def.axis]);
+  json_num(fp, r->avg.mean);
+  fprintf(fp, ", \"q_err\": ");
+  json_num(fp, r->avg.err);
+  fprintf(fp, ", \"Q\": ");
+  json_num(fp, r->avg.mean * f->def.area);
+  fprintf(fp, ", \"Q_err\": ");
+  json_num(fp, r->avg.err * f->def.area);
+  fprintf(fp, ", \"relative_error\": ");
+  json_num(fp, r->rel_err);
+  fprintf(fp, ", \"G\": ");
+  json_num(fp, f->def.G);
+  fprintf(fp, ", \"G_source\": \"%s\",\n", flux_gradient_source_name(f->def.gradient_source));
+  fprintf(fp, "    \"area_total\": %.10g, \"length\": %.10g, \"fluid_fraction\": %.10g, ",
+          f->def.area, f->def.length, f->def.fluid_fraction);
+  fprintf(fp, "\"density\": {");
+  for (int sp = 0, first = 1; sp < s->n_species; sp++)
+    if (f->def.mask >> sp & 1u) {
+      fprintf(fp, "%s\"%s\": %.10g", first ? "" : ", ", s->species[sp].name, f->def.n[sp]);
+      first = 0;
+    }
+  fprintf(fp, "}, \"density_source\": \"%s\",\n", flux_density_source_name(f->def.density_source));
+  fprintf(fp, "    \"steady_from_step\": ");
+  if (r->n > 0)
+    fprintf(fp, "%.0f", f->steps.x[r->start]);
+  else
+    fprintf(fp, "null");
+  fprintf(fp,
+          ", \"steady\": %s, \"samples\": %ld, \"samples_used\": %ld, \"sample_every\": %ld, "
+          "\"block_length\": %ld, \"plateau\": %s,\n",
+          r->steady ? "true" : "false", r->n, r->n - r->start, f->every, r->avg.block_len,
+          r->avg.plateau ? "true" : "false");
+  fprintf(fp, "    \"target_error\": ");
+  if (f->target > 0)
+    fprintf(fp, "%.10g, \"reached\": %s, ", f->target, f->reached ? "true" : "false");
+  else
+    fprintf(fp, "null, \"reached\": null, ");
+  fprintf(fp, "\"stopped_early\": %s, \"file\": \"%s\",\n", f->stopped_early ? "true" : "false",
+          s->flux.path);
+  fprintf(fp,
+          "    \"method\": \"%s\",\n    \"convention\": \"q = Q / A_total, A_total = the whole box "
+          "cross-section normal to the axis (solid included); Q = (1/L) sum_s sum_i v_i / n_s; G "
+          "= -dp/dx\"},\n",
+          flux_method);
+}
+
 int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *prof, FILE *out,
                       const char *json_path) {
+  const run_flux_t *flux = st->flux && st->flux->on ? st->flux : NULL;
   block_average_t b[STAT_COUNT];
   for (int k = 0; k < STAT_COUNT; k++) b[k] = block_average(st->s[k].x, st->s[k].n);
   const long samples = st->s[STAT_T].n;
@@ -86,6 +161,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
         "once, deepest %.3g rc)%s\n",
         st->penetration_bad_samples, st->penetration_samples, st->penetration_max,
         st->penetration_depth, st->penetration_bad_samples ? "  <-- NOT ZERO" : "");
+  if (flux) flux_text(out, flux);
   fprintf(out, "performance: %.2f M particle-steps/s (%.2f s in the step loop, %.2f s total)\n",
           pss / 1e6, st->loop_seconds, st->total_seconds);
   fflush(out);
@@ -137,6 +213,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
             "\"max_particles\": %ld, \"max_depth_rc\": %.6g},\n",
             st->penetration_samples, st->penetration_bad_samples, st->penetration_max,
             st->penetration_depth);
+  if (flux) flux_json(fp, flux, s);
   fprintf(fp,
           "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "
           "\"particles\": %ld, "

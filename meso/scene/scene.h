@@ -78,6 +78,9 @@ typedef struct {
   char patches[SCENE_PATH_LEN]; /* patch database file ("" = built and cached by mdpore)    */
   uint64_t patch_seed;          /* seed of the patch choice and of the database             */
   int strict; /* 1: a mobile particle inside a solid voxel stops the run (default: counted) */
+  /* geometry.fluid_region: when on, fluid only inside [fluid_lo, fluid_hi] (rc, box frame) */
+  int fluid_region;
+  double fluid_lo[3], fluid_hi[3];
 } scene_geometry_t;
 
 typedef struct {
@@ -102,6 +105,17 @@ typedef struct {
   int nbins;
   char path[SCENE_PATH_LEN];
 } scene_profile_t;
+
+/* Flux time series along one axis (output.flux; docs/scene-format.md): the superficial (Darcy)
+ * velocity q = Q / A_total of the counted species, sampled every `every` steps (0 = off). */
+typedef struct {
+  long every;
+  int axis;              /* 0, 1, 2 = x, y, z */
+  unsigned species_mask; /* bit s: species s is counted (default: every mobile species) */
+  double density; /* > 0: the fluid number density n of Q (output.flux.density); 0: the scene's
+                     own (fill or geometry.fluid_density) */
+  char path[SCENE_PATH_LEN];
+} scene_flux_t;
 
 /* Engine backends (meso/backend/<name>). */
 enum scene_backend { SCENE_BACKEND_CPU = 0, SCENE_BACKEND_CUDA = 1 };
@@ -136,6 +150,8 @@ typedef struct {
   scene_output_t snapshot;           /* HDF5 snapshot + XDMF sidecar                     */
   scene_output_t dump;               /* LAMMPS-style text dump                           */
   scene_output_t checkpoint;         /* atomic restart file                              */
+  scene_flux_t flux;                 /* flux (Darcy velocity) time series                */
+  double target_error;               /* run.target_error (0: none; needs output.flux)    */
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
   int progress;                      /* progress + ETA on stderr (default 1)             */
   char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */

@@ -420,7 +420,7 @@ static int parse_initial(ytree_t *t, yaml_node_t *n, scene_t *s) {
 }
 
 static int parse_run(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"dt", "steps", "seed", "vv_lambda", NULL};
+  static const char *const keys[] = {"dt", "steps", "seed", "vv_lambda", "target_error", NULL};
   TRY(yt_check_keys(t, n, "run", keys));
   yaml_node_t *v;
   if (!(v = yt_get(t, n, "dt")))
@@ -441,6 +441,13 @@ static int parse_run(ytree_t *t, yaml_node_t *n, scene_t *s) {
     TRY(yt_double(t, v, "run.vv_lambda", &s->vv_lambda));
     if (s->vv_lambda < 0 || s->vv_lambda > 1)
       return yt_error(t, v, "run.vv_lambda", "expected 0 <= lambda <= 1 (got %g)", s->vv_lambda);
+  }
+  if ((v = yt_get(t, n, "target_error"))) {
+    TRY(yt_double(t, v, "run.target_error", &s->target_error));
+    if (!(s->target_error > 0 && s->target_error < 1))
+      return yt_error(t, v, "run.target_error",
+                      "expected a relative error of q with 0 < E < 1, e.g. 0.02 (got %g)",
+                      s->target_error);
   }
   return 0;
 }
@@ -475,9 +482,92 @@ static int parse_periodic(ytree_t *t, yaml_node_t *n, const char *path, scene_ou
   return 0;
 }
 
+/* output.flux: {axis, every, file, species, density} (docs/scene-format.md). Checks what the scene
+ * alone can tell: the counted species are mobile, and a fluid density is known (from the fill,
+ * from geometry.fluid_density, or given). */
+static int parse_flux(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"axis", "every", "file", "species", "density", NULL};
+  static const char *const ext[] = {".csv", ".h5", NULL};
+  scene_flux_t *f = &s->flux;
+  TRY(yt_check_keys(t, n, "output.flux", keys));
+  yaml_node_t *v;
+  if ((v = yt_get(t, n, "axis"))) {
+    if ((f->axis = yt_enum(t, v, "output.flux.axis", axis_words)) < 0) return -1;
+  } else if (s->geometry.on) {
+    f->axis = s->geometry.flow_axis;
+  } else {
+    return yt_error(t, n, "output.flux.axis", "expected x, y or z: the flow axis (got nothing)");
+  }
+  /* every and file: the same rules as the other periodic outputs */
+  if (!(v = yt_get(t, n, "every")))
+    return yt_error(t, n, "output.flux.every", "expected an interval in steps (got nothing)");
+  TRY(yt_long(t, v, "output.flux.every", &f->every));
+  if (f->every < 1)
+    return yt_error(t, v, "output.flux.every", "expected an interval >= 1 step (got %ld)",
+                    f->every);
+  if (!(v = yt_get(t, n, "file")))
+    return yt_error(t, n, "output.flux.file", "expected a file name (got nothing)");
+  TRY(yt_string(t, v, "output.flux.file", f->path, SCENE_PATH_LEN));
+  const size_t L = strlen(f->path);
+  int ok = 0;
+  for (int i = 0; ext[i]; i++)
+    ok |= L > strlen(ext[i]) && !strcmp(f->path + L - strlen(ext[i]), ext[i]);
+  if (!ok)
+    return yt_error(t, v, "output.flux.file",
+                    "expected a file name ending in .csv or .h5 (got '%s')", f->path);
+  if ((v = yt_get(t, n, "species"))) {
+    TRY(yt_expect_seq(t, v, "output.flux.species"));
+    if (yt_seq_size(v) < 1)
+      return yt_error(t, v, "output.flux.species",
+                      "expected a list of mobile species names (got an empty list)");
+    for (int i = 0; i < yt_seq_size(v); i++) {
+      char sub[64], name[SCENE_NAME_LEN];
+      snprintf(sub, sizeof sub, "output.flux.species[%d]", i);
+      yaml_node_t *item = yt_seq_item(t, v, i);
+      TRY(yt_string(t, item, sub, name, sizeof name));
+      const int sp = scene_species_index(s, name);
+      if (sp < 0)
+        return yt_error(t, item, sub,
+                        "expected one of the species listed under 'species' (got '%s')", name);
+      if (s->species[sp].frozen)
+        return yt_error(t, item, sub, "expected a mobile species (got '%s', which is frozen)",
+                        name);
+      f->species_mask |= 1u << sp;
+    }
+  } else {
+    for (int sp = 0; sp < s->n_species; sp++)
+      if (!s->species[sp].frozen) f->species_mask |= 1u << sp;
+    if (!f->species_mask)
+      return yt_error(t, n, "output.flux",
+                      "expected a scene with a mobile species to count (got only frozen ones)");
+  }
+  if ((v = yt_get(t, n, "density"))) {
+    TRY(yt_double(t, v, "output.flux.density", &f->density));
+    if (!(f->density > 0))
+      return yt_error(t, v, "output.flux.density", "expected a number density > 0 (got %g)",
+                      f->density);
+  } else if (s->init.kind == INIT_FILL && s->init.n_fill > 0) {
+    for (int sp = 0; sp < s->n_species; sp++) {
+      if (!(f->species_mask >> sp & 1u)) continue;
+      int filled = 0;
+      for (int k = 0; k < s->init.n_fill; k++) filled |= s->init.fill[k].species == sp;
+      if (!filled)
+        return yt_error(t, n, "output.flux.density",
+                        "expected the fluid number density: species '%s' is counted but no "
+                        "initial.fill region holds it (got nothing)",
+                        s->species[sp].name);
+    }
+  } else if (!s->geometry.on) {
+    return yt_error(t, n, "output.flux.density",
+                    "expected the fluid number density n of the flux (the initial configuration, "
+                    "a LAMMPS data file, snapshot or checkpoint, does not give one) (got nothing)");
+  }
+  return 0;
+}
+
 static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"thermo",     "profile", "snapshot", "dump",
-                                     "checkpoint", "summary", "progress", NULL};
+  static const char *const keys[] = {"thermo",  "profile",  "snapshot", "dump", "checkpoint",
+                                     "summary", "progress", "flux",     NULL};
   TRY(yt_check_keys(t, n, "output", keys));
   static const char *const thermo_ext[] = {".csv", ".h5", NULL}, *const h5[] = {".h5", NULL};
   yaml_node_t *v;
@@ -522,6 +612,7 @@ static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
       return yt_error(t, v, "output.profile.file", "expected a file name (got nothing)");
     TRY(yt_string(t, w, "output.profile.file", p->path, SCENE_PATH_LEN));
   }
+  if ((v = yt_get(t, n, "flux"))) TRY(parse_flux(t, v, s));
   return 0;
 }
 
@@ -600,6 +691,10 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   if (s->init.temperature < 0) s->init.temperature = s->kT;
 
   if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));
+  if (s->target_error > 0 && s->flux.every == 0)
+    return yt_error(t, node_at(t, "run.target_error"), "run.target_error",
+                    "expected output.flux as well: the target is the relative error of the flux q "
+                    "(got no output.flux)");
   return check_effects(t, cat, s);
 }
 

@@ -104,6 +104,9 @@ void cuda_sim_list_stats(const cuda_sim_t *g, long *builds, long *steps, double 
 /* Local sums for sim_thermo in double, in the CPU path's order of quantities: N_mobile, KE, px, py,
  * pz, sum m v_a v_b (6), pair virial (6). 0 or -1. */
 int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[17]);
+/* Local sums for sim_flux_sums along `axis`: per species s, mobile count sums[s] and sum of
+ * v_axis sums[MESO_MAX_SPECIES + s]. 0 or -1. */
+int cuda_sim_flux_sums(cuda_sim_t *g, int axis, double sums[2 * MESO_MAX_SPECIES]);
 
 /* 1 when the halo steps overlap interior work with the host exchanges. */
 int cuda_sim_overlap(const cuda_sim_t *g);

@@ -33,6 +33,7 @@ int cuda_glue_predict(sim_state_t *st);
 int cuda_glue_kick(sim_state_t *st);
 int cuda_glue_check(sim_state_t *st);
 int cuda_glue_thermo_sums(sim_state_t *st, double sums[17]);
+int cuda_glue_flux_sums(sim_state_t *st, int axis, double sums[2 * MESO_MAX_SPECIES]);
 void cuda_glue_sync_host(sim_state_t *st);
 void cuda_glue_want_pressure(sim_state_t *st, int on);
 void cuda_glue_rebuild_lists(sim_state_t *st);

@@ -174,4 +174,5 @@ const backend_ops_t cuda_ops_ranks = {
     .sync_host = cuda_glue_sync_host,
     .want_pressure = cuda_glue_want_pressure,
     .rebuild_lists = cuda_glue_rebuild_lists,
+    .flux_sums = cuda_glue_flux_sums,
 };

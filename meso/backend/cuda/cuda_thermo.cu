@@ -1,6 +1,7 @@
 /* Device reductions for sim_thermo, in double and in a fixed order (deterministic): a fixed grid
  * strides over the particles (and over the force pass's per-block virial rows), one block then sums
- * the grid's rows. Quantities: N_mobile, KE, momentum (3), sum m v_a v_b (6), pair virial (6). */
+ * the grid's rows. Quantities: N_mobile, KE, momentum (3), sum m v_a v_b (6), pair virial (6).
+ * The flux output's sums (sim_flux_sums) the same way: per species, mobile count and sum v_axis. */
 #include "cuda_state.cuh"
 
 #include <cub/block/block_reduce.cuh>
@@ -37,14 +38,45 @@ __global__ void __launch_bounds__(256)
   }
 }
 
-__global__ void __launch_bounds__(256) k_thermo_final(int rows, double *part) {
+/* Sums the first `nsum` of the THERMO_SUMS columns of the grid's rows into the last row. */
+__global__ void __launch_bounds__(256) k_thermo_final(int rows, int nsum, double *part) {
   typedef cub::BlockReduce<double, 256> reduce_t;
   __shared__ typename reduce_t::TempStorage tmp;
-  for (int k = 0; k < THERMO_SUMS; k++) {
+  for (int k = 0; k < nsum; k++) {
     double s = 0.0;
     for (int r = threadIdx.x; r < rows; r += blockDim.x) s += part[THERMO_SUMS * r + k];
     const double t = reduce_t(tmp).Sum(s);
     if (threadIdx.x == 0) part[THERMO_SUMS * THERMO_BLOCKS + k] = t;
+    __syncthreads();
+  }
+}
+
+/* Flux sums in the thermo rows (columns 0..FLUX_SUMS-1): per species s, mobile count (column s)
+ * and sum v_axis (column MESO_MAX_SPECIES + s). */
+#define FLUX_SUMS (2 * MESO_MAX_SPECIES)
+static_assert(FLUX_SUMS <= THERMO_SUMS, "flux sums must fit the thermo rows");
+
+__global__ void __launch_bounds__(256)
+    k_flux_part(const struct dev_params q, int n, struct dev_fields p, int axis, double *part) {
+  double s[FLUX_SUMS];
+  for (int k = 0; k < FLUX_SUMS; k++) s[k] = 0.0;
+  const double *va = p.v[axis];
+  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < n; i += gridDim.x * blockDim.x) {
+    const int sp = p.species[i];
+    if (!q.mobile[sp]) continue;
+      /* unrolled species test keeps s[] in registers */
+#pragma unroll
+    for (int k = 0; k < MESO_MAX_SPECIES; k++)
+      if (k == sp) {
+        s[k] += 1.0;
+        s[MESO_MAX_SPECIES + k] += va[i];
+      }
+  }
+  typedef cub::BlockReduce<double, 256> reduce_t;
+  __shared__ typename reduce_t::TempStorage tmp;
+  for (int k = 0; k < FLUX_SUMS; k++) {
+    const double t = reduce_t(tmp).Sum(s[k]);
+    if (threadIdx.x == 0) part[THERMO_SUMS * blockIdx.x + k] = t;
     __syncthreads();
   }
 }
@@ -64,8 +96,16 @@ extern "C" int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[THERMO_SUMS]) {
   }
   k_thermo_part<<<THERMO_BLOCKS, 256>>>(g->prm, g->n, g->a, g->n_force_blocks, g->block_virial,
                                         g->thermo_part);
-  k_thermo_final<<<1, 256>>>(THERMO_BLOCKS, g->thermo_part);
+  k_thermo_final<<<1, 256>>>(THERMO_BLOCKS, THERMO_SUMS, g->thermo_part);
   return cuda_check(cudaMemcpy(sums, g->thermo_part + THERMO_SUMS * THERMO_BLOCKS,
                                THERMO_SUMS * sizeof(double), cudaMemcpyDeviceToHost),
                     "thermo");
+}
+
+extern "C" int cuda_sim_flux_sums(cuda_sim_t *g, int axis, double sums[2 * MESO_MAX_SPECIES]) {
+  k_flux_part<<<THERMO_BLOCKS, 256>>>(g->prm, g->n, g->a, axis, g->thermo_part);
+  k_thermo_final<<<1, 256>>>(THERMO_BLOCKS, FLUX_SUMS, g->thermo_part);
+  return cuda_check(cudaMemcpy(sums, g->thermo_part + THERMO_SUMS * THERMO_BLOCKS,
+                               FLUX_SUMS * sizeof(double), cudaMemcpyDeviceToHost),
+                    "flux");
 }

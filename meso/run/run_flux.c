@@ -1,0 +1,104 @@
+/* The flux output and the early stop on its error (see run_flux.h). */
+#include "run/run_flux.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank) {
+  memset(rf, 0, sizeof *rf);
+  rf->log.file = rf->log.dset = -1;
+  const scene_t *s = sim_scene(sim);
+  if (s->flux.every <= 0) return 0;
+  rf->on = 1;
+  rf->every = s->flux.every;
+  rf->target = s->target_error;
+  double count[SCENE_MAX_SPECIES], vsum[SCENE_MAX_SPECIES];
+  char err[512] = "";
+  int bad = sim_flux_sums(sim, s->flux.axis, count, vsum) ||
+            flux_def_init(&rf->def, s, count, err, sizeof err);
+  if (bad) {
+    if (rank == 0 && err[0]) fprintf(stderr, "%s: %s\n", s->file, err);
+    return -1;
+  }
+  if (rank == 0)
+    bad = flux_log_open(&rf->log, s, &rf->def, s->flux.path, restart ? first : -1, &rf->steps,
+                        &rf->q) != 0;
+  rf->samples = rf->q.n;
+  MPI_Comm comm = sim_comm(sim);
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
+  MPI_Bcast(&rf->samples, 1, MPI_LONG, 0, comm);
+  rf->next_check = rf->samples > FLUX_FIRST_CHECK ? rf->samples : FLUX_FIRST_CHECK;
+  return bad ? -1 : 0;
+}
+
+int run_flux_due(const run_flux_t *rf, long step) {
+  return rf->on && step % rf->every == 0;
+}
+
+int run_flux_check_at(const run_flux_t *rf, long step) {
+  return rf->on && rf->target > 0 && run_flux_due(rf, step) && rf->samples + 1 >= rf->next_check;
+}
+
+int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
+  double count[SCENE_MAX_SPECIES], vsum[SCENE_MAX_SPECIES];
+  const scene_t *s = sim_scene(sim);
+  const int check = run_flux_check_at(rf, step);
+  if (sim_flux_sums(sim, rf->def.axis, count, vsum)) return -1;
+  flux_sample_t r;
+  flux_sample(&rf->def, step, step * s->dt, count, vsum, &r);
+  rf->samples++;
+  if (rank == 0) {
+    flux_log_row(&rf->log, &r);
+    series_push(&rf->steps, (double)step);
+    series_push(&rf->q, r.q);
+  }
+  if (!check) return 0;
+  /* The next check once the series has grown by 5% (at least 10 samples): the analysis stays a
+   * small part of the run however long it gets. */
+  const long grow = rf->samples / 20 > 10 ? rf->samples / 20 : 10;
+  rf->next_check = rf->samples + grow;
+  int stop = 0;
+  if (rank == 0) {
+    steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
+    stop = steady_state_converged(&rf->result, rf->target);
+  }
+  MPI_Bcast(&stop, 1, MPI_INT, 0, sim_comm(sim));
+  if (stop) {
+    rf->reached = rf->stopped_early = 1;
+    rf->stop_step = step;
+    if (rank == 0)
+      fprintf(stderr,
+              "mdpore: flux: relative error of q %.3g <= run.target_error %g at step %ld (steady "
+              "from step %.0f, %ld samples used): stopping\n",
+              rf->result.rel_err, rf->target, step, rf->steps.x[rf->result.start],
+              rf->result.n - rf->result.start);
+  }
+  return stop;
+}
+
+void run_flux_finish(run_flux_t *rf, int rank) {
+  if (!rf->on || rank != 0) return;
+  steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
+  if (rf->target > 0 && !rf->reached) rf->reached = steady_state_converged(&rf->result, rf->target);
+  if (rf->target <= 0 || rf->reached) return;
+  const steady_state_t *r = &rf->result;
+  const char *why = !r->steady ? "no steady state found (MSER-5: the flux still drifts)"
+                    : !r->avg.plateau
+                        ? "the blocked error has no plateau yet (the series is short for its "
+                          "correlation time)"
+                    : r->n - r->start < STEADY_MIN_SAMPLES ? "too few steady samples"
+                                                           : "the error is still above it";
+  fprintf(stderr,
+          "mdpore: flux: run.target_error %g NOT reached within the step budget: relative error "
+          "of q %.3g after %ld samples (%s). Run longer (--steps) or sample more often.\n",
+          rf->target, r->rel_err, r->n, why);
+}
+
+void run_flux_close(run_flux_t *rf) {
+  if (!rf->on) return;
+  flux_log_close(&rf->log);
+  series_free(&rf->steps);
+  series_free(&rf->q);
+  rf->on = 0;
+}

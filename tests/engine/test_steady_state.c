@@ -1,0 +1,175 @@
+/* The flux's steady-state analysis (analysis/steady_state.c, analysis/block_average.c) on synthetic
+ * series with known answers:
+ *  - white noise: the plateau error equals sigma / sqrt(n) within 10%, the mean within 4 errors,
+ *    MSER drops (almost) nothing;
+ *  - AR(1) noise x_t = phi x_{t-1} + sigma e_t with phi = 0.9 (integrated autocorrelation time
+ *    tau_int = (1 + phi) / (2 (1 - phi)) = 9.5 samples): over 40 seeds the mean ratio of the
+ *    plateau error to the exact sigma / ((1 - phi) sqrt(n)) lies within 0.85..1.1, tau_int read
+ *    from (err_B / err_1)^2 / 2 within 20%, the true mean inside 2 errors in >= 85% of the seeds
+ *    (the naive error of correlated samples, 1/sqrt(2 tau_int) of it, would fail this);
+ *  - AR(1) with phi = 0.995 (tau_int ~ 200) over 600 samples: no plateau (too short), not
+ *    converged whatever the target;
+ *  - a transient: a linear ramp from mu + 20 sigma down to mu over the first 3000 of 12000 samples,
+ *    then AR(1) noise: MSER-5 truncates within 2400..3300 and the mean after it matches mu within 3
+ *    errors; an exponential relaxation (time constant 500 samples) is cut after 3 time constants
+ *    at most and leaves a bias below 2 errors;
+ *  - a series that drifts over its whole length: MSER says "not steady";
+ *  - steady_state_converged: met for a long steady series at a loose target, not at a target
+ *    below its error, not for too few samples. */
+#include "analysis/steady_state.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define CHECK(cond, ...)                                                                           \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                         \
+      fprintf(stderr, __VA_ARGS__);                                                                \
+      fprintf(stderr, "\n");                                                                       \
+      return 1;                                                                                    \
+    }                                                                                              \
+  } while (0)
+
+static uint64_t next(uint64_t *s) {
+  uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+static double gauss(uint64_t *s) {
+  const double u = ((next(s) >> 11) + 0.5) * 0x1.0p-53, v = ((next(s) >> 11) + 0.5) * 0x1.0p-53;
+  return sqrt(-2.0 * log(u)) * cos(2.0 * M_PI * v);
+}
+
+/* x[i] = mu + AR(1) noise, started from its stationary distribution. */
+static void ar1(double *x, long n, double mu, double phi, double sigma, uint64_t seed) {
+  double e = sigma / sqrt(1.0 - phi * phi) * gauss(&seed);
+  for (long i = 0; i < n; i++) {
+    x[i] = mu + e;
+    e = phi * e + sigma * gauss(&seed);
+  }
+}
+
+static int white_noise(void) {
+  const long n = 20000;
+  double *x = malloc(n * sizeof *x);
+  ar1(x, n, 5.0, 0.0, 1.0, 11);
+  steady_state_t r;
+  steady_state_analyse(x, n, &r);
+  const double se = 1.0 / sqrt((double)(n - r.start));
+  printf("white noise: start %ld, mean %.5f +- %.5f (exact %.5f), block %ld, plateau %d\n", r.start,
+         r.avg.mean, r.avg.err, se, r.avg.block_len, r.avg.plateau);
+  CHECK(r.steady && r.start <= n / 10, "white noise: truncated %ld of %ld", r.start, n);
+  CHECK(r.avg.plateau, "white noise: no plateau");
+  CHECK(fabs(r.avg.err / se - 1.0) < 0.1, "white noise: error %g, exact %g", r.avg.err, se);
+  CHECK(fabs(r.avg.mean - 5.0) < 4 * r.avg.err, "white noise: mean %g", r.avg.mean);
+  free(x);
+  return 0;
+}
+
+static int correlated_noise(void) {
+  const long n = 1L << 15;
+  const double phi = 0.9, sigma = 1.0, tau = (1 + phi) / (2 * (1 - phi));
+  const double se = sigma / ((1 - phi) * sqrt((double)n)); /* exact for large n */
+  double *x = malloc(n * sizeof *x), ratio = 0, tau_est = 0;
+  int covered = 0, seeds = 40;
+  for (int k = 0; k < seeds; k++) {
+    ar1(x, n, 1.0, phi, sigma, 1000 + k);
+    const block_average_t b = block_average_plateau(x, n);
+    CHECK(b.plateau, "AR(1) seed %d: no plateau", k);
+    block_level_t lv[64];
+    const int nl = block_levels(x, n, 2, lv, 64);
+    CHECK(nl > 10, "AR(1): %d levels", nl);
+    ratio += b.err / se;
+    tau_est += 0.5 * (b.err / lv[0].err) * (b.err / lv[0].err);
+    covered += fabs(b.mean - 1.0) < 2 * b.err;
+    if (k == 0) {
+      CHECK(lv[0].err < 0.3 * b.err, "AR(1): the naive error %g should be far below %g", lv[0].err,
+            b.err);
+    }
+  }
+  ratio /= seeds;
+  tau_est /= seeds;
+  printf("AR(1) phi %.2f: <err / exact> = %.3f, tau_int %.2f (exact %.2f), mean within 2 err in "
+         "%d of %d\n",
+         phi, ratio, tau_est, tau, covered, seeds);
+  CHECK(ratio > 0.85 && ratio < 1.1, "AR(1): mean ratio err / exact = %g", ratio);
+  CHECK(fabs(tau_est / tau - 1) < 0.2, "AR(1): tau_int %g, exact %g", tau_est, tau);
+  CHECK(covered >= (int)(0.85 * seeds), "AR(1): mean inside 2 errors in %d of %d", covered, seeds);
+
+  /* Too short for its correlation time: no plateau, never converged. */
+  const long m = 600;
+  ar1(x, m, 1.0, 0.995, 0.1, 5);
+  steady_state_t r;
+  steady_state_analyse(x, m, &r);
+  printf("AR(1) phi 0.995, %ld samples: plateau %d, rel. error %.3g\n", m, r.avg.plateau,
+         r.rel_err);
+  CHECK(!r.avg.plateau, "short correlated series: a plateau was claimed (block %ld)",
+        r.avg.block_len);
+  CHECK(!steady_state_converged(&r, 0.5), "short correlated series: converged");
+  free(x);
+  return 0;
+}
+
+static int transient(void) {
+  const long n = 12000, t0 = 3000;
+  const double mu = 2.0, sigma = 0.1;
+  double *x = malloc(n * sizeof *x);
+  /* linear ramp from mu + 20 sigma (in units of the stationary spread) down to mu at t0 */
+  ar1(x, n, mu, 0.5, sigma, 77);
+  const double amp = 20 * sigma / sqrt(1 - 0.25);
+  for (long i = 0; i < t0; i++) x[i] += amp * (1.0 - (double)i / t0);
+  steady_state_t r;
+  steady_state_analyse(x, n, &r);
+  printf("ramp to step %ld: MSER-5 start %ld (steady %d), mean %.5f +- %.5f (mu %.5f)\n", t0,
+         r.start, r.steady, r.avg.mean, r.avg.err, mu);
+  CHECK(r.steady, "ramp: not steady");
+  CHECK(r.start >= t0 - 600 && r.start <= t0 + 300, "ramp: truncation %ld, transient ends at %ld",
+        r.start, t0);
+  CHECK(fabs(r.avg.mean - mu) < 3 * r.avg.err, "ramp: mean %g +- %g, mu %g", r.avg.mean, r.avg.err,
+        mu);
+  /* exponential relaxation towards mu */
+  const double tc = 500;
+  ar1(x, n, mu, 0.5, sigma, 78);
+  for (long i = 0; i < n; i++) x[i] += amp * exp(-(double)i / tc);
+  steady_state_analyse(x, n, &r);
+  printf("relaxation (time constant %.0f): MSER-5 start %ld, mean %.5f +- %.5f\n", tc, r.start,
+         r.avg.mean, r.avg.err);
+  CHECK(r.steady && r.start >= tc && r.start <= 6 * tc, "relaxation: truncation %ld", r.start);
+  CHECK(fabs(r.avg.mean - mu) < 2 * r.avg.err + 1e-12, "relaxation: bias %g, error %g",
+        r.avg.mean - mu, r.avg.err);
+  /* a drift over the whole series: no steady part */
+  ar1(x, n, mu, 0.5, sigma, 79);
+  for (long i = 0; i < n; i++) x[i] += amp * (1.0 - (double)i / n);
+  int steady;
+  const long d = mser_truncation(x, n, STEADY_MSER_BATCH, &steady);
+  printf("drift over the whole series: MSER-5 start %ld, steady %d\n", d, steady);
+  CHECK(!steady, "drift: MSER claims a steady state from %ld", d);
+  free(x);
+  return 0;
+}
+
+static int convergence(void) {
+  const long n = 4000;
+  double *x = malloc(n * sizeof *x);
+  ar1(x, n, 1.0, 0.5, 0.1, 3); /* SE of the mean ~ 0.2 / sqrt(4000) = 0.003 */
+  steady_state_t r;
+  steady_state_analyse(x, n, &r);
+  printf("convergence: rel. error %.4g\n", r.rel_err);
+  CHECK(steady_state_converged(&r, 0.01), "converged at 1%%: rel. error %g", r.rel_err);
+  CHECK(!steady_state_converged(&r, 0.5 * r.rel_err), "converged below its own error");
+  steady_state_analyse(x, 60, &r);
+  CHECK(!steady_state_converged(&r, 0.5), "converged with %ld samples", r.n);
+  free(x);
+  return 0;
+}
+
+int main(void) {
+  int fails = white_noise() + correlated_noise() + transient() + convergence();
+  printf(fails ? "FAILED\n" : "ok\n");
+  return fails ? 1 : 0;
+}
