@@ -5,7 +5,15 @@
  * Positions are uniform in the voxel, from a Philox stream keyed on (run seed, voxel, particle,
  * try); a position closer than min_wall_distance to a wall particle is redrawn, at most
  * IMAGE_FLUID_TRIES times, then that particle is dropped (and counted). All of it is a function of
- * the voxel index alone, so independent of the decomposition. */
+ * the voxel index alone, so independent of the decomposition.
+ *
+ * With geometry.fluid_region (a box in rc) only the part of each filled pore voxel inside the box
+ * gets fluid: voxel v holds the fraction w_v of its volume there (1 inside, 0 outside: those become
+ * empty pore voxels), its mean is m w_v (m = fluid_density x voxel volume), it gets floor(m w_v)
+ * plus one more for exactly round(fluid_density x sum_v w_v voxel volume) - sum_v floor(m w_v)
+ * voxels, drawn with probabilities proportional to frac(m w_v) (the smallest keys -ln(u_v) /
+ * frac(m w_v), u_v the same Philox number as above: Efraimidis & Spirakis' weighted sampling
+ * without replacement), and its positions are uniform in the voxel's part inside the box. */
 #include "build/image_walls.h"
 
 #include <Random123/philox.h>
@@ -91,10 +99,39 @@ static int clear_of_walls(const image_walls_t *g, const int ijk[3], const double
   return 1;
 }
 
+/* The part of voxel ijk inside geometry.fluid_region: [a[d], b[d]) per axis (full[d] = 1 where
+ * the voxel lies wholly inside along d) and the fraction of the voxel's volume it holds (exactly 1
+ * or 0 for voxels wholly inside or outside). Without a region: the whole voxel, 1. */
+static double region_part(const image_walls_t *g, const int ijk[3], double a[3], double b[3],
+                          int full[3]) {
+  const scene_geometry_t *geo = &g->scene->geometry;
+  double w = 1;
+  for (int d = 0; d < 3; d++) {
+    const double lo = g->lo[d] + ijk[d] * g->h, hi = g->lo[d] + (ijk[d] + 1) * g->h;
+    full[d] = !geo->fluid_region || (geo->fluid_lo[d] <= lo && hi <= geo->fluid_hi[d]);
+    a[d] = full[d] ? lo : fmax(lo, geo->fluid_lo[d]);
+    b[d] = full[d] ? hi : fmin(hi, geo->fluid_hi[d]);
+    if (!full[d]) w *= b[d] > a[d] ? (b[d] - a[d]) / g->h : 0;
+  }
+  return w;
+}
+
+static int voxel_ijk_base(const image_walls_t *g, int64_t v, int ijk[3], double a[3], double b[3],
+                          int full[3]) {
+  ijk[0] = (int)(v % g->n[0]);
+  ijk[1] = (int)(v / g->n[0] % g->n[1]);
+  ijk[2] = (int)(v / ((int64_t)g->n[0] * g->n[1]));
+  const double w = region_part(g, ijk, a, b, full);
+  if (w == 1) return g->fluid_base;
+  const double mean = g->scene->geometry.fluid_density * g->h * g->h * g->h;
+  return (int)floor(mean * w);
+}
+
 int image_fluid_voxel(const image_walls_t *g, int64_t v, double *x, long *dropped, long *redrawn) {
-  const int target = g->fluid_base + ((g->cls[v] & IMAGE_VOXEL_EXTRA) ? 1 : 0);
-  const int ijk[3] = {(int)(v % g->n[0]), (int)(v / g->n[0] % g->n[1]),
-                      (int)(v / ((int64_t)g->n[0] * g->n[1]))};
+  int ijk[3], full[3];
+  double a[3], b[3];
+  const int target =
+      voxel_ijk_base(g, v, ijk, a, b, full) + ((g->cls[v] & IMAGE_VOXEL_EXTRA) ? 1 : 0);
   const uint64_t seed = g->scene->seed;
   int n = 0;
   long tries = 0;
@@ -105,8 +142,10 @@ int image_fluid_voxel(const image_walls_t *g, int64_t v, double *x, long *droppe
       const philox4x32_ctr_t r =
           draw(seed, v, (uint32_t)k * IMAGE_FLUID_TRIES + (uint32_t)t, TAG_FLUID);
       double p[3];
-      for (int d = 0; d < 3; d++)
-        p[d] = g->lo[d] + (ijk[d] + ((double)r.v[d] + 0.5) * (1.0 / 4294967296.0)) * g->h;
+      for (int d = 0; d < 3; d++) {
+        const double u = ((double)r.v[d] + 0.5) * (1.0 / 4294967296.0);
+        p[d] = full[d] ? g->lo[d] + (ijk[d] + u) * g->h : a[d] + u * (b[d] - a[d]);
+      }
       if (!clear_of_walls(g, ijk, p)) continue;
       memcpy(x + 3 * n++, p, sizeof p);
       placed = 1;
@@ -122,15 +161,92 @@ struct image_walls_cache {
   double x[]; /* [3 * (fluid_base + 1)] */
 };
 
+typedef struct {
+  double key;
+  long f;
+} weighted_key_t;
+
+static int by_key(const void *p, const void *q) {
+  const weighted_key_t *a = p, *b = q;
+  return a->key < b->key ? -1 : a->key > b->key ? 1 : (a->f > b->f) - (a->f < b->f);
+}
+
+/* geometry.fluid_region: the filled pore voxels wholly outside it become empty, the others get
+ * floor(m w_v) particles and the IMAGE_VOXEL_EXTRA bit as described at the top; fills the fluid
+ * target, the volume and the region counts. 0 or -1 + message. */
+static int region_counts(image_walls_t *g, char *err, size_t errlen) {
+  const scene_t *s = g->scene;
+  const scene_geometry_t *geo = &s->geometry;
+  image_walls_counts_t *ct = &g->count;
+  const double mean = geo->fluid_density * g->h * g->h * g->h;
+  const long long before = ct->fluid_voxels;
+  double volume = 0;
+  long base_sum = 0, n_frac = 0;
+  ct->region_outside = ct->region_partial = 0;
+  for (int64_t v = 0; v < (int64_t)ct->voxels; v++) {
+    if ((g->cls[v] & IMAGE_VOXEL_CLASS) != IMAGE_VOXEL_FLUID) continue;
+    int ijk[3], full[3];
+    double a[3], b[3];
+    const int base = voxel_ijk_base(g, v, ijk, a, b, full);
+    const double w = region_part(g, ijk, a, b, full);
+    if (w <= 0) {
+      g->cls[v] = IMAGE_VOXEL_EMPTY;
+      ct->fluid_voxels--, ct->region_outside++;
+      continue;
+    }
+    ct->region_partial += w < 1;
+    volume += w * g->h * g->h * g->h;
+    base_sum += base;
+    n_frac += mean * w - base > 0;
+  }
+  ct->fluid_volume = volume;
+  if (ct->fluid_voxels == 0) {
+    snprintf(err, errlen,
+             "%s: key 'geometry.fluid_region': expected a region that holds some of the %lld "
+             "filled pore voxels (got [%g, %g] x [%g, %g] x [%g, %g] rc, none of them)",
+             s->file, before, geo->fluid_lo[0], geo->fluid_hi[0], geo->fluid_lo[1],
+             geo->fluid_hi[1], geo->fluid_lo[2], geo->fluid_hi[2]);
+    return -1;
+  }
+  ct->fluid_target = lround(geo->fluid_density * volume);
+  long extra = ct->fluid_target - base_sum;
+  extra = extra < 0 ? 0 : extra > n_frac ? n_frac : extra;
+  weighted_key_t *key = n_frac ? malloc((size_t)n_frac * sizeof *key) : NULL;
+  if (n_frac && !key) {
+    snprintf(err, errlen, "%s: geometry: out of memory for %ld fluid voxels", s->file, n_frac);
+    return -1;
+  }
+  long k = 0;
+  for (int64_t v = 0; v < (int64_t)ct->voxels; v++) {
+    if ((g->cls[v] & IMAGE_VOXEL_CLASS) != IMAGE_VOXEL_FLUID) continue;
+    int ijk[3], full[3];
+    double a[3], b[3];
+    const int base = voxel_ijk_base(g, v, ijk, a, b, full);
+    const double frac = mean * region_part(g, ijk, a, b, full) - base;
+    if (!(frac > 0)) continue;
+    const double u = ((double)(remainder_key(s->seed, v) >> 11) + 1) * (1.0 / 9007199254740992.0);
+    key[k].key = -log(u) / frac;
+    key[k++].f = (long)v;
+  }
+  qsort(key, (size_t)n_frac, sizeof *key, by_key);
+  for (k = 0; k < extra; k++) g->cls[key[k].f] |= IMAGE_VOXEL_EXTRA;
+  free(key);
+  return 0;
+}
+
 int image_fluid_count(image_walls_t *g, char *err, size_t errlen) {
   const scene_t *s = g->scene;
   const scene_geometry_t *geo = &s->geometry;
   image_walls_counts_t *ct = &g->count;
-  const long nf = (long)ct->fluid_voxels;
   const double mean = geo->fluid_density * g->h * g->h * g->h;
-  ct->fluid_target = lround(mean * (double)nf);
   g->fluid_base = (int)floor(mean);
-  long extra = ct->fluid_target - (long)g->fluid_base * nf;
+  if (geo->fluid_region && region_counts(g, err, errlen)) return -1;
+  const long nf = (long)ct->fluid_voxels;
+  if (!geo->fluid_region) {
+    ct->fluid_target = lround(mean * (double)nf);
+    ct->fluid_volume = (double)nf * g->h * g->h * g->h;
+  }
+  long extra = geo->fluid_region ? 0 : ct->fluid_target - (long)g->fluid_base * nf;
   extra = extra < 0 ? 0 : extra > nf ? nf : extra;
   g->n_fluid_vox = nf;
   g->fluid_vox = malloc(((size_t)nf + 1) * sizeof *g->fluid_vox);

@@ -488,7 +488,14 @@ void image_walls_report(const image_walls_t *g, FILE *out) {
           ct->clusters, ax[geo->flow_axis], ct->spanning, ct->spanning_voxels, ct->joined,
           ct->joined_voxels, ct->isolated, ct->isolated_voxels, ct->dead_end, ct->dead_end_voxels,
           others, geo->isolated_pores == ISOLATED_FILL ? "fill" : "empty");
-  const double pv = (double)ct->fluid_voxels * vox;
+  const double pv = ct->fluid_volume;
+  if (geo->fluid_region)
+    fprintf(out,
+            "  fluid_region: [%g, %g] x [%g, %g] x [%g, %g] rc: %lld filled pore voxels inside "
+            "(%lld of them partly), %lld outside left empty\n",
+            geo->fluid_lo[0], geo->fluid_hi[0], geo->fluid_lo[1], geo->fluid_hi[1],
+            geo->fluid_lo[2], geo->fluid_hi[2], ct->fluid_voxels, ct->region_partial,
+            ct->region_outside);
   fprintf(out,
           "  fluid: %s %ld particles in %lld pore voxels (%g rc^3): target %ld = round(%g x %g), "
           "%ld dropped (no place %g rc from every wall particle in %d tries; %ld positions "

@@ -56,6 +56,10 @@ typedef struct {
   long fluid_dropped;     /* particles that found no place min_wall_distance from walls */
   long fluid_redrawn;     /* positions drawn again (too near a wall particle)           */
   long fluid_particles;   /* fluid_target - fluid_dropped                              */
+  /* the filled pore volume (rc^3): with geometry.fluid_region, its part inside the region; the
+   * region's filled pore voxels wholly outside it (left empty) and partly inside it */
+  double fluid_volume;
+  long long region_outside, region_partial;
 } image_walls_counts_t;
 
 typedef struct image_walls_cache image_walls_cache_t;

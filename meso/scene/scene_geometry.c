@@ -36,11 +36,48 @@ static int species_of(ytree_t *t, yaml_node_t *m, const char *key, const scene_t
   return 0;
 }
 
+/* geometry.fluid_region: {lo: [x, y, z], hi: [x, y, z]} in rc, the box frame; an axis-aligned box
+ * inside the scene's box (parsed before `geometry`) with hi > lo on every axis. */
+static int parse_fluid_region(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"lo", "hi", NULL};
+  scene_geometry_t *g = &s->geometry;
+  TRY(yt_expect_map(t, n, "geometry.fluid_region"));
+  TRY(yt_check_keys(t, n, "geometry.fluid_region", keys));
+  yaml_node_t *lo = yt_get(t, n, "lo"), *hi = yt_get(t, n, "hi");
+  if (!lo || !hi)
+    return yt_error(t, n, lo ? "geometry.fluid_region.hi" : "geometry.fluid_region.lo",
+                    "expected both corners of the region, {lo: [x, y, z], hi: [x, y, z]} in rc "
+                    "(got no '%s')",
+                    lo ? "hi" : "lo");
+  TRY(yt_vec3(t, lo, "geometry.fluid_region.lo", g->fluid_lo));
+  TRY(yt_vec3(t, hi, "geometry.fluid_region.hi", g->fluid_hi));
+  for (int d = 0; d < 3; d++) {
+    const double tol = 1e-9 * (s->box_hi[d] - s->box_lo[d]);
+    if (!(g->fluid_hi[d] > g->fluid_lo[d]))
+      return yt_error(t, hi, "geometry.fluid_region.hi",
+                      "expected hi > lo on every axis (got hi %c = %g <= lo %c = %g)", "xyz"[d],
+                      g -> fluid_hi[d], "xyz"[d], g -> fluid_lo[d]);
+    const int lo_out = !(g->fluid_lo[d] >= s->box_lo[d] - tol);
+    if (lo_out || !(g->fluid_hi[d] <= s->box_hi[d] + tol))
+      return yt_error(t, lo_out ? lo : hi,
+                      lo_out ? "geometry.fluid_region.lo" : "geometry.fluid_region.hi",
+                      "expected a region inside the box, %g <= %c <= %g (got %s %c = %g)",
+                      s->box_lo[d], "xyz"[d], s -> box_hi[d], lo_out ? "lo" : "hi", "xyz"[d],
+                      lo_out ? g->fluid_lo[d] : g->fluid_hi[d]);
+  }
+  g->fluid_region = 1;
+  return 0;
+}
+
 int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {
-      "image",          "labels",         "rc_per_voxel", "voxels_per_rc", "axis_map",
-      "flow_axis",      "wall_thickness", "wall_density", "fluid_density", "min_wall_distance",
-      "isolated_pores", "species",        "patches",      "strict",        NULL};
+  static const char *const keys[] = {"image",          "labels",
+                                     "rc_per_voxel",   "voxels_per_rc",
+                                     "axis_map",       "flow_axis",
+                                     "wall_thickness", "wall_density",
+                                     "fluid_density",  "min_wall_distance",
+                                     "isolated_pores", "species",
+                                     "patches",        "strict",
+                                     "fluid_region",   NULL};
   TRY(yt_check_keys(t, n, "geometry", keys));
   scene_geometry_t *g = &s->geometry;
   memset(g, 0, sizeof *g);
@@ -130,6 +167,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
                       s->species[walls[k]].name);
   }
   if ((v = yt_get(t, n, "strict"))) TRY(yt_bool(t, v, "geometry.strict", &g->strict));
+  if ((v = yt_get(t, n, "fluid_region"))) TRY(parse_fluid_region(t, v, s));
   if ((v = yt_get(t, n, "patches"))) {
     static const char *const pk[] = {"file", "seed", NULL};
     TRY(yt_check_keys(t, v, "geometry.patches", pk));

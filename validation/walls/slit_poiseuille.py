@@ -66,26 +66,10 @@ import tempfile
 import time
 
 import numpy as np
-import yaml
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "engine"))
-import mdval  # noqa: E402
-
-RC_PER_VOXEL = 0.5
-MU_FALLBACK = (5.41, 0.007)  # validation/results/engine/viscosity (mdpd row), README closing notes
-
-
-def mu_reference():
-    """(mu, err, source) of the mDPD A = -40 viscosity measured by validation/engine/viscosity.py."""
-    path = os.path.join(mdval.ROOT, "validation", "results", "engine", "viscosity", "viscosity.csv")
-    try:
-        with open(path) as f:
-            for row in csv.DictReader(f):
-                if row["case"] == "mdpd":
-                    return float(row["eta"]), float(row["err"]), os.path.relpath(path, mdval.ROOT)
-    except (OSError, KeyError, ValueError):
-        pass
-    return MU_FALLBACK[0], MU_FALLBACK[1], "fallback value 5.41 +- 0.007 (results file not found)"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import (RC_PER_VOXEL, bulk_viscosity, mdval, mu_reference, pm, propagate,  # noqa: E402
+                    run_or_reuse, wls)
 
 
 def make_image(workdir, width_vox, wall_vox, length_vox, depth_vox):
@@ -119,31 +103,6 @@ def scene_for(name, box, image, patches, g, a_wall, steps, start, every, bins, s
                                "file": "profile.csv"},
                    "summary": "summary.json", "progress": False},
     }
-
-
-def wls(X, y, err):
-    """Weighted linear least squares: params, covariance scaled by max(1, chi2/dof), chi2/dof, model."""
-    w = 1.0 / np.maximum(err, 1e-12) ** 2
-    A = X * np.sqrt(w)[:, None]
-    b = y * np.sqrt(w)
-    p, *_ = np.linalg.lstsq(A, b, rcond=None)
-    model = X @ p
-    dof = max(1, len(y) - X.shape[1])
-    chi2 = float(np.sum(w * (y - model) ** 2) / dof)
-    cov = np.linalg.inv(A.T @ A) * max(1.0, chi2)
-    return p, cov, chi2, model
-
-
-def propagate(f, p, cov, eps=1e-7):
-    """Value and standard errors of the vector function f(p) (numerical Jacobian)."""
-    f0 = np.asarray(f(p), dtype=float)
-    J = np.zeros((len(f0), len(p)))
-    for k in range(len(p)):
-        dp = np.array(p, dtype=float)
-        h = eps * max(1.0, abs(dp[k]))
-        dp[k] += h
-        J[:, k] = (np.asarray(f(dp)) - f0) / h
-    return f0, np.sqrt(np.maximum(np.diag(J @ cov @ J.T), 0.0))
 
 
 def roots_sp(p):
@@ -249,51 +208,6 @@ def analyse(wd, h, y_lo, y_hi, g, mu, mu_err, box, core_skip, mu_bulk=None):
     r["profile"] = dict(xi_all=y - 0.5 * (y_lo + y_hi), xi=xi, u=u, du=du, core=core,
                         n_all=prof["density_liquid"], w_all=prof["density_wall"])
     return r
-
-
-def run_or_reuse(scene, wd, np_ranks, reuse):
-    """mdval.run unless --reuse finds the same scene already run there; returns the wall seconds."""
-    if reuse and os.path.exists(os.path.join(wd, "summary.json")) and os.path.exists(os.path.join(wd, "scene.yaml")):
-        with open(os.path.join(wd, "scene.yaml")) as f:
-            if yaml.safe_load(f) == yaml.safe_load(yaml.safe_dump(scene, sort_keys=False)):
-                print(f"  reusing {wd}", flush=True)
-                try:
-                    return float(open(os.path.join(wd, "wall_s.txt")).read())
-                except (OSError, ValueError):
-                    return float(json.load(open(os.path.join(wd, "summary.json")))["timing"]["total_seconds"])
-    wall = mdval.run(scene, wd, np_ranks, timeout=6 * 3600)
-    with open(os.path.join(wd, "wall_s.txt"), "w") as f:
-        f.write(f"{wall:.3f}\n")
-    return wall
-
-
-_BULK = {}
-
-
-def bulk_viscosity(workdir, rho, length, depth, steps, np_ranks, reuse, seed):
-    """Reverse-Poiseuille viscosity (validation/engine/viscosity.py's fit) of bulk mDPD A = -40 at
-    density rho in a periodic L x 12 x D box: (mu, err, chi2, wall seconds); once per density."""
-    key = (rho, length, depth, steps, seed)
-    if key not in _BULK:
-        _BULK[key] = _bulk_viscosity(workdir, rho, length, depth, steps, np_ranks, reuse, seed)
-    return _BULK[key]
-
-
-def _bulk_viscosity(workdir, rho, length, depth, steps, np_ranks, reuse, seed):
-    from viscosity import fit_viscosity  # validation/engine/viscosity.py
-    Ly, g, equil = 12.0, 0.05, 5000
-    box = [length, Ly, depth]
-    eff = {"mdpd_attraction": {}, "mdpd_repulsion": {}, "dpd_thermostat": {},
-           "body_force": {"liquid": [g, 0.0, 0.0], "reverse_along": "y"}}
-    scene = mdval.mdpd_scene(f"bulk_rho{rho:g}", box, [mdval.fill_box(box, rho)], steps=equil + steps,
-                             effects=eff, seed=seed, thermo_every=100,
-                             profile={"axis": "y", "bins": 24, "every": 10, "start": equil})
-    wd = os.path.join(workdir, f"bulk_rho{rho:g}")
-    wall = run_or_reuse(scene, wd, np_ranks, reuse)
-    prof = mdval.read_table(os.path.join(wd, "profile.csv"))
-    n = float(np.mean(prof["density"]))
-    mu, dmu, chi2, _ = fit_viscosity(prof["y"], prof["vx"], prof["vx_err"], n, g, Ly)
-    return float(mu), float(dmu), float(chi2), wall
 
 
 def default_g(h, n=6.2, mu=5.41, u_target=0.25):
@@ -409,10 +323,6 @@ def main():
     ok = all(all(r["checks"].values()) for r in results)
     print(f"slit_poiseuille: {'pass' if ok else 'FAIL'} ({time.time() - t_all:.1f} s)")
     sys.exit(0 if ok else 1)
-
-
-def pm(v, e, digits=3):
-    return f"{v:.{digits}f} ± {e:.{digits}f}"
 
 
 def verdict_of(r):
