@@ -6,9 +6,11 @@
 # STEPS steps on the GPU; then the paper's ring medium (gpu_bench porous 72) in the same call.
 # Prints the builder's report, the summary's particle-steps per second (all particles) and the wall
 # time; fluid-only throughput = MPS x fluid / particles.
-# usage: bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
+# usage: [BOUNDARY=...] bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
 set -u
 B=$1; BCC=$2; S=${3:-1.5}; N=${4:-400}; W=${5:-/tmp/gpu-walls}
+# BOUNDARY: bounce_back (default), wall_boundary, or wall_boundary+bounce_back
+EFFECTS=$(echo "${BOUNDARY:-bounce_back}" | tr '+' '\n' | sed 's/^/  /; s/$/: {}/')
 M=$B/bin/mdpore
 mkdir -p "$W" && cd "$W" || exit 1
 export MDPORE_CACHE_DIR="$W/cache"
@@ -29,7 +31,7 @@ effects:
   mdpd_repulsion: {}
   dpd_thermostat: {}
   body_force: {liquid: [0.02, 0, 0]}
-  bounce_back: {}
+$EFFECTS
 geometry:
   image: $img.h5
   labels: "pore=0,inorganic=1"

@@ -25,7 +25,8 @@ enum effect_need {
   NEED_GHOST_V = 1 << 1,      /* ghosts carry (predicted) velocities                       */
   NEED_PAIR = 1 << 2,         /* contributes a pair term (pair_term)                       */
   NEED_PARTICLE = 1 << 3,     /* per-particle force after the pair pass (PARTICLE_FORCE)   */
-  NEED_AFTER_DRIFT = 1 << 4   /* position constraint after the drift (AFTER_DRIFT)         */
+  NEED_AFTER_DRIFT = 1 << 4,  /* position constraint after the drift (AFTER_DRIFT)         */
+  NEED_WALL_FIELD = 1 << 5    /* wall fraction phi + gradient per mobile particle (lists)   */
 };
 
 typedef struct effect {

@@ -7,7 +7,8 @@
  * Kinds:
  *   PAIR            a pair term of the fused pair kernel (constants through effect_t.pair_coef)
  *   PARTICLE_FORCE  physics/NAME.h: NAME_params_t, NAME_particle_force(prm, species, x, f)
- *   AFTER_DRIFT     physics/NAME.h: NAME_params_t, NAME_after_drift(prm, x, v, x_old) -> 1 if bad
+ *   AFTER_DRIFT     physics/NAME.h: NAME_params_t, NAME_after_drift(prm, i, x, v, x_old) -> 1 if bad
+ *                   (i: the particle's index in the backend's current order, for per-particle state)
  * Plain C: included by the CUDA kernels too. */
 #ifndef MESO_EFFECTS_EFFECT_LIST_H
 #define MESO_EFFECTS_EFFECT_LIST_H
@@ -15,8 +16,10 @@
 #include "physics/body_force.h"
 #include "physics/bounce_back.h"
 #include "physics/box_walls.h"
+#include "physics/wall_boundary.h"
 
-/* X(name, ID, kind), in the order --explain lists them. */
+/* X(name, ID, kind), in the order --explain lists them and the backends apply them (bounce_back
+ * after wall_boundary: the voxel guard has the last word). */
 #define MESO_EFFECT_LIST(X)                                                                        \
   X(mdpd_attraction, MDPD_ATTRACTION, PAIR)                                                        \
   X(mdpd_repulsion, MDPD_REPULSION, PAIR)                                                          \
@@ -24,6 +27,7 @@
   X(dpd_thermostat, DPD_THERMOSTAT, PAIR)                                                          \
   X(body_force, BODY_FORCE, PARTICLE_FORCE)                                                        \
   X(box_walls, BOX_WALLS, AFTER_DRIFT)                                                             \
+  X(wall_boundary, WALL_BOUNDARY, AFTER_DRIFT)                                                     \
   X(bounce_back, BOUNCE_BACK, AFTER_DRIFT)
 
 #define MESO_EFFECT_ENUM_(name, ID, kind) EFFECT_##ID,
@@ -57,12 +61,12 @@ MESO_HD void particle_effects_force(const particle_effects_t *pe, int species, c
 #define MESO_DRIFT_PAIR(name, ID)
 #define MESO_DRIFT_PARTICLE_FORCE(name, ID)
 #define MESO_DRIFT_AFTER_DRIFT(name, ID)                                                           \
-  if (pe->on[EFFECT_##ID]) bad |= name##_after_drift(&pe->name, x, v, x_old);
+  if (pe->on[EFFECT_##ID]) bad |= name##_after_drift(&pe->name, i, x, v, x_old);
 #define MESO_DRIFT_(name, ID, kind) MESO_DRIFT_##kind(name, ID)
-MESO_HD int particle_effects_after_drift(const particle_effects_t *pe, double x[3], double v[3],
-                                         const double x_old[3]) {
+MESO_HD int particle_effects_after_drift(const particle_effects_t *pe, int i, double x[3],
+                                         double v[3], const double x_old[3]) {
   int bad = 0;
-  (void)pe, (void)x, (void)v, (void)x_old;
+  (void)pe, (void)i, (void)x, (void)v, (void)x_old;
   MESO_EFFECT_LIST(MESO_DRIFT_)
   return bad;
 }

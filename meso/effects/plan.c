@@ -20,6 +20,7 @@ const char *const step_phase_names[PHASE_COUNT] = {
     [PHASE_NEIGHBOURS] = "neighbours",
     [PHASE_DENSITY] = "density",
     [PHASE_RHO_SYNC] = "rho_sync",
+    [PHASE_WALL_FIELD] = "wall_field",
     [PHASE_PAIR_FORCES] = "pair_forces",
     [PHASE_PARTICLE_FORCES] = "particle_forces",
     [PHASE_KICK] = "kick",
@@ -54,7 +55,7 @@ static void add_phase(unsigned char *list, int *n, int phase) {
 
 /* The ordered phase lists of the set-up and of a step (enum step_phase). */
 static void build_phases(plan_t *plan) {
-  const int pairs = plan->pair_terms != 0;
+  const int pairs = plan->pair_terms != 0 || plan->wall_field;
   plan->n_setup = plan->n_step = 0;
   add_phase(plan->step, &plan->n_step, PHASE_KICK_DRIFT);
   if (plan->walls) add_phase(plan->step, &plan->n_step, PHASE_AFTER_DRIFT);
@@ -74,6 +75,7 @@ static void build_phases(plan_t *plan) {
       add_phase(list, n, PHASE_DENSITY);
       add_phase(list, n, PHASE_RHO_SYNC);
     }
+    if (plan->wall_field) add_phase(list, n, PHASE_WALL_FIELD);
     add_phase(list, n, PHASE_PAIR_FORCES);
     if (plan->particle_forces) add_phase(list, n, PHASE_PARTICLE_FORCES);
     if (!setup) add_phase(list, n, PHASE_KICK);
@@ -172,6 +174,7 @@ static int build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
   plan->use_vpred = plan->ghost_v && s->vv_lambda != 0.5;
   plan->particle_forces = (needs & NEED_PARTICLE) != 0;
   plan->walls = (needs & NEED_AFTER_DRIFT) != 0;
+  plan->wall_field = (needs & NEED_WALL_FIELD) != 0;
   plan->weight_exp_is_one = plan->weight_exp == 1.0;
   plan->max_disp = 0.5 * (plan->rcut > 0 ? plan->rcut : 1.0);
   plan->dt = s->dt;

@@ -16,7 +16,8 @@
 enum plan_pair_term {
   PAIR_TERM_CONSERVATIVE = 1, /* A w_c(r): mdpd_attraction (A < 0) or dpd_conservative (a > 0) */
   PAIR_TERM_MANYBODY = 2,     /* B (rho_i + rho_j) w_d(r): mdpd_repulsion                       */
-  PAIR_TERM_THERMOSTAT = 4    /* -gamma w_R^2 (e.v) + sigma w_R xi / sqrt(dt): dpd_thermostat     */
+  PAIR_TERM_THERMOSTAT = 4,   /* -gamma w_R^2 (e.v) + sigma w_R xi / sqrt(dt): dpd_thermostat     */
+  PAIR_TERM_WALL_NO_SLIP = 8  /* thermostat of wall pairs x Li's ratio(phi_i): wall_boundary      */
 };
 
 /* Constants of one species pair, precomputed once so the pair loop has no division or pow (s = 1).
@@ -27,8 +28,9 @@ typedef struct {
   double gamma, sigma; /* sigma^2 = 2 gamma kT (fluctuation-dissipation)                 */
   double rc, inv_rc, rc2;
   double rd, inv_rd, rd2;
-  double wnorm; /* density-kernel normalisation for this rd (w_rho_norm) */
-  double cut2;  /* square of the largest cutoff any named pair term uses for this pair */
+  double wnorm;     /* density-kernel normalisation for this rd (w_rho_norm) */
+  double cut2;      /* square of the largest cutoff any named pair term uses for this pair */
+  double wall_phi2; /* wall_boundary: r_phi^2 for a mobile-frozen pair (its wall field), else 0 */
 } pair_coef_t;
 
 /* The phases of a step, in the order they run (a plan lists those its effects need). */
@@ -43,6 +45,7 @@ enum step_phase {
   PHASE_NEIGHBOURS,      /* cell and neighbour lists                                        */
   PHASE_DENSITY,         /* rho_i over r < rd (self term excluded)                          */
   PHASE_RHO_SYNC,        /* ghosts get the densities of their owners                        */
+  PHASE_WALL_FIELD,      /* wall fraction phi and its gradient per mobile particle          */
   PHASE_PAIR_FORCES,     /* the fused pair pass of the named pair terms (f = 0 without any) */
   PHASE_PARTICLE_FORCES, /* per-particle forces of the named effects (body_force)           */
   PHASE_KICK,            /* v += dt/2 f/m                                                   */
@@ -62,6 +65,7 @@ typedef struct {
   int use_vpred;       /* a separate predicted-velocity array (thermostat and vv_lambda != 0.5) */
   int particle_forces; /* per-particle forces (body_force) */
   int walls;           /* position constraints after the drift (box_walls) */
+  int wall_field;      /* the wall-field pass (wall_boundary) */
   double rcut;         /* ghost-layer width = largest cutoff of the named effects */
   double max_disp;     /* largest safe displacement per step (0.5 rcut) */
   double weight_exp;   /* s of w_R = (1 - r/rc)^s (dpd_thermostat's exponent; 1 otherwise) */

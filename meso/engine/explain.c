@@ -85,6 +85,14 @@ static void describe_phase(const scene_t *s, const plan_t *plan, int phase, int 
   case PHASE_RHO_SYNC:
     fprintf(out, "ghost sync: rho");
     break;
+  case PHASE_WALL_FIELD:
+    fprintf(out, "wall fraction phi and grad phi of each mobile particle from the frozen ones (");
+    list_effects(s, plan, NEED_WALL_FIELD, out, 0);
+    fprintf(out, "%s)",
+            (plan->pair_terms & PAIR_TERM_WALL_NO_SLIP)
+                ? "; phi scales the wall pairs' thermostat"
+                : "; read by the reflection after the next drift");
+    break;
   case PHASE_PAIR_FORCES:
     if (!plan->pair_terms) {
       fprintf(out, "no pair effect named: forces start at 0");
@@ -92,6 +100,8 @@ static void describe_phase(const scene_t *s, const plan_t *plan, int phase, int 
     }
     fprintf(out, "force pass: ");
     list_effects(s, plan, NEED_PAIR, out, 0);
+    if (plan->pair_terms & PAIR_TERM_WALL_NO_SLIP)
+      fprintf(out, " (wall pairs' thermostat x ratio(phi_i): wall_boundary)");
     if (!setup) list_effects(s, plan, NEED_PAIR, out, 1);
     break;
   case PHASE_PARTICLE_FORCES:

@@ -25,8 +25,9 @@ MESO_HD int bounce_back_in_solid(const bounce_back_params_t *b, const double x[3
 
 /* After the drift: back to x_old with v reversed when x is in the solid. Returns 1 when the
  * particle is in the solid even there (it was inside before the step: reported as lost). */
-MESO_HD int bounce_back_after_drift(const bounce_back_params_t *b, double x[3], double v[3],
+MESO_HD int bounce_back_after_drift(const bounce_back_params_t *b, int i, double x[3], double v[3],
                                     const double x_old[3]) {
+  (void)i;
   if (!bounce_back_in_solid(b, x)) return 0;
   for (int d = 0; d < 3; d++) {
     x[d] = x_old[d];

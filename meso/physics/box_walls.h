@@ -15,9 +15,9 @@ typedef struct {
 
 /* Reflect after the drift (x_old: the position before it, unused by this flat wall). Returns 1 when
  * the particle is still outside the box (it moved more than a box length, or is not finite). */
-MESO_HD int box_walls_after_drift(const box_walls_params_t *w, double x[3], double v[3],
+MESO_HD int box_walls_after_drift(const box_walls_params_t *w, int i, double x[3], double v[3],
                                   const double x_old[3]) {
-  (void)x_old;
+  (void)i, (void)x_old;
   int outside = 0;
   for (int d = 0; d < 3; d++) {
     if (!w->reflect[d]) continue;

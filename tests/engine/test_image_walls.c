@@ -45,7 +45,8 @@ static const char *scene_text =
     "  default: {A: -40, B: 25, gamma: 4.5, rc: 1, rd: 0.75}\n"
     "  liquid-quartz: {A: -30}\n"
     "  liquid-kerogen: {A: -20}\n"
-    "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}, bounce_back: {}}\n"
+    "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}, bounce_back: {},\n"
+    "          wall_boundary: {}}\n"
     "geometry:\n"
     "  image: " IMG "\n"
     "  labels: pore=0,inorganic=1,organic=2\n"
@@ -292,7 +293,7 @@ int main(int argc, char **argv) {
   }
   const long n_total = image_walls_total(&g);
   image_walls_free(&g);
-  /* a short run with the bounce_back boundary: no engine error, and no fluid particle inside a
+  /* a short run with bounce_back and wall_boundary: no engine error, and no fluid particle inside a
    * solid voxel after any step */
   sim_t *sim = sim_create(&s, MPI_COMM_WORLD);
   CHECK(sim && init_configuration(sim, &s) == 0 && sim_setup(sim) == 0);
@@ -314,7 +315,8 @@ int main(int argc, char **argv) {
   sim_thermo(sim, &th);
   CHECK(th.step == s.steps && th.n_total == n_total);
   if (rank == 0)
-    printf("image walls: %ld steps (bounce_back): penetrations at most %ld; T = %.3f, N = %ld, "
+    printf("image walls: %ld steps (bounce_back + wall_boundary): penetrations at most %ld; T = "
+           "%.3f, N = %ld, "
            "p = %.3f; model %.2f s, builds %.2f s, "
            "run %.2f s\n",
            th.step, worst, th.temperature, th.n_total,

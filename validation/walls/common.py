@@ -18,7 +18,7 @@ import mdval  # noqa: E402
 
 RC_PER_VOXEL = 0.5
 MU_FALLBACK = (5.41, 0.007)  # validation/results/engine/viscosity (mdpd row), README closing notes
-BOUNDARIES = ("bounce_back", "wall_boundary")
+BOUNDARIES = ("bounce_back", "wall_boundary", "wall_boundary+bounce_back")
 
 
 def mu_reference():
@@ -69,7 +69,7 @@ def boundary_effect(boundary):
     """The `effects:` entry of the wall boundary named on the command line (its defaults)."""
     if boundary not in BOUNDARIES:
         raise ValueError(f"unknown boundary {boundary!r} (expected one of {', '.join(BOUNDARIES)})")
-    return {boundary: {}}
+    return {name: {} for name in boundary.split("+")}
 
 
 def image_scene(name, box, image, patches, *, steps, seed, patch_seed, flow_axis="x", a_wall=-40.0,

@@ -1,10 +1,9 @@
 #!/usr/bin/python3
 """Walls from an image (issue 10, items 4a and 5): body-force Poiseuille flow in a slit, through the
 user's path: `mdpore image make slit` writes the image, a scene with `geometry:` builds frozen wall
-particles (patch database) and the fluid from it, `bounce_back` keeps the fluid out of the solid, and
-`mdpore run` (2 ranks) writes a y profile. (Li et al.'s boundary of physics.md section 3 -- wall
-detection from phi, reflection, near-wall dissipation -- does not exist in mdpore yet: this measures
-bounce_back, the only boundary there is.)
+particles (patch database) and the fluid from it, the boundary of --boundary (bounce_back by default;
+wall_boundary: Li et al.'s phi-based reflection and near-wall dissipation, physics.md section 3; or
+both) keeps the fluid out of the solid, and `mdpore run` (2 ranks) writes a y profile.
 
 Geometry: slit of h rc (h / 0.5 pore voxels at rc_per_voxel 0.5) between walls of --wall-voxels (4 =
 2 rc) voxels, periodic in y, so the box holds one slit and one 4 rc thick solid made of the two walls;
@@ -68,7 +67,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import (RC_PER_VOXEL, bulk_viscosity, mdval, mu_reference, pm, propagate,  # noqa: E402
+from common import (BOUNDARIES, RC_PER_VOXEL, boundary_effect, bulk_viscosity, mdval, mu_reference, pm, propagate,  # noqa: E402
                     run_or_reuse, wls)
 
 
@@ -82,7 +81,8 @@ def make_image(workdir, width_vox, wall_vox, length_vox, depth_vox):
     return path, json.loads(p.stdout)
 
 
-def scene_for(name, box, image, patches, g, a_wall, steps, start, every, bins, seed, patch_seed):
+def scene_for(name, box, image, patches, g, a_wall, steps, start, every, bins, seed, patch_seed,
+              boundary="bounce_back"):
     return {
         "name": name,
         "box": {"lo": [0.0, 0.0, 0.0], "hi": [float(v) for v in box], "periodic": [True, True, True]},
@@ -92,7 +92,7 @@ def scene_for(name, box, image, patches, g, a_wall, steps, start, every, bins, s
         "density_kernel": "warren",
         "kT": 1.0,
         "effects": {"mdpd_attraction": {}, "mdpd_repulsion": {}, "dpd_thermostat": {},
-                    "body_force": {"liquid": [float(g), 0.0, 0.0]}, "bounce_back": {}},
+                    "body_force": {"liquid": [float(g), 0.0, 0.0]}, **boundary_effect(boundary)},
         "geometry": {"image": image, "rc_per_voxel": RC_PER_VOXEL, "flow_axis": "x",
                      "species": {"fluid": "liquid", "inorganic": "wall"},
                      "patches": {"file": patches, "seed": int(patch_seed)}},
@@ -237,6 +237,8 @@ def main():
     ap.add_argument("--slip-tol", type=float, help="fail when a slip length of fit D exceeds this (rc); default: report only")
     ap.add_argument("--reuse", action="store_true", help="analyse existing runs of the same scenes again")
     ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--boundary", choices=BOUNDARIES, default="bounce_back",
+                    help="wall boundary effect(s): bounce_back (default), wall_boundary (Li et al.), or both")
     ap.add_argument("--outdir", help="table + PNG (default $MDPORE_VALIDATION_OUT/walls or validation/results/walls)")
     ap.add_argument("--workdir", help="run folders (default <$MDPORE_VALIDATION_OUT or $TMPDIR>/slit_poiseuille_runs)")
     args = ap.parse_args()
@@ -246,7 +248,8 @@ def main():
     steps = args.steps or (20000 if q else 100000)
     bulk = not (q or args.no_bulk)
     r2_min = 0.9 if q else 0.99
-    tag = "slit_poiseuille" + ("_quick" if q else "")
+    tag = "slit_poiseuille" + ("_quick" if q else "") + \
+        ("" if args.boundary == "bounce_back" else "_" + args.boundary.replace("+", "_"))
     outdir = args.outdir or mdval.out_dir("walls")
     os.makedirs(outdir, exist_ok=True)
     base = os.environ.get("MDPORE_VALIDATION_OUT") or tempfile.gettempdir()
@@ -285,7 +288,7 @@ def main():
         y_lo, y_hi = wall * RC_PER_VOXEL, (wall + width_vox) * RC_PER_VOXEL
         bins = int(round(box[1] * args.bins_per_rc))
         scene = scene_for(name, box, image, patches, g, args.a_wall, equil + steps, equil, args.every, bins,
-                          args.seed, args.patch_seed)
+                          args.seed, args.patch_seed, boundary=args.boundary)
         print(f"h = {h:g}: image {info['dims']}, box {box}, g = {g}, {equil} + {steps} steps ...", flush=True)
         wall_s = run_or_reuse(scene, wd, args.np, args.reuse)
         mu_bulk = None
@@ -319,7 +322,7 @@ def main():
               f"run {wall_s:.1f} s", flush=True)
 
     write_tables(outdir, tag, results, bulk_rows, mu, mu_err, mu_src, args)
-    plot(outdir, tag, results)
+    plot(outdir, tag, results, args.boundary)
     ok = all(all(r["checks"].values()) for r in results)
     print(f"slit_poiseuille: {'pass' if ok else 'FAIL'} ({time.time() - t_all:.1f} s)")
     sys.exit(0 if ok else 1)
@@ -345,16 +348,15 @@ def write_tables(outdir, tag, results, bulk_rows, mu, mu_err, mu_src, args):
             vals = dict(r, verdict=verdict_of(r), box="x".join(f"{b:g}" for b in r["box"]), mu_ref=mu,
                         mu_bulk=r["mu_bulk"][0] if r["mu_bulk"] else "", mu_bulk_err=r["mu_bulk"][1] if r["mu_bulk"] else "")
             w.writerow([f"{vals.get(c, ''):.6g}" if isinstance(vals.get(c), float) else vals.get(c, "") for c in cols])
-    L = [f"# Body-force Poiseuille flow in an image slit, boundary `bounce_back` "
+    L = [f"# Body-force Poiseuille flow in an image slit, boundary `{args.boundary}` "
          f"({'--quick' if args.quick else 'full run'})\n",
          f"Slit from `mdpore image make slit` at rc_per_voxel {RC_PER_VOXEL}, walls of {args.wall_voxels} voxels "
          f"(the builder's default thickness keeps 3 voxel layers of patches at density 8 per face), box {args.length:g} x "
          f"(h + {2 * args.wall_voxels * RC_PER_VOXEL:g}) x {args.depth:g} rc, periodic. mDPD A = -40, B = 25, rd = 0.75, "
          f"gamma = 4.5, kT = 1, dt = 0.01; fluid-wall A = {args.a_wall:g}; fluid 6.2 per rc^3 of pore; body force g "
-         f"along x; effects mdpd_attraction, mdpd_repulsion, dpd_thermostat, body_force, bounce_back; "
+         f"along x; effects mdpd_attraction, mdpd_repulsion, dpd_thermostat, body_force, {args.boundary.replace('+', ', ')}; "
          f"{args.np} ranks. Profile along y, {args.bins_per_rc} bins per rc, every {args.every} steps after the "
-         f"transient. **Li et al.'s boundary (physics.md section 3) is not implemented: these are bounce_back's "
-         f"numbers.**\n",
+         f"transient.\n",
          f"mu_ref = {mu:g} ± {mu_err:g} from {mu_src} (reverse Poiseuille, density 6.07, box 10 x 20 x 10). "
          "mu_bulk = the same measurement at the slit's centre density n (rounded to 0.01) in an L x 12 x D periodic "
          "box of the slit's length and depth.\n",
@@ -418,7 +420,7 @@ def write_tables(outdir, tag, results, bulk_rows, mu, mu_err, mu_src, args):
     print(text)
 
 
-def plot(outdir, tag, results):
+def plot(outdir, tag, results, boundary):
     plt = mdval.pyplot()
     fig, axs = plt.subplots(2, len(results), figsize=(5.5 * len(results), 8), squeeze=False)
     for k, r in enumerate(results):
@@ -440,7 +442,7 @@ def plot(outdir, tag, results):
             ax.axvline(s, color="grey", lw=0.8)
         ax.axhline(0, color="grey", lw=0.5)
         ax.set_ylim(min(-0.02, float(np.min(p["u"])) - 0.02), 1.25 * float(np.max(p["u"])))
-        ax.set_title(f"h = {r['h']:g} rc, g = {r['g']:g}, bounce_back")
+        ax.set_title(f"h = {r['h']:g} rc, g = {r['g']:g}, {boundary}")
         ax.set_xlabel("y - y_mid (rc); walls at the grey lines")
         ax.set_ylabel("u_x")
         ax.legend(fontsize=6.5, loc="lower center")

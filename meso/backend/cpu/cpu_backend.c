@@ -17,7 +17,9 @@ typedef struct {
   cell_list_t cells;
   nlist_t neighbours;
   sort_scratch_t sort;
-  double *saved_f; /* set-up after a restart: the loaded forces, kept over the pass */
+  double *saved_f;          /* set-up after a restart: the loaded forces, kept over the pass */
+  wall_field_t *wall_field; /* wall_boundary: phi and grad phi per owned particle */
+  int wall_field_cap;
 } cpu_state_t;
 
 static cpu_state_t *cpu(sim_state_t *st) {
@@ -37,6 +39,7 @@ static void destroy(sim_state_t *st) {
   cpu_neighbours_free(&c->neighbours);
   sort_scratch_free(&c->sort);
   free(c->saved_f);
+  free(c->wall_field);
   free(c);
   st->impl = NULL;
 }
@@ -73,7 +76,7 @@ static int kick_drift(sim_state_t *st) {
         st->pr.field = "velocity or position";
       }
     }
-    if (plan->walls && particle_effects_after_drift(&plan->particle, x, v, x_old)) {
+    if (plan->walls && particle_effects_after_drift(&plan->particle, i, x, v, x_old)) {
       if (n_lost++ == 0) {
         lost_id = p->id[i];
         memcpy(lost_x, x, sizeof lost_x);
@@ -137,6 +140,23 @@ static int neighbours(sim_state_t *st) {
 static int density(sim_state_t *st) {
   if (st->failed) return 0;
   cpu_density_pass(&st->plan, &st->p, &cpu(st)->cells, &cpu(st)->neighbours);
+  return 0;
+}
+
+/* wall_boundary: the wall field of the owned particles at this step's positions; the next drift's
+ * reflection reads it (same particle order: nothing reorders them in between). */
+static int wall_field(sim_state_t *st) {
+  if (st->failed) return 0;
+  cpu_state_t *c = cpu(st);
+  const int n = st->p.n_local > 0 ? st->p.n_local : 1;
+  if (n > c->wall_field_cap) {
+    wall_field_t *f = realloc(c->wall_field, (size_t)n * sizeof *f);
+    if (!f) return -1;
+    c->wall_field = f;
+    c->wall_field_cap = n;
+  }
+  st->plan.particle.wall_boundary.field = c->wall_field;
+  cpu_wall_field_pass(&st->plan, &st->p, &c->cells, &c->neighbours, c->wall_field);
   return 0;
 }
 
@@ -261,6 +281,7 @@ const backend_ops_t backend_cpu_ops = {
             [PHASE_NEIGHBOURS] = neighbours,
             [PHASE_DENSITY] = density,
             [PHASE_RHO_SYNC] = rho_sync,
+            [PHASE_WALL_FIELD] = wall_field,
             [PHASE_PAIR_FORCES] = pair_forces,
             [PHASE_PARTICLE_FORCES] = particle_forces,
             [PHASE_KICK] = kick,

@@ -7,6 +7,7 @@
 #include "domain/cell_list.h"
 #include "domain/particles.h"
 #include "effects/plan.h"
+#include "physics/wall_boundary.h"
 
 #include <stdint.h>
 
@@ -31,6 +32,10 @@ void cpu_neighbours_free(nlist_t *nl);
 
 /* rho_i = sum_{j != i, r < rd} w_rho(r) for owned i (physics.md section 1; self term excluded). */
 void cpu_density_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, const nlist_t *nl);
+
+/* wall_boundary: phi_i and grad phi_i of every owned particle into field[i] (0 for frozen ones). */
+void cpu_wall_field_pass(const plan_t *plan, const particles_t *p, const cell_list_t *cl,
+                         const nlist_t *nl, wall_field_t *field);
 
 typedef struct {
   uint64_t seed;

@@ -9,6 +9,7 @@
 #include "neighbour_bins.h"
 #include "physics/pair_forces.h"
 #include "physics/pair_random.h"
+#include "physics/wall_boundary.h"
 
 #include <math.h>
 
@@ -36,6 +37,13 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
   }
   const double rho_i = (terms & PAIR_TERM_MANYBODY) ? p->rho[i] : 0.0;
   const double vxi = k->vx[i], vyi = k->vy[i], vzi = k->vz[i];
+  /* wall_boundary's no slip: Li's ratio(phi_i), capped for stability, for the thermostat of the
+   * pairs with wall particles (physics/wall_boundary.h; computed by the wall-field pass) */
+  double wall_ratio = 1.0, wall_sqrt_ratio = 1.0;
+  if (terms & PAIR_TERM_WALL_NO_SLIP) {
+    wall_ratio = plan->particle.wall_boundary.field[i].ratio;
+    wall_sqrt_ratio = plan->particle.wall_boundary.field[i].sqrt_ratio;
+  }
   const int64_t id_i = p->id[i];
   const int m = nl->count[i], m_near = nl->count_near[i];
   const int *cand = nl->slot + (size_t)i * (size_t)nl->stride;
@@ -60,7 +68,10 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
       const double e_dot_v =
           (dx * (vxi - k->vx[j]) + dy * (vyi - k->vy[j]) + dz * (vzi - k->vz[j])) * inv_r;
       const double xi_ij = pair_random_xi(a->seed, a->step, id_i, p->id[j]);
-      fp += pair_thermostat(c->gamma, c->sigma, wR, e_dot_v, xi_ij, k->inv_sqrt_dt);
+      const int wall = (terms & PAIR_TERM_WALL_NO_SLIP) && c->wall_phi2 > 0.0;
+      fp += pair_thermostat(wall ? wall_ratio * c->gamma : c->gamma,
+                            wall ? wall_sqrt_ratio * c->sigma : c->sigma, wR, e_dot_v, xi_ij,
+                            k->inv_sqrt_dt);
     }
     const double s = fp * inv_r;
     sfx += s * dx;
@@ -116,7 +127,7 @@ void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, c
   k.vz = p->vpred[2] ? p->vpred[2] : p->v[2];
   for (int c = 0; c < 6; c++) a->virial[c] = 0.0;
   const int nslots = p->n_local + p->n_ghost;
-  switch (plan->pair_terms & 7) {
+  switch (plan->pair_terms & 15) { /* 8 (wall no slip) comes with 4 (its check) */
     FORCE_CASE(0)
     FORCE_CASE(1)
     FORCE_CASE(2)
@@ -125,5 +136,9 @@ void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, c
     FORCE_CASE(5)
     FORCE_CASE(6)
     FORCE_CASE(7)
+    FORCE_CASE(12)
+    FORCE_CASE(13)
+    FORCE_CASE(14)
+    FORCE_CASE(15)
   }
 }

@@ -19,6 +19,7 @@ static void fill_coef(struct dev_coef *d, const pair_coef_t *c) {
   d->rd2 = (meso_real)c->rd2;
   d->wnorm = (meso_real)c->wnorm;
   d->cut2 = (meso_real)c->cut2;
+  d->wall_phi2 = (meso_real)c->wall_phi2;
 }
 
 static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s,

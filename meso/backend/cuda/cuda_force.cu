@@ -10,6 +10,7 @@
 #include "cuda_neighbours.cuh"
 #include "physics/pair_forces.h"
 #include "physics/pair_random.h"
+#include "physics/wall_boundary.h"
 
 #include <cub/block/block_reduce.cuh>
 
@@ -65,6 +66,12 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
                             : (TERMS & PAIR_TERM_THERMOSTAT) ? vi.pad
                                                              : a.rho[i];
     const int64_t id_i = a.id[i];
+    /* wall_boundary's no slip: Li's ratio(phi_i) scales the thermostat of the wall pairs */
+    meso_real wall_ratio = MESO_R(1.0), wall_sqrt_ratio = MESO_R(1.0);
+    if (TERMS & PAIR_TERM_WALL_NO_SLIP) {
+      wall_ratio = (meso_real)q.pe.wall_boundary.field[i].ratio; /* capped (wall_boundary.h) */
+      wall_sqrt_ratio = (meso_real)q.pe.wall_boundary.field[i].sqrt_ratio;
+    }
     meso_real sfx = 0, sfy = 0, sfz = 0;
     /* a frozen particle is never integrated: no force of its own (the pairs with mobile partners
      * are evaluated from their side), so wall-wall pairs are never computed */
@@ -92,7 +99,10 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real e_dot_v =
             (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
         const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
-        fp += pair_thermostat(c.gamma, c.sigma, wR, e_dot_v, xi_ij, q.inv_sqrt_dt);
+        const bool wall = (TERMS & PAIR_TERM_WALL_NO_SLIP) && c.wall_phi2 > MESO_R(0.0);
+        fp += pair_thermostat(wall ? wall_ratio * c.gamma : c.gamma,
+                              wall ? wall_sqrt_ratio * c.sigma : c.sigma, wR, e_dot_v, xi_ij,
+                              q.inv_sqrt_dt);
       }
       const meso_real s = fp * inv_r;
       sfx += s * dx;
@@ -158,7 +168,7 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                          (uint32_t)(part > 0 ? 1 : 0),
                          part == 0};
   const int virial = want_virial && g->virial != NULL;
-  switch (g->prm.terms & 7) {
+  switch (g->prm.terms & 15) { /* 8 (wall no slip) comes with 4 (its check) */
   case 0:
     launch<0>(g->prm, a, blocks, virial, pv);
     break;
@@ -180,8 +190,20 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
   case 6:
     launch<6>(g->prm, a, blocks, virial, pv);
     break;
-  default:
+  case 7:
     launch<7>(g->prm, a, blocks, virial, pv);
+    break;
+  case 12:
+    launch<12>(g->prm, a, blocks, virial, pv);
+    break;
+  case 13:
+    launch<13>(g->prm, a, blocks, virial, pv);
+    break;
+  case 14:
+    launch<14>(g->prm, a, blocks, virial, pv);
+    break;
+  default:
+    launch<15>(g->prm, a, blocks, virial, pv);
     break;
   }
 }

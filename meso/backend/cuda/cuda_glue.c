@@ -107,6 +107,10 @@ int cuda_glue_thermo_sums(sim_state_t *st, double sums[17]) {
   return cuda_sim_thermo_sums(cuda_glue(st)->g, sums);
 }
 
+int cuda_glue_flux_sums(sim_state_t *st, int axis, double sums[2 * MESO_MAX_SPECIES]) {
+  return cuda_sim_flux_sums(cuda_glue(st)->g, axis, sums);
+}
+
 void cuda_glue_want_pressure(sim_state_t *st, int on) {
   cuda_sim_want_pressure(cuda_glue(st)->g, on);
 }
@@ -150,6 +154,8 @@ const char *cuda_glue_phase_note(int phase) {
     return "the device records the problems; the step's check reports them";
   case PHASE_DENSITY:
     return "in the neighbour scan";
+  case PHASE_WALL_FIELD:
+    return "in the neighbour phase, one pass over the lists after the scan";
   case PHASE_PARTICLE_FORCES:
     return "in the finishing kernel (with the kick; at set-up before the check)";
   default:
@@ -196,4 +202,5 @@ const backend_ops_t cuda_ops_one_rank = {
     .sync_host = cuda_glue_sync_host,
     .want_pressure = cuda_glue_want_pressure,
     .rebuild_lists = cuda_glue_rebuild_lists,
+    .flux_sums = cuda_glue_flux_sums,
 };

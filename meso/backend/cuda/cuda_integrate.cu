@@ -26,12 +26,13 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
         dev_note(pb, CUDA_NONFINITE, 1, p.id[i], x[0], x[1], x[2], 0.0);
     }
   }
+  /* the position constraints of the named effects (box_walls, bounce_back, wall_boundary) on
+   * mobile particles, on the unwrapped drift (x - x_old is the displacement) */
+  if (q.walls && q.mobile[s] && particle_effects_after_drift(&q.pe, i, x, v, x_old))
+    dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
   /* the periodic wrap (the CPU path's migration: decomp_wrap) */
   for (int d = 0; d < 3; d++)
     if (q.box_periodic[d]) x[d] = box_wrap(x[d], q.box_lo[d], q.box_hi[d], q.box_len[d]);
-  /* the position constraints of the named effects (box_walls, bounce_back) on mobile particles */
-  if (q.walls && q.mobile[s] && particle_effects_after_drift(&q.pe, x, v, x_old))
-    dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
   for (int d = 0; d < 3; d++) {
     p.x[d][i] = x[d];
     p.v[d][i] = v[d];

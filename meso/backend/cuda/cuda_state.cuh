@@ -25,6 +25,7 @@
 struct dev_coef {
   meso_real A, B, gamma, sigma;
   meso_real inv_rc, rc2, inv_rd, rd2, wnorm, cut2;
+  meso_real wall_phi2; /* wall_boundary: r_phi^2 of a mobile-frozen pair, else 0 */
 };
 
 /* Everything the kernels need besides the particle arrays; passed by value to each launch. */
@@ -158,6 +159,9 @@ struct cuda_sim {
   /* Device copies of the plan's per-particle effect arrays (plan.arrays), pointed at by prm.pe. */
   void *effect_arrays[PLAN_MAX_ARRAYS];
   int n_effect_arrays;
+  /* wall_boundary: phi and grad phi per owned slot (cuda_wall_field.cu), pointed at by
+   * prm.pe.wall_boundary.field; NULL without the effect. */
+  wall_field_t *wall_field;
 };
 
 /* Entry k of the list of particle i: chunks of NBR_CHUNK entries, chunk-major (chunk c of particle
@@ -205,6 +209,8 @@ int cuda_density_pass_rest(struct cuda_sim *g);
 void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
                           int part);
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
+/* cuda_wall_field.cu: the wall field of every owned particle from the lists of this step. */
+void cuda_wall_field(struct cuda_sim *g);
 
 /* cuda_integrate.cu */
 void cuda_kick_drift(struct cuda_sim *g);

@@ -45,12 +45,15 @@ extern "C" int cuda_sim_neighbours(cuda_sim_t *g) {
     if (r < 0) return -1;
     if (r == 0) {
       cuda_density_from_lists(g);
+      cuda_wall_field(g);
       return 0;
     }
   }
   if (sort && cuda_sort_cells(g, 0)) return -1; /* the force pass rewrites f */
   cuda_pack(g);
-  return cuda_density_pass(g);
+  if (cuda_density_pass(g)) return -1;
+  cuda_wall_field(g);
+  return 0;
 }
 
 extern "C" int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
@@ -100,12 +103,16 @@ extern "C" int cuda_halo_density_early(cuda_sim_t *g) {
 }
 
 extern "C" int cuda_halo_density(cuda_sim_t *g) {
+  int rc;
   if (!g->split_passes) {
     cuda_pack(g);
-    return cuda_density_pass(g);
+    rc = cuda_density_pass(g);
+  } else {
+    cuda_pack_range(g, g->n, g->n + g->n_ghost);
+    rc = cuda_density_pass_rest(g);
   }
-  cuda_pack_range(g, g->n, g->n + g->n_ghost);
-  return cuda_density_pass_rest(g);
+  if (!rc) cuda_wall_field(g); /* every list is complete here, before any force launch */
+  return rc;
 }
 
 extern "C" int cuda_halo_forces_early(cuda_sim_t *g, long step, int want_virial, int keep_forces) {

@@ -68,6 +68,8 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   cuda_free_ptr(g, (void **)&g->nbr_count);
   cuda_free_ptr(g, (void **)&g->rho_stage);
   cuda_free_ptr(g, (void **)&g->pos0);
+  cuda_free_ptr(g, (void **)&g->wall_field);
+  g->prm.pe.wall_boundary.field = NULL;
   g->lists_valid = 0;
   g->nbr_stride = 0;
   g->virial_cap = 0;
@@ -94,9 +96,12 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
        cuda_alloc(g, (void **)&g->rho_stage, c * sizeof(meso_real))) ||
       ((g->prm.terms & PAIR_TERM_THERMOSTAT) &&
        cuda_alloc(g, (void **)&g->vel, c * sizeof(struct dev_vel))) ||
+      (g->prm.pe.on[EFFECT_WALL_BOUNDARY] &&
+       cuda_alloc(g, (void **)&g->wall_field, c * sizeof(wall_field_t))) ||
       cuda_alloc(g, &g->sort_tmp, tmp) ||
       cuda_alloc(g, (void **)&g->block_virial, (size_t)blocks * 6 * sizeof(double)))
     return -1;
+  g->prm.pe.wall_boundary.field = g->wall_field;
   g->sort_tmp_bytes = tmp;
   g->block_virial_cap = blocks;
   g->cap = cap;
@@ -199,7 +204,7 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->nbr_count,    (void **)&g->nbr_most,
                    (void **)&g->gcell_start,  (void **)&g->counter,
                    (void **)&g->rho_stage,    (void **)&g->pos0,
-                   (void **)&g->rebuild};
+                   (void **)&g->rebuild,      (void **)&g->wall_field};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);

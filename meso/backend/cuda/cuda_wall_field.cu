@@ -1,0 +1,45 @@
+/* Device wall-field pass of wall_boundary (physics/wall_boundary.h; Li et al. 2018, physics.md
+ * section 3): phi_i and grad phi_i of every owned mobile particle from the frozen partners within
+ * r_phi in its neighbour list of this step, the same sums as backend/cpu/wall_field_pass.c (in the
+ * pair math's precision). Runs after the list scan of the neighbour phase, before any force launch;
+ * the force pass reads phi_i (no slip) and the next kick_drift kernel the whole field
+ * (reflection). */
+#include "cuda_neighbours.cuh"
+#include "physics/pair_forces.h"
+#include "physics/wall_boundary.h"
+
+__global__ void __launch_bounds__(CUDA_BLOCK)
+    k_wall_field(const struct dev_params q, int n, int cap, const struct dev_pos *__restrict__ pos,
+                 const uint32_t *__restrict__ nbr, const int *__restrict__ count,
+                 wall_field_t *__restrict__ field) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const struct dev_pos pi = pos[i];
+  const struct dev_coef *row = q.coef[pi.species];
+  const wall_boundary_params_t *w = &q.pe.wall_boundary;
+  const meso_real inv_h = (meso_real)w->inv_h;
+  meso_real acc[WALL_FIELD_ACC] = {0, 0, 0, 0, 0};
+  const int m = q.mobile[pi.species] ? count[i] : 0;
+  for (int k = 0; k < m; k++) {
+    const uint32_t e = nbr[nbr_index(i, k, cap)];
+    const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
+    const struct dev_coef &c = row[pj.species];
+    if (c.wall_phi2 == MESO_R(0.0)) continue; /* not a wall partner */
+    meso_real dx, dy, dz;
+    dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+    const meso_real r2 = dx * dx + dy * dy + dz * dz;
+    if (r2 < c.wall_phi2) wall_field_add(inv_h, r2, dx, dy, dz, acc);
+    if (r2 < c.rc2) { /* S_i of the stability cap */
+      const meso_real wR = pair_weight_random_inv(meso_sqrt(r2), c.inv_rc, q.s_exp, q.s_one);
+      acc[4] += c.gamma * wR * wR;
+    }
+  }
+  field[i] = wall_field_finish(w, acc);
+}
+
+void cuda_wall_field(struct cuda_sim *g) {
+  if (!g->wall_field || g->n == 0) return;
+  const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  k_wall_field<<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count,
+                                       g->wall_field);
+}
