@@ -10,5 +10,6 @@ int cmd_build(int argc, char **argv);  /* mdpore build patches ...            (m
 int cmd_foam(int argc, char **argv);   /* mdpore foam IMAGE --axis ...        (crosscheck/foam)  */
 int cmd_fit(int argc, char **argv);    /* mdpore fit TABLE                    (upscale/fit)      */
 int cmd_darcy(int argc, char **argv);  /* mdpore darcy CONFIG                 (upscale/darcy)    */
+int cmd_permeability(int argc, char **argv); /* mdpore permeability IMAGE|SCENE (campaign/) */
 
 #endif

@@ -19,6 +19,8 @@ static const command_t commands[] = {
     {"foam", cmd_foam, "OpenFOAM Stokes-flow permeability of an image (continuum cross-check)"},
     {"fit", cmd_fit, "fit Darcy and non-Darcy laws to a flow-data table"},
     {"darcy", cmd_darcy, "continuum Darcy/non-Darcy solve on a grid of rock blocks"},
+    {"permeability", cmd_permeability,
+     "permeability campaign: forcing ladder of mdpore runs, flow table, fit, k in nD"},
 };
 static const int n_commands = (int)(sizeof commands / sizeof commands[0]);
 

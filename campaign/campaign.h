@@ -1,0 +1,143 @@
+/* mdpore permeability: a permeability campaign over one image or scene (docs/permeability.md).
+ *
+ * The campaign is three steps over one folder (the work dir):
+ *   plan     the scenes, one per (axis, gradient), each in a folder named by a hash of its inputs
+ *            (scene text + binary version), and the manifest (campaign.txt) that lists them;
+ *   execute  each run in turn (mpiexec -n NP mdpore run, or plain mdpore run at NP = 1); a folder
+ *            whose summary.json holds a flux result is reused, so a killed campaign resumes;
+ *   collect  the flow table per axis (flowdata/), `mdpore fit` on it, k in rc^2, m^2 and nD, a PNG.
+ * --emit-scenes stops after plan (plus a commands list), --collect runs collect alone. */
+#ifndef MDPORE_CAMPAIGN_H
+#define MDPORE_CAMPAIGN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define CAMP_MAX_GRADIENTS 64
+#define CAMP_MAX_RUNS (3 * CAMP_MAX_GRADIENTS)
+#define CAMP_PATH 4096
+
+typedef struct {
+  char input[CAMP_PATH];            /* IMAGE or SCENE (absolute) */
+  int input_is_scene;               /* 1: a .yaml/.yml scene used as the template */
+  int axes[3], n_axes;              /* 0 = x, 1 = y, 2 = z */
+  int grad_auto;                    /* 1: the auto ladder (campaign_gradients.c) */
+  double grads[CAMP_MAX_GRADIENTS]; /* body force per particle g (LIST) */
+  int n_grads;                      /* LIST length, or the number of auto points */
+  double u_lo, u_hi;                /* auto: mean pore velocity range */
+  double target_error;              /* run.target_error (0 < E < 1) */
+  long long max_steps;              /* run.steps (0: 20000, or the scene's own) */
+  int np;                           /* ranks per run */
+  char workdir[CAMP_PATH];
+  char emit_dir[CAMP_PATH];    /* --emit-scenes DIR ("" = no) */
+  char collect_dir[CAMP_PATH]; /* --collect DIR ("" = no) */
+  double rc_per_voxel;         /* image input: voxel edge in rc */
+  double voxel_size_m;         /* --voxel-size (m per voxel; 0 = from the image or the mapping) */
+  double viscosity;            /* mu of the fluid in reduced units */
+  int viscosity_given;
+  double temperature_K; /* units: kT of the reduced units */
+  long long seed;
+  int flux_every;
+  char mpiexec[512];        /* the launcher and its flags, split on spaces */
+  char models[128];         /* --models for mdpore fit ("" = its default set) */
+  char sample[256];         /* sample name of the tables */
+  char self_exe[CAMP_PATH]; /* this mdpore binary */
+} camp_opts;
+
+/* One planned run. */
+typedef struct {
+  int axis;
+  double g;            /* body force per particle along the axis */
+  char dir[CAMP_PATH]; /* absolute run folder */
+  /* filled by execute / collect */
+  int have;   /* summary with a flux result read */
+  int reused; /* found finished, not rerun */
+  double q, q_err, G, rel_err;
+  int reached; /* 1 met the target, 0 not, -1 no target */
+  long long steps, particles, steady_from;
+  double seconds; /* loop seconds of the run */
+} camp_run;
+
+/* The campaign: its metadata (written to and read from the manifest) and its runs. */
+typedef struct {
+  char sample[256];
+  char input[CAMP_PATH];
+  char image[CAMP_PATH]; /* image of the geometry ("" for a scene without geometry) */
+  double porosity;       /* pore voxels / all voxels (NAN without an image) */
+  double rc_per_voxel;   /* NAN without an image */
+  double h_hydraulic;    /* 2 V_pore / S_pore, rc (NAN without an image) */
+  int percolates[3];     /* along x, y, z (1 without an image) */
+  double fluid_density;  /* n, particles per rc^3 */
+  double viscosity;      /* mu, reduced */
+  char viscosity_source[256];
+  double length_unit_m; /* metres per rc */
+  char length_source[256];
+  double temperature_K;
+  double target_error;
+  int np;
+  int n_runs;
+  camp_run runs[CAMP_MAX_RUNS];
+} campaign;
+
+/* cmd_permeability.c: the subcommand. */
+int cmd_permeability(int argc, char **argv);
+
+/* campaign_args.c: options. Returns 0, 1 (help printed) or -1 (message printed). */
+int camp_parse_args(int argc, char **argv, camp_opts *o);
+extern const char *camp_usage;
+
+/* campaign_template.c: the scene template (written to WORKDIR/template.yaml for an image) and the
+ * campaign metadata from the image. 0 or -1 with a message naming the file/key. */
+int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int len);
+
+/* campaign_gradients.c: the auto ladder (fills o->grads) or a check of the LIST. */
+int camp_gradients(camp_opts *o, const campaign *c);
+/* Parses "a,b,c" into grads. 0, or -1 with a message into err. */
+int camp_parse_gradient_list(const char *text, double *grads, int *n, char *err, int errlen);
+
+/* campaign_scene.c: the scene text of one run (template + axis + g), malloc'd; NULL + message. */
+char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, double g);
+
+/* campaign_hash.c: FNV-1a 64 and the version string of this binary. */
+uint64_t camp_fnv1a(uint64_t h, const void *data, size_t n);
+int camp_binary_version(const char *exe, char *out, int len);
+
+/* campaign_plan.c: the scenes and the manifest. 0 or -1. */
+int camp_plan(camp_opts *o, campaign *c);
+int camp_write_manifest(const char *workdir, const campaign *c);
+int camp_read_manifest(const char *workdir, campaign *c);
+int camp_write_commands(const char *workdir, const camp_opts *o, const campaign *c);
+
+/* campaign_summary.c: reads DIR/summary.json into r (have = 1 when it holds a usable flux). */
+int camp_read_summary(camp_run *r, char *why, int whylen);
+
+/* campaign_exec.c: runs argv (execvp) in dir (NULL: here) with stdout + stderr to log (NULL: ours),
+ * in the environment this process started with. Returns the exit status or -1. */
+int camp_spawn(const char *dir, char **argv, const char *log);
+/* campaign_exec.c: runs (or reuses) every run in turn, with progress on stderr. 0 or -1. */
+int camp_execute(const camp_opts *o, campaign *c);
+
+/* campaign_progress.c: progress and ETA over the whole campaign. */
+typedef struct {
+  double t0;
+  int total, done;
+  double ps_done_all; /* particle-steps of every finished run (reused too) */
+  int n_finished;
+  double ps_exec, s_exec; /* particle-steps and seconds of the runs executed now */
+} camp_progress;
+double camp_now(void);
+void camp_progress_start(camp_progress *p, int total);
+void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds);
+
+/* campaign_units.c: the reduced -> SI mapping. */
+typedef struct {
+  double rc_m, kT_J, mass_kg, tau_s;
+  double G_Pa_per_m, q_m_per_s, mu_Pa_s, k_m2;
+  double n_molecules; /* water molecules per particle (coarse-graining level) */
+} camp_units;
+void camp_units_make(double rc_m, double n, double temperature_K, camp_units *u);
+
+/* campaign_collect.c: tables, fits, report. 0 or -1. */
+int camp_collect(const camp_opts *o, campaign *c, const char *workdir);
+
+#endif

@@ -1,0 +1,236 @@
+/* Options of `mdpore permeability` (docs/permeability.md). */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "campaign.h"
+
+const char *camp_usage =
+    "usage: mdpore permeability IMAGE|SCENE --axis x|y|z|all [options]\n"
+    "       mdpore permeability IMAGE|SCENE --axis ... --emit-scenes DIR [options]\n"
+    "       mdpore permeability --collect DIR [--models LIST]\n"
+    "A ladder of body-force runs (one `mdpore run` each, cached by a hash of its inputs), the "
+    "flow\n"
+    "table (docs/flow-table.md), `mdpore fit` on it, k in rc^2, m^2 and nD, a PNG "
+    "(docs/permeability.md).\n"
+    "  --axis A            x, y, z or all (the diagonal of the permeability tensor)\n"
+    "  --gradients G       auto (default: --n-gradients points, mean pore velocity log-spaced "
+    "over\n"
+    "                      --velocity-range) or a list of body forces per particle g, e.g. "
+    "0.05,0.1,0.2\n"
+    "  --n-gradients N     auto: number of gradients (>= 5, default 5)\n"
+    "  --velocity-range L,H  auto: mean pore velocity range (default 0.02,0.2)\n"
+    "  --target-error E    run.target_error of every run (0 < E < 1, default 0.05)\n"
+    "  --max-steps N       run.steps, the step budget of every run (default 20000; a scene: its "
+    "own)\n"
+    "  --np N              ranks per run: mpiexec -n N mdpore run (default 1: plain mdpore run)\n"
+    "  --mpiexec CMD       launcher and its flags (default: mpiexec)\n"
+    "  --workdir DIR       campaign folder (default permeability-SAMPLE)\n"
+    "  --emit-scenes DIR   write the scenes, the manifest and commands.txt, run nothing\n"
+    "  --collect DIR       read a campaign folder back: tables, fits, report\n"
+    "  --rc-per-voxel R    image: voxel edge in rc (default 0.5)\n"
+    "  --voxel-size M      voxel edge in metres (default: the image's own, else the mDPD water\n"
+    "                      mapping rc = 0.82 nm)\n"
+    "  --viscosity MU      fluid viscosity in reduced units (default 5.41: mDPD A=-40 B=25\n"
+    "                      gamma=4.5 rd=0.75, validation/engine/viscosity.py)\n"
+    "  --temperature K     temperature of kT for the SI units (default 298.15)\n"
+    "  --seed S            base seed (default 12345; each gradient gets its own)\n"
+    "  --flux-every N      flux sample interval in steps (default 10)\n"
+    "  --models LIST       laws passed to mdpore fit (default: its default set)\n"
+    "  --sample NAME       sample name in the tables (default: the input's file name)\n";
+
+static int bad(const char *opt, const char *expected, const char *got) {
+  fprintf(stderr, "mdpore permeability: %s: expected %s, got '%s'\n", opt, expected, got);
+  return -1;
+}
+
+static int parse_double(const char *opt, const char *s, double lo, double hi, const char *what,
+                        double *out) {
+  char *end;
+  errno = 0;
+  double v = strtod(s, &end);
+  if (errno || end == s || *end || !isfinite(v) || v <= lo || v >= hi) return bad(opt, what, s);
+  *out = v;
+  return 0;
+}
+
+static int parse_ll(const char *opt, const char *s, long long lo, const char *what,
+                    long long *out) {
+  char *end;
+  errno = 0;
+  long long v = strtoll(s, &end, 10);
+  if (errno || end == s || *end || v < lo) return bad(opt, what, s);
+  *out = v;
+  return 0;
+}
+
+static int ends_with(const char *s, const char *suffix) {
+  size_t n = strlen(s), m = strlen(suffix);
+  return n >= m && !strcmp(s + n - m, suffix);
+}
+
+static void absolute(const char *path, char *out, int len) {
+  if (path[0] == '/') {
+    snprintf(out, len, "%s", path);
+    return;
+  }
+  char cwd[CAMP_PATH];
+  if (!getcwd(cwd, sizeof cwd)) cwd[0] = 0;
+  snprintf(out, len, "%s/%s", cwd, path);
+}
+
+static int parse_axis(const char *s, camp_opts *o) {
+  if (!strcmp(s, "all")) {
+    o->n_axes = 3;
+    for (int d = 0; d < 3; d++) o->axes[d] = d;
+    return 0;
+  }
+  if (strlen(s) == 1 && s[0] >= 'x' && s[0] <= 'z') {
+    o->n_axes = 1;
+    o->axes[0] = s[0] - 'x';
+    return 0;
+  }
+  return bad("--axis", "x, y, z or all", s);
+}
+
+int camp_parse_args(int argc, char **argv, camp_opts *o) {
+  memset(o, 0, sizeof *o);
+  o->grad_auto = 1;
+  o->n_grads = 5;
+  o->u_lo = 0.02;
+  o->u_hi = 0.2;
+  o->target_error = 0.05;
+  o->np = 1;
+  o->rc_per_voxel = 0.5;
+  o->viscosity = 5.41;
+  o->temperature_K = 298.15;
+  o->seed = 12345;
+  o->flux_every = 10;
+  snprintf(o->mpiexec, sizeof o->mpiexec, "mpiexec");
+  const char *input = NULL, *workdir = NULL;
+  int have_axis = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i];
+    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (s[0] == '-' && s[1] == '-' && i + 1 >= argc) {
+      fprintf(stderr, "mdpore permeability: %s: expected a value after it\n", s);
+      return -1;
+    }
+    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+    long long ll;
+    if (!strcmp(s, "--axis")) {
+      if (parse_axis(v, o)) return -1;
+      have_axis = 1;
+    } else if (!strcmp(s, "--gradients")) {
+      if (!strcmp(v, "auto"))
+        o->grad_auto = 1;
+      else {
+        char err[512];
+        o->grad_auto = 0;
+        if (camp_parse_gradient_list(v, o->grads, &o->n_grads, err, sizeof err)) {
+          fprintf(stderr, "mdpore permeability: --gradients: %s\n", err);
+          return -1;
+        }
+      }
+    } else if (!strcmp(s, "--n-gradients")) {
+      if (parse_ll(s, v, 5, "an integer >= 5", &ll)) return -1;
+      if (ll > CAMP_MAX_GRADIENTS) return bad(s, "at most 64 gradients", v);
+      o->n_grads = (int)ll;
+    } else if (!strcmp(s, "--velocity-range")) {
+      if (sscanf(v, "%lf,%lf", &o->u_lo, &o->u_hi) != 2 || !(o->u_lo > 0) || !(o->u_hi > o->u_lo))
+        return bad(s, "LO,HI with 0 < LO < HI (mean pore velocities)", v);
+    } else if (!strcmp(s, "--target-error")) {
+      if (parse_double(s, v, 0, 1, "a relative error 0 < E < 1", &o->target_error)) return -1;
+    } else if (!strcmp(s, "--max-steps")) {
+      if (parse_ll(s, v, 1, "a positive number of steps", &o->max_steps)) return -1;
+    } else if (!strcmp(s, "--np")) {
+      if (parse_ll(s, v, 1, "a positive number of ranks", &ll)) return -1;
+      if (ll > INT_MAX) return bad(s, "a number of ranks", v);
+      o->np = (int)ll;
+    } else if (!strcmp(s, "--mpiexec"))
+      snprintf(o->mpiexec, sizeof o->mpiexec, "%s", v);
+    else if (!strcmp(s, "--workdir"))
+      workdir = v;
+    else if (!strcmp(s, "--emit-scenes"))
+      absolute(v, o->emit_dir, sizeof o->emit_dir);
+    else if (!strcmp(s, "--collect"))
+      absolute(v, o->collect_dir, sizeof o->collect_dir);
+    else if (!strcmp(s, "--rc-per-voxel")) {
+      if (parse_double(s, v, 0, HUGE_VAL, "a voxel edge in rc > 0", &o->rc_per_voxel)) return -1;
+    } else if (!strcmp(s, "--voxel-size")) {
+      if (parse_double(s, v, 0, 1, "a voxel edge in metres (0 < M < 1)", &o->voxel_size_m))
+        return -1;
+    } else if (!strcmp(s, "--viscosity")) {
+      if (parse_double(s, v, 0, HUGE_VAL, "a viscosity > 0 (reduced units)", &o->viscosity))
+        return -1;
+      o->viscosity_given = 1;
+    } else if (!strcmp(s, "--temperature")) {
+      if (parse_double(s, v, 0, HUGE_VAL, "a temperature in K > 0", &o->temperature_K)) return -1;
+    } else if (!strcmp(s, "--seed")) {
+      if (parse_ll(s, v, 0, "a seed >= 0", &o->seed)) return -1;
+    } else if (!strcmp(s, "--flux-every")) {
+      if (parse_ll(s, v, 1, "a positive number of steps", &ll)) return -1;
+      if (ll > INT_MAX) return bad(s, "a number of steps", v);
+      o->flux_every = (int)ll;
+    } else if (!strcmp(s, "--models"))
+      snprintf(o->models, sizeof o->models, "%s", v);
+    else if (!strcmp(s, "--sample"))
+      snprintf(o->sample, sizeof o->sample, "%s", v);
+    else if (s[0] == '-') {
+      fprintf(stderr, "mdpore permeability: unknown option '%s'\n", s);
+      return -1;
+    } else if (!input) {
+      input = s;
+      i--; /* no value */
+    } else {
+      fprintf(stderr, "mdpore permeability: unexpected argument '%s'\n", s);
+      return -1;
+    }
+    i++;
+  }
+  if (o->collect_dir[0]) {
+    if (input || o->emit_dir[0]) {
+      fprintf(stderr, "mdpore permeability: --collect DIR reads a campaign folder: give no "
+                      "IMAGE|SCENE and no --emit-scenes with it\n");
+      return -1;
+    }
+    return 0;
+  }
+  if (!input) {
+    fprintf(stderr, "mdpore permeability: expected an IMAGE or SCENE argument\n");
+    return -1;
+  }
+  if (!have_axis) {
+    fprintf(stderr, "mdpore permeability: expected --axis x|y|z|all\n");
+    return -1;
+  }
+  if (access(input, R_OK)) {
+    fprintf(stderr,
+            "mdpore permeability: %s: cannot read the input (%s): expected a segmented "
+            "image or a scene file\n",
+            input, strerror(errno));
+    return -1;
+  }
+  absolute(input, o->input, sizeof o->input);
+  o->input_is_scene = ends_with(input, ".yaml") || ends_with(input, ".yml");
+  if (!o->sample[0]) {
+    const char *b = strrchr(o->input, '/');
+    snprintf(o->sample, sizeof o->sample, "%.255s", b ? b + 1 : o->input);
+    char *dot = strrchr(o->sample, '.');
+    if (dot && dot != o->sample) *dot = 0;
+  }
+  if (o->emit_dir[0])
+    snprintf(o->workdir, sizeof o->workdir, "%s", o->emit_dir);
+  else if (workdir)
+    absolute(workdir, o->workdir, sizeof o->workdir);
+  else {
+    char name[512];
+    snprintf(name, sizeof name, "permeability-%s", o->sample);
+    absolute(name, o->workdir, sizeof o->workdir);
+  }
+  return 0;
+}

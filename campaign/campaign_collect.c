@@ -1,0 +1,339 @@
+/* Collect a campaign: per axis the flow table WORKDIR/flow_<axis>.csv (flowdata/ writer), `mdpore
+ * fit` on it (subprocess: JSON WORKDIR/fit_<axis>.json, PNG WORKDIR/flow_<axis>.png when python3
+ * has matplotlib), the report on stdout (k in rc^2, m^2, nD; the chosen law and its parameters) and
+ * WORKDIR/permeability.json. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "campaign.h"
+#include "common/atomic_file.h"
+#include "common/json_out.h"
+#include "common/yaml_tree.h"
+#include "flowdata/flow_table.h"
+
+#ifndef MDPORE_PYTHON_EXE
+#define MDPORE_PYTHON_EXE "python3"
+#endif
+
+#define NANODARCY_PER_M2 (1e9 / 9.869233e-13)
+
+typedef struct {
+  int fitted; /* the fit JSON was read */
+  char chosen[32];
+  double k, k_err; /* the Darcy k (rc^2) */
+  int n_par;
+  char par_name[4][16];
+  double par[4], par_err[4];
+  char par_unit[4][96];
+  double chi2_dof; /* of the chosen law */
+  int rows;
+} axis_result;
+
+static int by_g(const void *a, const void *b) {
+  const camp_run *x = *(camp_run *const *)a, *y = *(camp_run *const *)b;
+  return (x->G > y->G) - (x->G < y->G);
+}
+
+/* Darcy k by weighted least squares (the fallback without `mdpore fit`). */
+static void own_darcy(const flow_table *t, double mu, double *k, double *se) {
+  double sgq = 0, sgg = 0;
+  for (int i = 0; i < t->n; i++) {
+    double w = 1.0 / (t->sigma[i] * t->sigma[i]);
+    sgq += w * t->G[i] * t->q[i];
+    sgg += w * t->G[i] * t->G[i];
+  }
+  *k = mu * sgq / sgg;
+  *se = mu / sqrt(sgg);
+}
+
+static double jnum(ytree_t *t, yaml_node_t *map, const char *key) {
+  yaml_node_t *n = map ? yt_get(t, map, key) : NULL;
+  double v;
+  if (!n || yt_is_null(n) || yt_double(t, n, key, &v)) return NAN;
+  return v;
+}
+
+/* The chosen law, its parameters and the Darcy k from the fit JSON. */
+static int read_fit(const char *path, axis_result *ar) {
+  ytree_t t;
+  if (yt_load(&t, path, 0)) return -1;
+  yaml_node_t *root = yt_root(&t), *n;
+  if (!root || yt_expect_map(&t, root, "")) {
+    yt_free(&t);
+    return -1;
+  }
+  snprintf(ar->chosen, sizeof ar->chosen, "none");
+  if ((n = yt_get(&t, root, "chosen")) && !yt_is_null(n))
+    yt_string(&t, n, "chosen", ar->chosen, sizeof ar->chosen);
+  yaml_node_t *models = yt_get(&t, root, "models");
+  for (int i = 0; models && models->type == YAML_SEQUENCE_NODE && i < yt_seq_size(models); i++) {
+    yaml_node_t *m = yt_seq_item(&t, models, i);
+    char law[32] = "";
+    if (!(n = yt_get(&t, m, "law")) || yt_string(&t, n, "law", law, sizeof law)) continue;
+    yaml_node_t *pars = yt_get(&t, m, "parameters");
+    if (!pars || pars->type != YAML_MAPPING_NODE) continue;
+    if (!strcmp(law, "darcy")) {
+      yaml_node_t *k = yt_get(&t, pars, "k");
+      ar->k = jnum(&t, k, "value");
+      ar->k_err = jnum(&t, k, "stderr");
+    }
+    if (!strcmp(law, ar->chosen)) {
+      ar->chi2_dof = jnum(&t, m, "chi2_dof");
+      ar->n_par = 0;
+      for (int p = 0; p < yt_map_size(pars) && p < 4; p++) {
+        const char *name = yt_map_key(&t, pars, p, NULL);
+        yaml_node_t *pv = yt_map_value(&t, pars, p);
+        snprintf(ar->par_name[p], sizeof ar->par_name[p], "%s", name ? name : "?");
+        ar->par[p] = jnum(&t, pv, "value");
+        ar->par_err[p] = jnum(&t, pv, "stderr");
+        ar->par_unit[p][0] = 0;
+        if ((n = yt_get(&t, pv, "unit")))
+          yt_string(&t, n, "unit", ar->par_unit[p], sizeof ar->par_unit[p]);
+        ar->n_par++;
+      }
+    }
+  }
+  yt_free(&t);
+  ar->fitted = 1;
+  return 0;
+}
+
+static int have_matplotlib(void) {
+  return system("'" MDPORE_PYTHON_EXE "' -c 'import matplotlib' > /dev/null 2>&1") == 0;
+}
+
+static int collect_axis(const camp_opts *o, const campaign *c, const char *workdir, int axis,
+                        const camp_units *u, axis_result *ar) {
+  camp_run *rows[CAMP_MAX_RUNS];
+  int n = 0, missing = 0;
+  char why[CAMP_PATH + 256];
+  for (int i = 0; i < c->n_runs; i++) {
+    camp_run *r = (camp_run *)&c->runs[i];
+    if (r->axis != axis) continue;
+    if (!r->have) camp_read_summary(r, why, sizeof why);
+    if (!r->have) {
+      fprintf(stderr, "mdpore permeability: axis %c, g = %g: left out of the table: %s\n",
+              'x' + axis, r->g, why);
+      missing++;
+      continue;
+    }
+    rows[n++] = r;
+  }
+  memset(ar, 0, sizeof *ar);
+  ar->k = ar->k_err = NAN;
+  ar->rows = n;
+  if (n < 2) {
+    fprintf(stderr,
+            "mdpore permeability: axis %c: %d usable run(s): expected at least 2 to fit "
+            "(run the missing ones: %s/commands.txt, or rerun the campaign)\n",
+            'x' + axis, n, workdir);
+    return -1;
+  }
+  qsort(rows, n, sizeof rows[0], by_g);
+  flow_table t;
+  flow_table_init(&t);
+  snprintf(t.sample, sizeof t.sample, "%s", c->sample);
+  snprintf(t.axis, sizeof t.axis, "%c", 'x' + axis);
+  snprintf(t.length_unit, sizeof t.length_unit, "rc");
+  t.si = 0;
+  t.viscosity = c->viscosity;
+  t.density = c->fluid_density; /* particle mass 1 */
+  t.length_unit_m = c->length_unit_m;
+  if (isfinite(c->rc_per_voxel)) t.voxel_size = c->rc_per_voxel;
+  char line[CAMP_PATH + 256];
+  flow_table_add_comment(&t, "made by mdpore permeability (docs/permeability.md): body-force runs, "
+                             "G = n m g (body force per fluid volume)");
+  flow_table_add_comment(&t, "convention: superficial (Darcy) velocity q = Q / A_total, A_total = "
+                             "the whole cross-section (solid included); k = mu q / G");
+  snprintf(line, sizeof line, "input = %s", c->input);
+  flow_table_add_comment(&t, line);
+  snprintf(line, sizeof line, "porosity = %.6g (pore voxels / all voxels)", c->porosity);
+  flow_table_add_comment(&t, line);
+  snprintf(line, sizeof line, "viscosity source = %s", c->viscosity_source);
+  flow_table_add_comment(&t, line);
+  snprintf(line, sizeof line, "length unit = %s", c->length_source);
+  flow_table_add_comment(&t, line);
+  snprintf(line, sizeof line, "run_length = steps run; target relative error %g", c->target_error);
+  flow_table_add_comment(&t, line);
+  for (int i = 0; i < n; i++) {
+    snprintf(line, sizeof line, "run g = %.6g: %s (steady from step %lld, target %s)", rows[i]->g,
+             rows[i]->dir, rows[i]->steady_from,
+             rows[i]->reached < 0 ? "none"
+             : rows[i]->reached   ? "reached"
+                                  : "NOT reached");
+    flow_table_add_comment(&t, line);
+    flow_table_add_row(&t, rows[i]->G, rows[i]->q, rows[i]->q_err, (double)rows[i]->steps);
+  }
+  char table[CAMP_PATH + 32], fitjson[CAMP_PATH + 32], png[CAMP_PATH + 32], err[1024];
+  snprintf(table, sizeof table, "%s/flow_%c.csv", workdir, 'x' + axis);
+  snprintf(fitjson, sizeof fitjson, "%s/fit_%c.json", workdir, 'x' + axis);
+  snprintf(png, sizeof png, "%s/flow_%c.png", workdir, 'x' + axis);
+  int rc = flow_table_write(table, &t, err, sizeof err);
+  if (rc) fprintf(stderr, "mdpore permeability: %s\n", err);
+  printf("\n== permeability along %c: %s ==\n", 'x' + axis, c->sample);
+  printf("  %-12s %-12s %-12s %-12s %-12s %-10s %s\n", "g", "G", "G [Pa/m]", "q", "q_err",
+         "q [m/s]", "steps");
+  for (int i = 0; i < n; i++)
+    printf("  %-12.5g %-12.5g %-12.4g %-12.5g %-12.3g %-10.3g %lld%s%s\n", rows[i]->g, rows[i]->G,
+           rows[i]->G * u->G_Pa_per_m, rows[i]->q, rows[i]->q_err, rows[i]->q * u->q_m_per_s,
+           rows[i]->steps, rows[i]->reached == 0 ? " (target not reached)" : "",
+           rows[i]->reused ? " (reused)" : "");
+  printf("  wrote %s\n", table);
+  fflush(stdout);
+  if (!rc) {
+    char *argv[16];
+    int a = 0;
+    char fit_word[] = "fit", json_flag[] = "--json", plot_flag[] = "--plot",
+         models_flag[] = "--models", darcy[] = "darcy";
+    argv[a++] = (char *)o->self_exe;
+    argv[a++] = fit_word;
+    argv[a++] = table;
+    argv[a++] = json_flag;
+    argv[a++] = fitjson;
+    int plot = have_matplotlib();
+    if (plot) {
+      argv[a++] = plot_flag;
+      argv[a++] = png;
+    }
+    if (o->models[0]) {
+      argv[a++] = models_flag;
+      argv[a++] = (char *)o->models;
+    } else if (n < 3) {
+      argv[a++] = models_flag;
+      argv[a++] = darcy;
+    }
+    argv[a] = NULL;
+    unlink(fitjson);
+    int st = camp_spawn(NULL, argv, NULL);
+    if (!plot) printf("  PNG skipped: python3 with matplotlib not found (%s)\n", MDPORE_PYTHON_EXE);
+    if (st == 2 && access(fitjson, R_OK)) {
+      fprintf(stderr, "mdpore permeability: mdpore fit is not available (built without PETSc): "
+                      "Darcy k by weighted least squares here, no other law\n");
+      own_darcy(&t, c->viscosity, &ar->k, &ar->k_err);
+      snprintf(ar->chosen, sizeof ar->chosen, "darcy");
+      ar->n_par = 1;
+      snprintf(ar->par_name[0], sizeof ar->par_name[0], "k");
+      ar->par[0] = ar->k;
+      ar->par_err[0] = ar->k_err;
+      snprintf(ar->par_unit[0], sizeof ar->par_unit[0], "rc^2");
+      ar->chi2_dof = NAN;
+    } else if (access(fitjson, R_OK) || read_fit(fitjson, ar)) {
+      fprintf(stderr, "mdpore permeability: mdpore fit %s failed (exit %d)\n", table, st);
+      rc = -1;
+    }
+  }
+  if (!rc && isfinite(ar->k)) {
+    printf("  k_%c%c = %.5g +- %.2g rc^2 = %.4g +- %.2g m^2 = %.4g +- %.2g nD (Darcy; superficial "
+           "velocity q = Q / A_total, k = mu q / G, mu = %g)\n",
+           'x' + axis, 'x' + axis, ar->k, ar->k_err, ar->k * u->k_m2, ar->k_err * u->k_m2,
+           ar->k * u->k_m2 * NANODARCY_PER_M2, ar->k_err * u->k_m2 * NANODARCY_PER_M2,
+           c->viscosity);
+    printf("  chosen law: %s (chi2/dof %.3g):", ar->chosen, ar->chi2_dof);
+    for (int p = 0; p < ar->n_par; p++)
+      printf(" %s = %.5g +- %.2g%s%s", ar->par_name[p], ar->par[p], ar->par_err[p],
+             ar->par_unit[p][0] ? " " : "", ar->par_unit[p]);
+    printf("\n");
+    if (missing) printf("  note: %d run(s) of this axis left out (see stderr)\n", missing);
+  }
+  flow_table_free(&t);
+  return rc;
+}
+
+static void write_json(const char *workdir, const campaign *c, const camp_units *u, const int *axes,
+                       int n_axes, const axis_result *ar) {
+  char path[CAMP_PATH + 32], tmp[CAMP_PATH + 96];
+  snprintf(path, sizeof path, "%s/permeability.json", workdir);
+  FILE *f = atomic_open(path, tmp, sizeof tmp);
+  if (!f) return;
+  json_out j;
+  json_begin(&j, f);
+  json_string(&j, "format", "mdpore-permeability");
+  json_int(&j, "version", 1);
+  json_string(&j, "sample", c->sample);
+  json_string(&j, "input", c->input);
+  json_number(&j, "porosity", c->porosity);
+  json_number(&j, "rc_per_voxel", c->rc_per_voxel);
+  json_number(&j, "viscosity", c->viscosity);
+  json_string(&j, "viscosity_source", c->viscosity_source);
+  json_string(&j, "convention",
+              "superficial (Darcy) velocity q = Q / A_total, A_total = the "
+              "whole cross-section (solid included); k = mu q / G");
+  json_object(&j, "units");
+  json_number(&j, "rc_m", u->rc_m);
+  json_string(&j, "length_source", c->length_source);
+  json_number(&j, "temperature_K", c->temperature_K);
+  json_number(&j, "particle_mass_kg", u->mass_kg);
+  json_number(&j, "water_molecules_per_particle", u->n_molecules);
+  json_number(&j, "tau_s", u->tau_s);
+  json_number(&j, "G_Pa_per_m", u->G_Pa_per_m);
+  json_number(&j, "q_m_per_s", u->q_m_per_s);
+  json_number(&j, "viscosity_Pa_s", u->mu_Pa_s);
+  json_string(&j, "mapping",
+              "dimensional: kT = kB T, m = rho_water / n, tau = rc sqrt(m / kT); "
+              "not viscosity-matched");
+  json_object_end(&j);
+  json_object(&j, "axes");
+  for (int a = 0; a < n_axes; a++) {
+    char key[2] = {(char)('x' + axes[a]), 0};
+    json_object(&j, key);
+    json_bool(&j, "percolates", c->percolates[axes[a]]);
+    json_int(&j, "rows", ar[a].rows);
+    json_number(&j, "k_rc2", c->percolates[axes[a]] ? ar[a].k : 0.0);
+    json_number(&j, "k_rc2_err", ar[a].k_err);
+    json_number(&j, "k_m2", (c->percolates[axes[a]] ? ar[a].k : 0.0) * u->k_m2);
+    json_number(&j, "k_nD", (c->percolates[axes[a]] ? ar[a].k : 0.0) * u->k_m2 * NANODARCY_PER_M2);
+    json_number(&j, "k_nD_err", ar[a].k_err * u->k_m2 * NANODARCY_PER_M2);
+    json_string(&j, "chosen", ar[a].chosen[0] ? ar[a].chosen : "none");
+    json_object(&j, "parameters");
+    for (int p = 0; p < ar[a].n_par; p++) {
+      json_object(&j, ar[a].par_name[p]);
+      json_number(&j, "value", ar[a].par[p]);
+      json_number(&j, "stderr", ar[a].par_err[p]);
+      json_string(&j, "unit", ar[a].par_unit[p]);
+      json_object_end(&j);
+    }
+    json_object_end(&j);
+    json_object_end(&j);
+  }
+  json_object_end(&j);
+  json_end(&j);
+  atomic_commit(f, tmp, path);
+}
+
+int camp_collect(const camp_opts *o, campaign *c, const char *workdir) {
+  camp_units u;
+  camp_units_make(c->length_unit_m, c->fluid_density, c->temperature_K, &u);
+  printf("units: rc = %.4g m (%s)\n", u.rc_m, c->length_source);
+  printf("  kT = kB x %.2f K; particle mass m = rho_water / n = %.4g kg (%.3g water molecules); "
+         "tau = rc sqrt(m/kT) = %.4g s\n",
+         c->temperature_K, u.mass_kg, u.n_molecules, u.tau_s);
+  printf("  G: 1 = %.4g Pa/m; q: 1 = %.4g m/s; k: 1 rc^2 = %.4g m^2 = %.4g nD; mu = %g -> %.3g "
+         "Pa s (real water 8.9e-4 Pa s: the dimensional mapping, not viscosity-matched; k needs "
+         "only rc)\n",
+         u.G_Pa_per_m, u.q_m_per_s, u.k_m2, u.k_m2 * NANODARCY_PER_M2, c->viscosity,
+         c->viscosity * u.mu_Pa_s);
+  int axes[3], n_axes = 0, rc = 0;
+  for (int d = 0; d < 3; d++)
+    for (int i = 0; i < c->n_runs; i++)
+      if (c->runs[i].axis == d) {
+        axes[n_axes++] = d;
+        break;
+      }
+  axis_result ar[3];
+  for (int a = 0; a < n_axes; a++)
+    if (collect_axis(o, c, workdir, axes[a], &u, &ar[a])) rc = -1;
+  if (n_axes > 1 || (o && o->n_axes == 3)) {
+    printf("\npermeability tensor diagonal (rc^2):");
+    for (int a = 0; a < n_axes; a++)
+      printf(" k_%c%c = %.5g", 'x' + axes[a], 'x' + axes[a], ar[a].k);
+    for (int d = 0; d < 3; d++)
+      if (!c->percolates[d]) printf(" k_%c%c = 0 (no percolation)", 'x' + d, 'x' + d);
+    printf("\n");
+  }
+  write_json(workdir, c, &u, axes, n_axes, ar);
+  printf("wrote %s/permeability.json\n", workdir);
+  return rc;
+}

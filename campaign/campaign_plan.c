@@ -1,0 +1,225 @@
+/* The plan of a campaign: one folder per (axis, gradient) named by the hash of its inputs, holding
+ * scene.yaml, and the manifest WORKDIR/campaign.txt that lists the runs and the metadata the
+ * collect step needs (so `--collect DIR` works on a folder made by --emit-scenes). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "campaign.h"
+#include "common/atomic_file.h"
+
+#define MANIFEST_NAME "campaign.txt"
+#define MANIFEST_HEAD "# mdpore permeability campaign v1"
+
+static char *read_all(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  size_t cap = 4096, n = 0, r;
+  char *s = malloc(cap);
+  while (s && (r = fread(s + n, 1, cap - n - 1, f)) > 0) {
+    n += r;
+    if (n + 1 >= cap) {
+      char *t = realloc(s, cap *= 2);
+      if (!t) free(s);
+      s = t;
+    }
+  }
+  fclose(f);
+  if (s) s[n] = 0;
+  return s;
+}
+
+static int write_text(const char *path, const char *text) {
+  char tmp[CAMP_PATH + 64];
+  FILE *f = atomic_open(path, tmp, sizeof tmp);
+  if (!f) return -1;
+  fputs(text, f);
+  return atomic_commit(f, tmp, path);
+}
+
+int camp_plan(camp_opts *o, campaign *c) {
+  char template_path[CAMP_PATH], version[256];
+  if (camp_make_template(o, c, template_path, sizeof template_path)) return -1;
+  if (camp_gradients(o, c)) return -1;
+  if (camp_binary_version(o->self_exe, version, sizeof version)) return -1;
+  c->n_runs = 0;
+  for (int a = 0; a < o->n_axes; a++) {
+    int axis = o->axes[a];
+    if (!c->percolates[axis]) {
+      fprintf(stderr,
+              "mdpore permeability: %s: the pore space does not percolate along %c: k_%c%c = "
+              "0, no runs\n",
+              c->image, 'x' + axis, 'x' + axis, 'x' + axis);
+      continue;
+    }
+    for (int i = 0; i < o->n_grads; i++) {
+      char *scene = camp_scene_text(template_path, o, axis, o->grads[i]);
+      if (!scene) return -1;
+      uint64_t h = camp_fnv1a(14695981039346656037ULL, scene, strlen(scene));
+      h = camp_fnv1a(h, "\n", 1);
+      h = camp_fnv1a(h, version, strlen(version));
+      camp_run *r = &c->runs[c->n_runs++];
+      memset(r, 0, sizeof *r);
+      r->axis = axis;
+      r->g = o->grads[i];
+      snprintf(r->dir, sizeof r->dir, "%.4000s/runs/%c-%016llx", o->workdir, 'x' + axis,
+               (unsigned long long)h);
+      char path[CAMP_PATH + 32];
+      snprintf(path, sizeof path, "%s/scene.yaml", r->dir);
+      char header[512];
+      snprintf(header, sizeof header,
+               "# mdpore permeability run: axis %c, body force g = %.15g per particle; folder = "
+               "FNV-1a 64 of the text below and '%s'\n",
+               'x' + axis, o->grads[i], version);
+      size_t len = strlen(header) + strlen(scene) + 1;
+      char *text = malloc(len);
+      if (!text) return -1;
+      snprintf(text, len, "%s%s", header, scene);
+      char *old = read_all(path);
+      int rc = 0;
+      if (!old || strcmp(old, text)) rc = make_dirs(r->dir) || write_text(path, text);
+      free(old);
+      free(text);
+      free(scene);
+      if (rc) return -1;
+    }
+  }
+  if (c->n_runs == 0) {
+    fprintf(stderr, "mdpore permeability: %s: no axis asked for percolates: nothing to run\n",
+            o->input);
+    return -1;
+  }
+  return camp_write_manifest(o->workdir, c);
+}
+
+int camp_write_manifest(const char *workdir, const campaign *c) {
+  char path[CAMP_PATH + 32], tmp[CAMP_PATH + 96];
+  snprintf(path, sizeof path, "%s/%s", workdir, MANIFEST_NAME);
+  FILE *f = atomic_open(path, tmp, sizeof tmp);
+  if (!f) return -1;
+  fprintf(f, "%s\n", MANIFEST_HEAD);
+  fprintf(f, "sample: %s\ninput: %s\nimage: %s\n", c->sample, c->input, c->image);
+  fprintf(f, "porosity: %.17g\nrc_per_voxel: %.17g\nh_hydraulic: %.17g\n", c->porosity,
+          c->rc_per_voxel, c->h_hydraulic);
+  fprintf(f, "percolates: %d %d %d\n", c->percolates[0], c->percolates[1], c->percolates[2]);
+  fprintf(f, "fluid_density: %.17g\nviscosity: %.17g\nviscosity_source: %s\n", c->fluid_density,
+          c->viscosity, c->viscosity_source);
+  fprintf(f, "length_unit_m: %.17g\nlength_source: %s\n", c->length_unit_m, c->length_source);
+  fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
+          c->target_error, c->np);
+  for (int i = 0; i < c->n_runs; i++)
+    fprintf(f, "run: %c %.17g %s\n", 'x' + c->runs[i].axis, c->runs[i].g, c->runs[i].dir);
+  return atomic_commit(f, tmp, path);
+}
+
+static int num(const char *path, int line, const char *key, const char *v, double *out) {
+  char *end;
+  *out = strtod(v, &end);
+  if (end == v) {
+    fprintf(stderr, "mdpore permeability: %s:%d: key '%s': expected a number, got '%s'\n", path,
+            line, key, v);
+    return -1;
+  }
+  return 0;
+}
+
+int camp_read_manifest(const char *workdir, campaign *c) {
+  char path[CAMP_PATH + 32], line[3 * CAMP_PATH];
+  snprintf(path, sizeof path, "%s/%s", workdir, MANIFEST_NAME);
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    fprintf(stderr,
+            "mdpore permeability: %s: %s: expected a campaign folder (made by mdpore "
+            "permeability or its --emit-scenes)\n",
+            path, strerror(errno));
+    return -1;
+  }
+  memset(c, 0, sizeof *c);
+  int ln = 0, rc = 0, head = 0;
+  while (!rc && fgets(line, sizeof line, f)) {
+    ln++;
+    line[strcspn(line, "\n")] = 0;
+    if (ln == 1) {
+      head = !strcmp(line, MANIFEST_HEAD);
+      if (!head) break;
+      continue;
+    }
+    char *colon = strstr(line, ": ");
+    if (!colon) continue;
+    *colon = 0;
+    const char *k = line, *v = colon + 2;
+    double x;
+    if (!strcmp(k, "sample"))
+      snprintf(c->sample, sizeof c->sample, "%s", v);
+    else if (!strcmp(k, "input"))
+      snprintf(c->input, sizeof c->input, "%s", v);
+    else if (!strcmp(k, "image"))
+      snprintf(c->image, sizeof c->image, "%s", v);
+    else if (!strcmp(k, "viscosity_source"))
+      snprintf(c->viscosity_source, sizeof c->viscosity_source, "%s", v);
+    else if (!strcmp(k, "length_source"))
+      snprintf(c->length_source, sizeof c->length_source, "%s", v);
+    else if (!strcmp(k, "percolates")) {
+      if (sscanf(v, "%d %d %d", &c->percolates[0], &c->percolates[1], &c->percolates[2]) != 3) {
+        fprintf(stderr, "mdpore permeability: %s:%d: key 'percolates': expected 3 flags\n", path,
+                ln);
+        rc = -1;
+      }
+    } else if (!strcmp(k, "run")) {
+      char ax;
+      camp_run *r = &c->runs[c->n_runs];
+      int off = 0;
+      if (c->n_runs >= CAMP_MAX_RUNS || sscanf(v, "%c %lf %n", &ax, &r->g, &off) != 2 || ax < 'x' ||
+          ax > 'z' || !v[off]) {
+        fprintf(stderr, "mdpore permeability: %s:%d: key 'run': expected 'AXIS G DIR', got '%s'\n",
+                path, ln, v);
+        rc = -1;
+      } else {
+        r->axis = ax - 'x';
+        snprintf(r->dir, sizeof r->dir, "%s", v + off);
+        c->n_runs++;
+      }
+    } else {
+      struct {
+        const char *key;
+        double *to;
+      } nums[] = {{"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
+                  {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
+                  {"viscosity", &c->viscosity},         {"length_unit_m", &c->length_unit_m},
+                  {"temperature_K", &c->temperature_K}, {"target_error", &c->target_error}};
+      for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
+        if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
+      if (!strcmp(k, "np")) {
+        rc = num(path, ln, k, v, &x);
+        c->np = (int)x;
+      }
+    }
+  }
+  fclose(f);
+  if (!head) {
+    fprintf(stderr, "mdpore permeability: %s:1: expected the line '%s'\n", path, MANIFEST_HEAD);
+    return -1;
+  }
+  if (!rc && c->n_runs == 0) {
+    fprintf(stderr, "mdpore permeability: %s: expected 'run:' lines (none found)\n", path);
+    rc = -1;
+  }
+  return rc;
+}
+
+int camp_write_commands(const char *workdir, const camp_opts *o, const campaign *c) {
+  char path[CAMP_PATH + 32], tmp[CAMP_PATH + 96];
+  snprintf(path, sizeof path, "%s/commands.txt", workdir);
+  FILE *f = atomic_open(path, tmp, sizeof tmp);
+  if (!f) return -1;
+  for (int i = 0; i < c->n_runs; i++) {
+    if (o->np > 1)
+      fprintf(f, "cd '%s' && %s -n %d '%s' run scene.yaml > run.log 2>&1\n", c->runs[i].dir,
+              o->mpiexec, o->np, o->self_exe);
+    else
+      fprintf(f, "cd '%s' && '%s' run scene.yaml > run.log 2>&1\n", c->runs[i].dir, o->self_exe);
+  }
+  return atomic_commit(f, tmp, path);
+}

@@ -1,0 +1,209 @@
+/* The scene of one run: the template with the flow axis, the body force, the flux output and the
+ * run's budget and target set, paths made absolute, emitted as YAML text (libyaml's emitter).
+ *   effects.body_force   {FLUID: [g along the axis]} (FLUID: geometry.species.fluid, or every
+ *                        species that is not frozen), replacing any body force of the template
+ *   geometry.flow_axis   the axis (scenes with geometry)
+ *   output.flux          axis, file flux.csv, every (kept when the template sets it)
+ *   output.summary       summary.json; output.progress false
+ *   run.target_error     --target-error; run.steps --max-steps (when given); run.seed base + a hash
+ *                        of g (independent noise per gradient)
+ *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <yaml.h>
+
+#include "campaign.h"
+#include "common/yaml_tree.h"
+
+typedef yaml_document_t doc_t;
+
+static int node_id(doc_t *d, yaml_node_t *n) {
+  return n ? (int)(n - d->nodes.start) + 1 : 0;
+}
+
+static int scalar(doc_t *d, const char *text) {
+  return yaml_document_add_scalar(d, NULL, (yaml_char_t *)text, -1, YAML_ANY_SCALAR_STYLE);
+}
+
+static int number(doc_t *d, double v) {
+  char b[64];
+  snprintf(b, sizeof b, "%.15g", v);
+  return scalar(d, b);
+}
+
+/* Value node id of `key` in mapping `map_id` (0 when absent). */
+static int get(doc_t *d, int map_id, const char *key) {
+  yaml_node_t *m = yaml_document_get_node(d, map_id);
+  if (!m || m->type != YAML_MAPPING_NODE) return 0;
+  for (yaml_node_pair_t *p = m->data.mapping.pairs.start; p < m->data.mapping.pairs.top; p++) {
+    yaml_node_t *k = yaml_document_get_node(d, p->key);
+    if (k && k->type == YAML_SCALAR_NODE && !strcmp((char *)k->data.scalar.value, key))
+      return p->value;
+  }
+  return 0;
+}
+
+/* Sets `key` of mapping `map_id` to node `value` (replacing or appending). */
+static int set(doc_t *d, int map_id, const char *key, int value) {
+  yaml_node_t *m = yaml_document_get_node(d, map_id);
+  for (yaml_node_pair_t *p = m->data.mapping.pairs.start; p < m->data.mapping.pairs.top; p++) {
+    yaml_node_t *k = yaml_document_get_node(d, p->key);
+    if (k && k->type == YAML_SCALAR_NODE && !strcmp((char *)k->data.scalar.value, key)) {
+      p->value = value;
+      return 0;
+    }
+  }
+  int k = scalar(d, key);
+  return yaml_document_append_mapping_pair(d, map_id, k, value) ? 0 : -1;
+}
+
+/* The mapping under `key`, made when absent. */
+static int child_map(doc_t *d, int map_id, const char *key) {
+  int c = get(d, map_id, key);
+  yaml_node_t *n = yaml_document_get_node(d, c);
+  if (n && n->type == YAML_MAPPING_NODE) return c;
+  c = yaml_document_add_mapping(d, NULL, YAML_BLOCK_MAPPING_STYLE);
+  set(d, map_id, key, c);
+  return c;
+}
+
+static const char *text_of(doc_t *d, int id) {
+  yaml_node_t *n = yaml_document_get_node(d, id);
+  return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value : NULL;
+}
+
+/* A relative path value made absolute against the template's folder. */
+static void absolutize(doc_t *d, int map_id, const char *key, const char *dir) {
+  const char *v = text_of(d, get(d, map_id, key));
+  if (!v || v[0] == '/' || !v[0]) return;
+  char path[2 * CAMP_PATH];
+  snprintf(path, sizeof path, "%s/%s", dir, v);
+  set(d, map_id, key, scalar(d, path));
+}
+
+/* Appends the emitter's output to a growing buffer. */
+typedef struct {
+  char *s;
+  size_t n, cap;
+} sbuf;
+
+static int write_handler(void *data, unsigned char *buffer, size_t size) {
+  sbuf *b = data;
+  if (b->n + size + 1 > b->cap) {
+    size_t cap = 2 * (b->n + size + 1);
+    char *s = realloc(b->s, cap);
+    if (!s) return 0;
+    b->s = s;
+    b->cap = cap;
+  }
+  memcpy(b->s + b->n, buffer, size);
+  b->n += size;
+  b->s[b->n] = 0;
+  return 1;
+}
+
+/* The fluid species names: geometry.species.fluid, else the species not frozen. */
+static int fluid_species(doc_t *d, int root, const char **names, int max) {
+  int g = get(d, root, "geometry");
+  if (g) {
+    const char *f = text_of(d, get(d, get(d, g, "species"), "fluid"));
+    if (f) {
+      names[0] = f;
+      return 1;
+    }
+  }
+  int n = 0;
+  yaml_node_t *sp = yaml_document_get_node(d, get(d, root, "species"));
+  if (!sp || sp->type != YAML_SEQUENCE_NODE) return 0;
+  for (yaml_node_item_t *it = sp->data.sequence.items.start; it < sp->data.sequence.items.top;
+       it++) {
+    const char *name = text_of(d, get(d, *it, "name"));
+    const char *frozen = text_of(d, get(d, *it, "frozen"));
+    if (name && !(frozen && !strcmp(frozen, "true")) && n < max) names[n++] = name;
+  }
+  return n;
+}
+
+char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, double g) {
+  ytree_t t;
+  if (yt_load(&t, template_path, 0)) return NULL;
+  doc_t *d = &t.doc;
+  char *out = NULL;
+  int root = node_id(d, yt_root(&t));
+  if (!root || yt_expect_map(&t, yaml_document_get_node(d, root), "")) goto done;
+  char dir[CAMP_PATH];
+  snprintf(dir, sizeof dir, "%s", template_path);
+  char *slash = strrchr(dir, '/');
+  if (slash) *slash = 0;
+
+  /* body force on the fluid */
+  const char *names[16];
+  int nf = fluid_species(d, root, names, 16);
+  if (nf == 0) {
+    fprintf(stderr,
+            "mdpore permeability: %s: key 'species': expected a mobile (not frozen) fluid "
+            "species to drive\n",
+            template_path);
+    goto done;
+  }
+  char fluid_copy[16][256];
+  for (int i = 0; i < nf; i++) snprintf(fluid_copy[i], 256, "%s", names[i]);
+  int effects = child_map(d, root, "effects");
+  int bf = yaml_document_add_mapping(d, NULL, YAML_FLOW_MAPPING_STYLE);
+  for (int i = 0; i < nf; i++) {
+    int vec = yaml_document_add_sequence(d, NULL, YAML_FLOW_SEQUENCE_STYLE);
+    for (int c = 0; c < 3; c++)
+      yaml_document_append_sequence_item(d, vec, number(d, c == axis ? g : 0));
+    yaml_document_append_mapping_pair(d, bf, scalar(d, fluid_copy[i]), vec);
+  }
+  set(d, effects, "body_force", bf);
+
+  const char axis_name[2] = {(char)('x' + axis), 0};
+  int geo = get(d, root, "geometry");
+  if (geo) {
+    set(d, geo, "flow_axis", scalar(d, axis_name));
+    absolutize(d, geo, "image", dir);
+    int patches = get(d, geo, "patches");
+    if (patches && yaml_document_get_node(d, patches)->type == YAML_MAPPING_NODE)
+      absolutize(d, patches, "file", dir);
+  }
+  int initial = get(d, root, "initial");
+  if (initial && yaml_document_get_node(d, initial)->type == YAML_MAPPING_NODE) {
+    absolutize(d, initial, "lammps_data", dir);
+    absolutize(d, initial, "snapshot", dir);
+  }
+
+  int output = child_map(d, root, "output");
+  int flux = child_map(d, output, "flux");
+  set(d, flux, "axis", scalar(d, axis_name));
+  set(d, flux, "file", scalar(d, "flux.csv"));
+  if (!get(d, flux, "every")) set(d, flux, "every", number(d, o->flux_every));
+  set(d, output, "summary", scalar(d, "summary.json"));
+  set(d, output, "progress", scalar(d, "false"));
+
+  int run = child_map(d, root, "run");
+  set(d, run, "target_error", number(d, o->target_error));
+  if (o->max_steps > 0) set(d, run, "steps", number(d, (double)o->max_steps));
+  char gtext[64];
+  snprintf(gtext, sizeof gtext, "%.15g", g);
+  uint64_t hg = camp_fnv1a(14695981039346656037ULL, gtext, strlen(gtext));
+  set(d, run, "seed", number(d, (double)(o->seed + (long long)(hg % 1000000ULL))));
+
+  yaml_emitter_t em;
+  sbuf b = {0};
+  yaml_emitter_initialize(&em);
+  yaml_emitter_set_output(&em, write_handler, &b);
+  yaml_emitter_set_width(&em, -1);
+  yaml_emitter_set_unicode(&em, 1);
+  if (!yaml_emitter_open(&em) || !yaml_emitter_dump(&em, d) || !yaml_emitter_close(&em)) {
+    fprintf(stderr, "mdpore permeability: %s: could not emit the run's scene (%s)\n", template_path,
+            em.problem ? em.problem : "libyaml emitter");
+    free(b.s);
+  } else
+    out = b.s;
+  yaml_emitter_delete(&em);
+done:
+  yt_free(&t);
+  return out;
+}

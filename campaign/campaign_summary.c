@@ -1,0 +1,64 @@
+/* A run's result: RUN/summary.json (written atomically by mdpore run at the end of the run, so it
+ * exists only for a finished run). Usable when its flux object has finite q, q_err > 0 and G. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "campaign.h"
+#include "common/yaml_tree.h"
+
+/* A number under map.key; NAN when absent or null. */
+static double num(ytree_t *t, yaml_node_t *map, const char *key) {
+  yaml_node_t *n = map ? yt_get(t, map, key) : NULL;
+  double v;
+  if (!n || yt_is_null(n) || yt_double(t, n, key, &v)) return NAN;
+  return v;
+}
+
+int camp_read_summary(camp_run *r, char *why, int whylen) {
+  char path[CAMP_PATH + 32];
+  snprintf(path, sizeof path, "%s/summary.json", r->dir);
+  r->have = 0;
+  if (access(path, R_OK)) {
+    snprintf(why, whylen, "%s: no summary (the run has not finished)", path);
+    return 0;
+  }
+  ytree_t t;
+  if (yt_load(&t, path, 1)) {
+    snprintf(why, whylen, "%s: not a readable summary", path);
+    return 0;
+  }
+  yaml_node_t *root = yt_root(&t);
+  yaml_node_t *flux = root && root->type == YAML_MAPPING_NODE ? yt_get(&t, root, "flux") : NULL;
+  if (!flux || flux->type != YAML_MAPPING_NODE) {
+    snprintf(why, whylen, "%s: key 'flux': expected the flux result (output.flux)", path);
+    yt_free(&t);
+    return 0;
+  }
+  r->q = num(&t, flux, "q");
+  r->q_err = num(&t, flux, "q_err");
+  r->G = num(&t, flux, "G");
+  r->rel_err = num(&t, flux, "relative_error");
+  double sf = num(&t, flux, "steady_from_step");
+  r->steady_from = isfinite(sf) ? (long long)sf : -1;
+  yaml_node_t *reached = yt_get(&t, flux, "reached");
+  int b = 0;
+  r->reached =
+      (!reached || yt_is_null(reached)) ? -1 : (yt_bool(&t, reached, "reached", &b) ? -1 : b);
+  yaml_node_t *timing = yt_get(&t, root, "timing");
+  double steps = num(&t, timing, "steps"), parts = num(&t, timing, "particles");
+  r->seconds = num(&t, timing, "loop_seconds");
+  r->steps = isfinite(steps) ? (long long)steps : 0;
+  r->particles = isfinite(parts) ? (long long)parts : 0;
+  yt_free(&t);
+  if (!isfinite(r->q) || !(r->q_err > 0) || !isfinite(r->q_err) || !isfinite(r->G)) {
+    snprintf(why, whylen,
+             "%s: key 'flux': expected finite q, q_err > 0 and G (got q %g, q_err %g, G %g; no "
+             "steady state within the run?)",
+             path, r->q, r->q_err, r->G);
+    return 0;
+  }
+  r->have = 1;
+  return 0;
+}

@@ -1,0 +1,187 @@
+#!/usr/bin/python3
+"""ctest campaign_permeability: a CI-sized `mdpore permeability` campaign on a slit image (CPU).
+
+Slit: `mdpore image make slit --width 8 --wall 4 --length 12 --depth 8` at rc_per_voxel 0.5: a pore
+of h = 4 rc between walls, period H = 8 rc along y (porosity 0.5), flow along x. Superficial
+velocity q = (h / H) h^2 / (12 mu) G, so k = h^3 / (12 H) = 0.667 rc^2 with no slip; bounce_back
+walls have a slip of about -0.2 rc per wall (docs/walls.md), h_eff = h - 0.4 = 3.6 gives
+k_eff = 0.486 rc^2. Asserted: 0.35 < k < 0.70 (0.72 k_eff .. 1.05 k_noslip), Darcy fitted.
+
+Steps:
+ 1. bad input: a missing image, a bad axis, bad gradient lists, a non-percolating axis -> exit != 0
+    with a message naming the culprit;
+ 2. --emit-scenes with --gradients auto: 5 scenes, log-spaced g = 12 mu u / (n h^2), u = 0.02..0.2,
+    and a commands list;
+ 3. a campaign of 3 gradients killed (SIGTERM) during its second run: the first run's summary exists,
+    the second's not;
+ 4. the campaign of 5 gradients (a superset) in the same folder: the finished run is reused (summary
+    untouched, "reused" on stderr), the killed one and the new ones run; flow table valid (5 rows,
+    metadata), `mdpore fit` chose a law and fitted Darcy, k within the bounds; permeability.json;
+ 5. --collect on the folder gives the same k.
+"""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+MDPORE = os.environ.get("MDPORE", "mdpore")
+OUT = os.path.abspath(os.environ.get("MDPORE_TEST_OUT", "campaign_test_out"))
+NP = os.environ.get("MDPORE_TEST_NP", "2")
+STEPS = "8000"
+failures = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what, flush=True)
+    if not cond:
+        failures.append(what)
+
+
+def mdpore(*args, **kw):
+    return subprocess.run([MDPORE, *args], capture_output=True, text=True, cwd=OUT, **kw)
+
+
+def expect_error(args, needle, what):
+    p = mdpore(*args)
+    check(p.returncode != 0 and needle in p.stderr,
+          f"{what}: exit {p.returncode}, stderr names '{needle}'" + ("" if needle in p.stderr else f" (got: {p.stderr.strip()[:300]})"))
+
+
+def read_table(path):
+    meta, rows, cols = {}, [], None
+    for line in open(path):
+        line = line.strip()
+        if line.startswith("#"):
+            if ": " in line:
+                k, v = line[1:].strip().split(": ", 1)
+                meta[k] = v
+            continue
+        if cols is None:
+            cols = line.split(",")
+        else:
+            rows.append(dict(zip(cols, map(float, line.split(",")))))
+    return meta, cols, rows
+
+
+def main():
+    shutil.rmtree(OUT, ignore_errors=True)
+    os.makedirs(OUT)
+    os.environ.setdefault("MDPORE_CACHE_DIR", os.path.join(OUT, "cache"))
+    p = mdpore("image", "make", "slit", "--width", "8", "--wall", "4", "--length", "12", "--depth", "8",
+               "-o", "slit.h5")
+    if p.returncode:
+        sys.exit("image make failed: " + p.stderr)
+    common = ["--max-steps", STEPS, "--target-error", "0.04", "--np", NP]
+
+    # 1. bad input
+    expect_error(["permeability", "missing.h5", "--axis", "x"], "missing.h5", "missing image")
+    expect_error(["permeability", "slit.h5", "--axis", "w"], "--axis", "bad axis")
+    expect_error(["permeability", "slit.h5", "--axis", "x", "--gradients", "0.1,abc"], "--gradients",
+                 "bad gradient list")
+    expect_error(["permeability", "slit.h5", "--axis", "x", "--gradients", "0.1"], "at least 2",
+                 "one gradient")
+    expect_error(["permeability", "slit.h5", "--axis", "x", "--gradients", "0.1,0,0.2"], "g = 0",
+                 "zero gradient")
+    expect_error(["permeability", "slit.h5", "--axis", "y", "--emit-scenes", "bad_y"], "does not percolate along y",
+                 "non-percolating axis")
+    expect_error(["permeability", "--collect", "nowhere"], "campaign.txt", "collect without a campaign")
+
+    # 2. auto ladder, emitted
+    p = mdpore("permeability", "slit.h5", "--axis", "x", "--emit-scenes", "emitted")
+    runs = [l.split() for l in open(os.path.join(OUT, "emitted", "campaign.txt")) if l.startswith("run: ")] \
+        if p.returncode == 0 else []
+    g = [float(r[2]) for r in runs]
+    g_exp = [12 * 5.41 * u / (6.2 * 16) for u in [0.02 * 10 ** (i / 4) for i in range(5)]]
+    check(p.returncode == 0 and len(g) == 5 and all(abs(a / b - 1) < 1e-3 for a, b in zip(g, g_exp)),
+          f"auto ladder: 5 gradients g = 12 mu u / (n h^2), u = 0.02..0.2 log-spaced: {g} vs {[round(x, 5) for x in g_exp]}")
+    cmds = open(os.path.join(OUT, "emitted", "commands.txt")).read().splitlines() if p.returncode == 0 else []
+    check(len(cmds) == 5 and all(" run scene.yaml" in c for c in cmds), "commands.txt: one run per line")
+
+    # 3. a campaign killed during its second run
+    wd = os.path.join(OUT, "camp")
+    first = ["permeability", "slit.h5", "--axis", "x", "--gradients", "0.1,0.22,0.14", "--workdir", wd, *common]
+    proc = subprocess.Popen([MDPORE, *first], cwd=OUT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    rundirs = {}
+    deadline = time.time() + 240
+    killed = False
+    while time.time() < deadline and proc.poll() is None:
+        if os.path.exists(os.path.join(wd, "campaign.txt")) and not rundirs:
+            for l in open(os.path.join(wd, "campaign.txt")):
+                if l.startswith("run: "):
+                    _, ax, gv, d = l.split()
+                    rundirs[float(gv)] = d
+        if rundirs and os.path.exists(os.path.join(rundirs[0.1], "summary.json")) and \
+                os.path.exists(os.path.join(rundirs[0.22], "run.log")):
+            time.sleep(1.0)  # mid-way through the second run
+            proc.send_signal(signal.SIGTERM)
+            killed = True
+            break
+        time.sleep(0.2)
+    proc.communicate(timeout=60)
+    check(killed and proc.returncode != 0, f"campaign killed during its second run (exit {proc.returncode})")
+    s1 = os.path.join(rundirs.get(0.1, "-"), "summary.json")
+    s2 = os.path.join(rundirs.get(0.22, "-"), "summary.json")
+    check(os.path.exists(s1) and not os.path.exists(s2), "after the kill: run 1 finished, run 2 has no summary")
+    st1 = os.stat(s1) if os.path.exists(s1) else None
+    time.sleep(0.5)
+    # no run process of the killed campaign may be left
+    left = subprocess.run(["pgrep", "-f", rundirs.get(0.22, "-none-")], capture_output=True, text=True).stdout.strip()
+    check(left == "", "no run process left behind by the killed campaign")
+
+    # 4. the full campaign in the same folder
+    t0 = time.time()
+    p = mdpore("permeability", "slit.h5", "--axis", "x", "--gradients", "0.06,0.1,0.14,0.18,0.22", "--workdir", wd,
+               *common)
+    print(p.stdout)
+    print(p.stderr)
+    print(f"campaign: {time.time() - t0:.1f} s")
+    check(p.returncode == 0, f"campaign exit 0 (got {p.returncode})")
+    st1b = os.stat(s1) if os.path.exists(s1) else None
+    check(st1 is not None and st1b is not None and st1.st_mtime_ns == st1b.st_mtime_ns and st1.st_ino == st1b.st_ino,
+          "the finished run's summary was not rewritten (reused)")
+    check(f"reused {rundirs.get(0.1)}" in p.stderr, "stderr reports the finished run as reused")
+    check(p.stderr.count("running in") == 4, f"4 runs executed (the killed one + 3 new): {p.stderr.count('running in')}")
+    check("progress 5/5 runs done" in p.stderr and "remaining" in p.stderr, "progress and ETA on stderr")
+    table = os.path.join(wd, "flow_x.csv")
+    meta, cols, rows = read_table(table) if os.path.exists(table) else ({}, [], [])
+    check(cols[:4] == ["pressure_gradient", "darcy_velocity", "darcy_velocity_stderr", "run_length"] and len(rows) == 5,
+          f"flow table: columns and 5 rows ({len(rows)})")
+    check(meta.get("axis") == "x" and meta.get("viscosity") and meta.get("length_unit_m") and
+          meta.get("voxel_size") == "0.5" and "porosity = 0.5" in open(table).read(),
+          "flow table metadata: axis, viscosity, length_unit_m, voxel size, porosity")
+    gs = [0.06, 0.1, 0.14, 0.18, 0.22]
+    check(len(rows) == 5 and all(r["darcy_velocity_stderr"] > 0 and r["darcy_velocity"] > 0 for r in rows) and
+          all(abs(r["pressure_gradient"] - 6.2 * x) < 1e-9 for r, x in zip(rows, gs)),
+          "rows: G = n g, q > 0, q_err > 0")
+    fit = json.load(open(os.path.join(wd, "fit_x.json"))) if os.path.exists(os.path.join(wd, "fit_x.json")) else {}
+    darcy = [m for m in fit.get("models", []) if m["law"] == "darcy"]
+    check(bool(darcy) and darcy[0]["ok"] and darcy[0]["converged"] and fit.get("chosen"), "mdpore fit: Darcy fitted, a law chosen")
+    res = json.load(open(os.path.join(wd, "permeability.json"))) if os.path.exists(os.path.join(wd, "permeability.json")) else {}
+    k = res.get("axes", {}).get("x", {}).get("k_rc2") or float("nan")
+    k_err = res.get("axes", {}).get("x", {}).get("k_rc2_err") or float("nan")
+    h, H = 4.0, 8.0
+    k_noslip, k_eff = h ** 3 / (12 * H), (h - 0.4) ** 3 / (12 * H)
+    print(f"k = {k:.4f} +- {k_err:.4f} rc^2; k_noslip = h^3/(12 H) = {k_noslip:.4f}; k_eff (h - 0.4) = {k_eff:.4f}; "
+          f"k / k_eff = {k / k_eff:.3f}")
+    check(0.35 < k < 0.70, f"k = {k:.4f} rc^2 within (0.35, 0.70): 0.72 k_eff .. 1.05 k_noslip")
+    check(res.get("axes", {}).get("x", {}).get("k_nD", 0) > 0 and "nD" in p.stdout and "m^2" in p.stdout,
+          "k in m^2 and nD printed and written")
+
+    # 5. collect again
+    p = mdpore("permeability", "--collect", wd)
+    res2 = json.load(open(os.path.join(wd, "permeability.json"))) if p.returncode == 0 else {}
+    check(p.returncode == 0 and abs(res2["axes"]["x"]["k_rc2"] - k) <= 1e-12 * abs(k),
+          "--collect reproduces k from the folder")
+
+    if failures:
+        print(f"{len(failures)} check(s) failed:\n  " + "\n  ".join(failures))
+        sys.exit(1)
+    print("all checks passed")
+
+
+if __name__ == "__main__":
+    main()
