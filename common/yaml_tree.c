@@ -2,12 +2,49 @@
 #include "common/yaml_tree.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+
+/* Limits of what yt_load reads: configuration files are small and shallow. Deeper nesting or a
+ * larger file is refused before libyaml builds a tree (its time grows with the square of the depth
+ * of nested flow collections). */
+enum { YT_MAX_DEPTH = 64 };
+#define YT_MAX_BYTES (64L << 20)
+
+/* A first pass over the events: the nesting depth, until the end of the first document. Syntax
+ * errors are left to the loading pass, which reports them. 0, or -1 after a message. */
+static int check_depth(FILE *fp, const char *path, int quiet) {
+  yaml_parser_t p;
+  yaml_event_t e;
+  int depth = 0, rc = 0;
+  yaml_parser_initialize(&p);
+  yaml_parser_set_input_file(&p, fp);
+  while (yaml_parser_parse(&p, &e)) {
+    const yaml_event_type_t type = e.type;
+    if (type == YAML_SEQUENCE_START_EVENT || type == YAML_MAPPING_START_EVENT) {
+      if (++depth > YT_MAX_DEPTH) {
+        if (!quiet)
+          fprintf(stderr,
+                  "%s:%lu:%lu: lists and mappings nested %d deep (expected at most %d levels)\n",
+                  path, (unsigned long)e.start_mark.line + 1,
+                  (unsigned long)e.start_mark.column + 1, depth, YT_MAX_DEPTH);
+        rc = -1;
+      }
+    } else if (type == YAML_SEQUENCE_END_EVENT || type == YAML_MAPPING_END_EVENT) {
+      depth--;
+    }
+    yaml_event_delete(&e);
+    if (rc || type == YAML_DOCUMENT_END_EVENT || type == YAML_STREAM_END_EVENT) break;
+  }
+  yaml_parser_delete(&p);
+  rewind(fp);
+  return rc;
+}
 
 int yt_load(ytree_t *t, const char *path, int quiet) {
   memset(t, 0, sizeof *t);
@@ -17,6 +54,20 @@ int yt_load(ytree_t *t, const char *path, int quiet) {
   if (!fp) {
     if (!quiet)
       fprintf(stderr, "%s: cannot open: %s (expected a readable file)\n", path, strerror(errno));
+    return -1;
+  }
+  long size = -1;
+  if (fseek(fp, 0, SEEK_END) == 0) size = ftell(fp);
+  rewind(fp);
+  if (size > YT_MAX_BYTES) {
+    if (!quiet)
+      fprintf(stderr, "%s: %ld bytes (expected a configuration file of at most %ld bytes)\n", path,
+              size, YT_MAX_BYTES);
+    fclose(fp);
+    return -1;
+  }
+  if (check_depth(fp, path, quiet)) {
+    fclose(fp);
     return -1;
   }
   yaml_parser_t parser;
@@ -277,6 +328,9 @@ int yt_int3(ytree_t *t, yaml_node_t *n, const char *path, int out[3]) {
     long v = 0;
     snprintf(sub, sizeof sub, "%s[%d]", path, i);
     if (yt_long(t, yt_seq_item(t, n, i), sub, &v)) return -1;
+    if (v < INT_MIN || v > INT_MAX)
+      return yt_error(t, yt_seq_item(t, n, i), sub,
+                      "expected an integer of at most %d in size (got %ld)", INT_MAX, v);
     out[i] = (int)v;
   }
   return 0;

@@ -24,6 +24,7 @@ static char *next_line(reader_t *r) {
   r->line++;
   char *h = strchr(r->buf, '#');
   if (h) *h = 0;
+  r->buf[strcspn(r->buf, "\r\n")] = 0; /* messages quote the line without its end */
   return r->buf;
 }
 
@@ -67,6 +68,35 @@ static int cmp_order(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+/* A whole word as an integer / a finite number; 0 or -1. */
+static int parse_long(const char *w, long *v) {
+  char *end;
+  errno = 0;
+  *v = strtol(w, &end, 10);
+  return end == w || *end || errno ? -1 : 0;
+}
+
+static int parse_finite(const char *w, double *v) {
+  char *end;
+  errno = 0;
+  *v = strtod(w, &end);
+  return end == w || *end || errno || !isfinite(*v) ? -1 : 0;
+}
+
+/* The first id that appears twice among n ids, or -1 when all differ. */
+static int64_t duplicate_id(const int64_t *ids, long n) {
+  long *order = malloc((size_t)(n > 0 ? n : 1) * sizeof *order);
+  int64_t dup = -1;
+  if (!order) return -1;
+  for (long i = 0; i < n; i++) order[i] = i;
+  cmp_ids = ids;
+  qsort(order, (size_t)n, sizeof *order, cmp_order);
+  for (long i = 1; i < n && dup < 0; i++)
+    if (ids[order[i]] == ids[order[i - 1]]) dup = ids[order[i]];
+  free(order);
+  return dup;
+}
+
 int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
   reader_t r = {.path = path};
   memset(out, 0, sizeof *out);
@@ -74,7 +104,9 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
     fprintf(stderr, "%s: cannot open LAMMPS data file: %s\n", path, strerror(errno));
     return -1;
   }
-  long natoms = -1, ntypes = -1;
+  long natoms = -1, ntypes = -1, file_bytes = 0;
+  if (fseek(r.fp, 0, SEEK_END) == 0) file_bytes = ftell(r.fp);
+  rewind(r.fp);
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   int have_box[3] = {0, 0, 0}, have_atoms = 0, rc = -1;
   char *l = next_line(&r); /* the first line is a title */
@@ -83,9 +115,16 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
     char w1[64] = "", w2[64] = "", w3[64] = "", w4[64] = "";
     const int nw = sscanf(l, "%63s %63s %63s %63s", w1, w2, w3, w4);
     if (nw >= 2 && !strcmp(w2, "atoms")) {
-      natoms = atol(w1);
+      /* every atom needs a line of at least 10 bytes ("1 1 0 0 0") in the Atoms section */
+      if (parse_long(w1, &natoms) || natoms < 0 || natoms > file_bytes / 10) {
+        fprintf(stderr,
+                "%s:%ld: header 'N atoms': expected a count of atoms that fits in this file of "
+                "%ld bytes (got '%s')\n",
+                path, r.line, file_bytes, w1);
+        goto done;
+      }
     } else if (nw >= 3 && !strcmp(w2, "atom") && !strcmp(w3, "types")) {
-      ntypes = atol(w1);
+      if (parse_long(w1, &ntypes)) ntypes = -1;
       if (ntypes < 1 || ntypes > s->n_species) {
         fprintf(stderr,
                 "%s:%ld: expected at most %d atom types, the scene's species in order (got %ld)\n",
@@ -95,8 +134,11 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
     } else if (nw >= 4 && w3[1] == 'l' && w3[2] == 'o' && w4[1] == 'h' && w4[2] == 'i' &&
                w3[0] == w4[0] && w3[0] >= 'x' && w3[0] <= 'z') {
       const int d = w3[0] - 'x';
-      lo[d] = atof(w1);
-      hi[d] = atof(w2);
+      if (parse_finite(w1, &lo[d]) || parse_finite(w2, &hi[d]) || !(hi[d] > lo[d])) {
+        fprintf(stderr, "%s:%ld: header '%s %s': expected two finite numbers lo < hi (got %s %s)\n",
+                path, r.line, w3, w4, w1, w2);
+        goto done;
+      }
       have_box[d] = 1;
     } else if (nw >= 3 && !strcmp(w3, "xz")) {
       fail(&r, "expected an orthogonal box (got a triclinic tilt line%s)", "");
@@ -106,8 +148,10 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
       for (long k = 0; k < ntypes && l; k++, l = next_line(&r)) {
         int type;
         double m;
-        if (sscanf(l, "%d %lf", &type, &m) != 2 || type < 1 || type > ntypes) {
-          fail(&r, "Masses: expected 'type mass' with type in 1..ntypes (got '%s')", l);
+        if (sscanf(l, "%d %lf", &type, &m) != 2 || type < 1 || type > ntypes || !(m > 0) ||
+            !isfinite(m)) {
+          fail(&r, "Masses: expected 'type mass' with type in 1..ntypes and a mass > 0 (got '%s')",
+               l);
           goto done;
         }
         if (fabs(m - s->species[type - 1].mass) > 1e-12 * m)
@@ -117,6 +161,10 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
                   path, r.line, type, m, s->species[type - 1].name, s->species[type - 1].mass);
       }
     } else if (!strcmp(w1, "Atoms")) {
+      if (have_atoms) {
+        fail(&r, "expected one Atoms section (got a second one)%s", "");
+        goto done;
+      }
       if (nw >= 2 && strcmp(w2, "atomic") && strcmp(w2, "#")) {
         fail(&r, "expected atom style 'atomic' (got '%s')", w2);
         goto done;
@@ -156,18 +204,38 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
                   ntypes, type);
           goto done;
         }
+        if (id < 1 || !isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2])) {
+          fail(&r, "Atoms: expected an id >= 1 and finite coordinates (got '%s')", l);
+          goto done;
+        }
         out->id[i] = id;
         out->species[i] = type - 1;
         for (int d = 0; d < 3; d++) out->x[3 * i + d] = x[d];
       }
       have_atoms = 1;
+      const int64_t dup = duplicate_id(out->id, natoms);
+      if (dup >= 0) {
+        fprintf(stderr, "%s: Atoms: expected each atom id once (got id %lld twice)\n", path,
+                (long long)dup);
+        goto done;
+      }
     } else if (!strcmp(w1, "Velocities")) {
       if (!have_atoms) {
         fail(&r, "expected the Atoms section before Velocities%s", "");
         goto done;
       }
+      if (out->has_v) {
+        fail(&r, "expected one Velocities section (got a second one)%s", "");
+        goto done;
+      }
       long *order = malloc((size_t)(natoms > 0 ? natoms : 1) * sizeof *order);
       int64_t *sorted = malloc((size_t)(natoms > 0 ? natoms : 1) * sizeof *sorted);
+      if (!order || !sorted) {
+        free(order);
+        free(sorted);
+        fprintf(stderr, "%s: out of memory for %ld atoms\n", path, natoms);
+        goto done;
+      }
       for (long i = 0; i < natoms; i++) order[i] = i;
       cmp_ids = out->id;
       qsort(order, (size_t)natoms, sizeof *order, cmp_order);
@@ -178,9 +246,11 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
         long id;
         double v[3];
         long k = -1;
-        if (!l || sscanf(l, "%ld %lf %lf %lf", &id, &v[0], &v[1], &v[2]) != 4 ||
-            (k = find_id(sorted, order, natoms, id)) < 0) {
-          fail(&r, "Velocities: expected 'id vx vy vz' with an id from Atoms (got '%s')",
+        if (!l || sscanf(l, "%ld %lf %lf %lf", &id, &v[0], &v[1], &v[2]) != 4 || !isfinite(v[0]) ||
+            !isfinite(v[1]) || !isfinite(v[2]) || (k = find_id(sorted, order, natoms, id)) < 0) {
+          fail(&r,
+               "Velocities: expected 'id vx vy vz' with an id from Atoms and finite velocities "
+               "(got '%s')",
                l ? l : "end of file");
           bad = 1;
           break;

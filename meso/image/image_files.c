@@ -38,3 +38,9 @@ int mdp_image_parse_dims(const char *text, int dims[3]) {
   while (*s == ' ' || *s == '\n' || *s == '\r') s++;
   return *s != 0;
 }
+
+void mdp_image_err_prefix(char *err, const char *path, const char *key) {
+  char msg[MDP_IMAGE_ERR_LEN];
+  snprintf(msg, sizeof msg, "%s", err);
+  snprintf(err, MDP_IMAGE_ERR_LEN, "%.400s: key '%s': %.500s", path, key, msg);
+}

@@ -5,42 +5,96 @@
 #include "mdpore_image.h"
 
 #include <hdf5.h>
+#include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Read a string attribute (fixed or variable length) into out; 0 when present. */
-static int read_string_attr(hid_t obj, const char *name, char *out, size_t len) {
+/* The number of elements of an attribute's dataspace (1 for a scalar, 0 for a null one). */
+static long long attr_points(hid_t a) {
+  hid_t sp = H5Aget_space(a);
+  const long long n = sp >= 0 ? (long long)H5Sget_simple_extent_npoints(sp) : -1;
+  if (sp >= 0) H5Sclose(sp);
+  return n;
+}
+
+/* Read a string attribute (fixed or variable length, one value) into out (len bytes). Returns 1
+ * when absent, 0 when read, -1 after a message in err (not one string, or longer than len - 1). */
+static int read_string_attr(hid_t obj, const char *name, char *out, size_t len, const char *path,
+                            const char *dname, char *err) {
   if (H5Aexists(obj, name) <= 0) return 1;
-  hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t = H5Aget_type(a);
-  int rc = 1;
-  if (H5Tget_class(t) == H5T_STRING) {
-    if (H5Tis_variable_str(t) > 0) {
-      char *s = NULL;
-      hid_t mt = H5Tcopy(H5T_C_S1);
-      H5Tset_size(mt, H5T_VARIABLE);
-      if (H5Aread(a, mt, &s) >= 0 && s) {
-        snprintf(out, len, "%s", s);
-        H5free_memory(s);
-        rc = 0;
-      }
-      H5Tclose(mt);
-    } else {
-      size_t sz = H5Tget_size(t);
-      char *buf = calloc(sz + 1, 1);
-      hid_t mt = H5Tcopy(H5T_C_S1);
-      H5Tset_size(mt, sz + 1);
-      if (buf && H5Aread(a, mt, buf) >= 0) {
-        snprintf(out, len, "%s", buf);
-        rc = 0;
-      }
-      H5Tclose(mt);
-      free(buf);
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t = a >= 0 ? H5Aget_type(a) : -1;
+  int rc = -1;
+  const long long points = a >= 0 ? attr_points(a) : -1;
+  const int is_string = t >= 0 && H5Tget_class(t) == H5T_STRING;
+  if (is_string && points == 1 && H5Tis_variable_str(t) > 0) {
+    char *s = NULL;
+    hid_t mt = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mt, H5T_VARIABLE);
+    if (H5Aread(a, mt, &s) >= 0 && s) {
+      rc = strlen(s) < len ? 0 : -2;
+      if (!rc) snprintf(out, len, "%s", s);
+      H5free_memory(s);
     }
+    H5Tclose(mt);
+  } else if (is_string && points == 1) {
+    const size_t sz = H5Tget_size(t);
+    char *buf = sz < len ? calloc(sz + 1, 1) : NULL;
+    hid_t mt = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mt, sz + 1);
+    if (sz >= len) {
+      rc = -2;
+    } else if (buf && H5Aread(a, mt, buf) >= 0) {
+      snprintf(out, len, "%s", buf);
+      rc = 0;
+    }
+    H5Tclose(mt);
+    free(buf);
   }
-  H5Tclose(t);
-  H5Aclose(a);
-  return rc;
+  if (t >= 0) H5Tclose(t);
+  if (a >= 0) H5Aclose(a);
+  if (rc == -2)
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "%s: dataset '%s' attribute '%s': expected a text of at most %zu characters", path,
+             dname, name, len - 1);
+  else if (rc)
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "%s: dataset '%s' attribute '%s': expected one string (got %s%lld value%s)", path,
+             dname, name, is_string ? "" : "a non-string type, ", points, points == 1 ? "" : "s");
+  return rc ? -1 : 0;
+}
+
+/* The voxel_size attribute: one finite number > 0. 1 when absent, 0 when read, -1 after a message.
+ */
+static int read_voxel_size(hid_t obj, double *out, const char *path, const char *dname, char *err) {
+  if (H5Aexists(obj, "voxel_size") <= 0) return 1;
+  hid_t a = H5Aopen(obj, "voxel_size", H5P_DEFAULT), t = a >= 0 ? H5Aget_type(a) : -1;
+  const H5T_class_t cls = t >= 0 ? H5Tget_class(t) : H5T_NO_CLASS;
+  const long long points = a >= 0 ? attr_points(a) : -1;
+  double v = NAN;
+  int ok = (cls == H5T_FLOAT || cls == H5T_INTEGER) && points == 1 &&
+           H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0 && isfinite(v) && v > 0;
+  if (t >= 0) H5Tclose(t);
+  if (a >= 0) H5Aclose(a);
+  if (ok) {
+    *out = v;
+    return 0;
+  }
+  if ((cls == H5T_FLOAT || cls == H5T_INTEGER) && points == 1)
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "%s: dataset '%s' attribute 'voxel_size': expected a finite number > 0 (got %g)", path,
+             dname, v);
+  else
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "%s: dataset '%s' attribute 'voxel_size': expected one number (got %s, %lld value%s)",
+             path, dname,
+             cls == H5T_STRING    ? "a string"
+             : cls == H5T_FLOAT   ? "floats"
+             : cls == H5T_INTEGER ? "integers"
+                                  : "another type",
+             points, points == 1 ? "" : "s");
+  return -1;
 }
 
 int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
@@ -77,41 +131,84 @@ int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp
     goto done;
   }
   H5Sget_simple_extent_dims(space, dims, NULL);
-  if (mdp_image_alloc(img, (int)dims[2], (int)dims[1], (int)dims[0], err)) goto done;
-  char text[256] = "";
-  const char *labels = opts->labels[0] ? opts->labels : NULL;
-  if (!labels && !read_string_attr(dset, "label_map", text, sizeof text)) labels = text;
-  if (!labels) labels = MDP_IMAGE_DEFAULT_LABELS;
-  if (mdp_image_parse_labels(labels, img->phase_of, err)) goto done;
-  if (H5Aexists(dset, "voxel_size") > 0) {
-    hid_t a = H5Aopen(dset, "voxel_size", H5P_DEFAULT);
-    H5Aread(a, H5T_NATIVE_DOUBLE, &img->voxel_size);
-    H5Aclose(a);
-  }
-  read_string_attr(dset, "unit", img->unit, sizeof img->unit);
-  if (opts->voxel_size > 0) img->voxel_size = opts->voxel_size;
-  if (opts->unit[0]) snprintf(img->unit, sizeof img->unit, "%s", opts->unit);
-  /* Slice by slice as int32 so that any integer type is range-checked without a full-size copy. */
-  size_t per = (size_t)img->nx * (size_t)img->ny;
-  slice = malloc(per * sizeof *slice);
-  hsize_t mdim[1] = {per};
-  mspace = H5Screate_simple(1, mdim, NULL);
-  for (int k = 0; k < img->nz; k++) {
-    hsize_t start[3] = {(hsize_t)k, 0, 0}, count[3] = {1, dims[1], dims[2]};
-    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
-    if (!slice || H5Dread(dset, H5T_NATIVE_INT32, mspace, space, H5P_DEFAULT, slice) < 0) {
-      snprintf(err, MDP_IMAGE_ERR_LEN, "%s: reading dataset '%s' slice z=%d failed", path, dname,
-               k);
+  for (int a = 0; a < 3; a++)
+    if (dims[a] < 1 || dims[a] > INT_MAX) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s: dataset '%s' has shape [%llu][%llu][%llu] (expected 1 to %d voxels per axis)",
+               path, dname, (unsigned long long)dims[0], (unsigned long long)dims[1],
+               (unsigned long long)dims[2], INT_MAX);
       goto done;
     }
-    for (size_t p = 0; p < per; p++) {
+  {
+    char what[400];
+    snprintf(what, sizeof what, "dataset '%s' of shape [%llu][%llu][%llu]", dname,
+             (unsigned long long)dims[0], (unsigned long long)dims[1], (unsigned long long)dims[2]);
+    /* the image, plus a slab of slices as int32 (one slice, or up to 4M voxels) */
+    const double bytes = (double)dims[0] * (double)dims[1] * (double)dims[2] +
+                         4.0 * (double)dims[1] * (double)dims[2] + 4.0 * (1 << 22);
+    if (mdp_image_check_memory(bytes, path, what, err)) goto done;
+  }
+  if (mdp_image_alloc(img, (int)dims[2], (int)dims[1], (int)dims[0], err)) {
+    mdp_image_err_prefix(err, path, dname);
+    goto done;
+  }
+  char text[256] = "";
+  const char *labels = opts->labels[0] ? opts->labels : NULL;
+  if (!labels) {
+    const int got = read_string_attr(dset, "label_map", text, sizeof text, path, dname, err);
+    if (got < 0) goto done;
+    if (got == 0) labels = text;
+  }
+  if (!labels) labels = MDP_IMAGE_DEFAULT_LABELS;
+  if (mdp_image_parse_labels(labels, img->phase_of, err)) {
+    mdp_image_err_prefix(err, path, "label_map");
+    goto done;
+  }
+  if (read_voxel_size(dset, &img->voxel_size, path, dname, err) < 0) goto done;
+  if (read_string_attr(dset, "unit", img->unit, sizeof img->unit, path, dname, err) < 0) goto done;
+  {
+    static const char *const units[] = {"m", "mm", "um", "nm", "voxel"};
+    int known = 0;
+    for (int u = 0; u < 5; u++) known |= !strcmp(img->unit, units[u]);
+    if (!known) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s: dataset '%s' attribute 'unit': expected m, mm, um, nm or voxel (got '%s')",
+               path, dname, img->unit);
+      goto done;
+    }
+  }
+  if (opts->voxel_size > 0) img->voxel_size = opts->voxel_size;
+  if (opts->unit[0]) snprintf(img->unit, sizeof img->unit, "%s", opts->unit);
+  /* Slabs of whole slices as int32, so that any integer type is range-checked without a full-size
+   * copy; thin slices are read several at a time (one read per slice of a tall, thin image costs
+   * seconds per million slices). */
+  const size_t per = (size_t)img->nx * (size_t)img->ny, slab_voxels = (size_t)1 << 22;
+  const int nk = per >= slab_voxels ? 1
+                                    : (int)(slab_voxels / per < (size_t)img->nz ? slab_voxels / per
+                                                                                : (size_t)img->nz);
+  slice = malloc(per * (size_t)nk * sizeof *slice);
+  for (int k0 = 0; k0 < img->nz; k0 += nk) {
+    const int kn = img->nz - k0 < nk ? img->nz - k0 : nk;
+    hsize_t start[3] = {(hsize_t)k0, 0, 0}, count[3] = {(hsize_t)kn, dims[1], dims[2]};
+    hsize_t mdim[1] = {per * (size_t)kn};
+    if (mspace >= 0) H5Sclose(mspace);
+    mspace = H5Screate_simple(1, mdim, NULL);
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
+    if (!slice || H5Dread(dset, H5T_NATIVE_INT32, mspace, space, H5P_DEFAULT, slice) < 0) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s: reading dataset '%s' slices z=%d..%d failed", path,
+               dname, k0, k0 + kn - 1);
+      goto done;
+    }
+    for (size_t p = 0; p < per * (size_t)kn; p++) {
       if (slice[p] < 0 || slice[p] > 255) {
+        const size_t q = p % per;
         snprintf(err, MDP_IMAGE_ERR_LEN,
                  "%s: dataset '%s' voxel (%d,%d,%d) has label %d; labels must be 0..255", path,
-                 dname, (int)(p % (size_t)img->nx), (int)(p / (size_t)img->nx), k, (int)slice[p]);
+                 dname, (int)(q % (size_t)img->nx), (int)(q / (size_t)img->nx), k0 + (int)(p / per),
+                 (int)slice[p]);
         goto done;
       }
-      img->label[per * (size_t)k + p] = (uint8_t)slice[p];
+      img->label[per * (size_t)k0 + p] = (uint8_t)slice[p];
     }
   }
   rc = mdp_image_check_labels(img, path, err);

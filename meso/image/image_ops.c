@@ -1,6 +1,7 @@
 /* Crop, majority downsampling and padding. Each allocates a new image and keeps the label map. */
 #include "mdpore_image.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -60,8 +61,18 @@ int mdp_image_pad(const mdp_image_t *in, const int w[6], uint8_t label, mdp_imag
     snprintf(err, MDP_IMAGE_ERR_LEN, "pad label %d is not in the image's label map", label);
     return 1;
   }
-  if (mdp_image_alloc(out, in->nx + w[0] + w[1], in->ny + w[2] + w[3], in->nz + w[4] + w[5], err))
-    return 1;
+  long long n[3];
+  for (int a = 0; a < 3; a++) {
+    n[a] = (long long)(a == 0 ? in->nx : a == 1 ? in->ny : in->nz) + w[2 * a] + w[2 * a + 1];
+    if (n[a] > INT_MAX) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "pad widths %d and %d along %c: the padded image would have %lld voxels along it "
+               "(expected at most %d)",
+               w[2 * a], w[2 * a + 1], "xyz"[a], n[a], INT_MAX);
+      return 1;
+    }
+  }
+  if (mdp_image_alloc(out, (int)n[0], (int)n[1], (int)n[2], err)) return 1;
   mdp_image_copy_meta(out, in);
   memset(out->label, label, mdp_image_count(out));
   for (int k = 0; k < in->nz; k++)

@@ -160,7 +160,17 @@ int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_
     snprintf(err, MDP_IMAGE_ERR_LEN, "%s: cannot open: %s", path, strerror(errno));
     return 1;
   }
-  long long n = (long long)o.nx * o.ny * o.nz, need = o.header_bytes + n * size;
+  long long n, data_bytes, need;
+  if (__builtin_mul_overflow((long long)o.nx, (long long)o.ny, &n) ||
+      __builtin_mul_overflow(n, (long long)o.nz, &n) ||
+      __builtin_mul_overflow(n, (long long)size, &data_bytes) ||
+      __builtin_add_overflow(o.header_bytes, data_bytes, &need)) {
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "%s: key 'dims' %dx%dx%d of %s after a %lld-byte header: the file size overflows 64 "
+             "bits (expected dims of an image that fits in a file)",
+             path, o.nx, o.ny, o.nz, o.type, o.header_bytes);
+    return 1;
+  }
   if ((long long)sb.st_size != need) {
     snprintf(err, MDP_IMAGE_ERR_LEN,
              "%s: file has %lld bytes but %dx%dx%d voxels of %s after a %lld-byte header need %lld "
@@ -168,12 +178,21 @@ int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_
              path, (long long)sb.st_size, o.nx, o.ny, o.nz, o.type, o.header_bytes, need);
     return 1;
   }
-  if (mdp_image_alloc(img, o.nx, o.ny, o.nz, err)) return 1;
-  if (mdp_image_parse_labels(o.labels, img->phase_of, err)) goto fail;
+  char what[128];
+  snprintf(what, sizeof what, "key 'dims' %dx%dx%d of %s", o.nx, o.ny, o.nz, o.type);
+  if (mdp_image_check_memory((double)data_bytes + (double)n, path, what, err)) return 1;
+  if (mdp_image_alloc(img, o.nx, o.ny, o.nz, err)) {
+    mdp_image_err_prefix(err, path, "dims");
+    return 1;
+  }
+  if (mdp_image_parse_labels(o.labels, img->phase_of, err)) {
+    mdp_image_err_prefix(err, path, "labels");
+    goto fail;
+  }
   if (o.voxel_size > 0) img->voxel_size = o.voxel_size;
   if (o.unit[0]) snprintf(img->unit, sizeof img->unit, "%s", o.unit);
   FILE *f = fopen(path, "rb");
-  unsigned char *buf = malloc((size_t)(n * size));
+  unsigned char *buf = malloc((size_t)data_bytes);
   if (!f || !buf || fseeko(f, o.header_bytes, SEEK_SET) != 0 ||
       fread(buf, (size_t)size, (size_t)n, f) != (size_t)n) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "%s: read failed: %s", path,

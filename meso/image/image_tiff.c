@@ -31,6 +31,7 @@ int mdp_image_write_tiff(const mdp_image_t *img, const char *path, char *err) {
 #else
 
 #include <dirent.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <strings.h>
 #include <sys/stat.h>
@@ -49,8 +50,9 @@ static void quiet_handler(const char *module, const char *fmt, va_list ap) {
   (void)module, (void)fmt, (void)ap;
 }
 
-/* Append every page of one TIFF file to the stack. */
-static int read_pages(const char *file, stack_t_ *st, char *err) {
+/* Append every page of one TIFF file to the stack. whole_stack: the file is the whole stack (not a
+ * slice of a folder), so its PageNumber tags count its own pages. */
+static int read_pages(const char *file, stack_t_ *st, int whole_stack, char *err) {
   TIFF *t = TIFFOpen(file, "r");
   if (!t) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "%s: cannot open as TIFF", file);
@@ -72,6 +74,14 @@ static int read_pages(const char *file, stack_t_ *st, char *err) {
       rc = 1;
       break;
     }
+    if (w < 1 || h < 1 || w > INT_MAX || h > INT_MAX) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s page %d: size %ux%u (expected 1 to %d pixels per axis in tags ImageWidth and "
+               "ImageLength)",
+               file, page, w, h, INT_MAX);
+      rc = 1;
+      break;
+    }
     if (st->nz == 0) st->nx = (int)w, st->ny = (int)h;
     if ((int)w != st->nx || (int)h != st->ny) {
       snprintf(err, MDP_IMAGE_ERR_LEN, "%s page %d: size %ux%u differs from the first slice %dx%d",
@@ -81,7 +91,15 @@ static int read_pages(const char *file, stack_t_ *st, char *err) {
     }
     size_t per = (size_t)w * h;
     if (st->nz == st->cap) {
-      st->cap = st->cap ? 2 * st->cap : 16;
+      const int cap = st->cap ? 2 * st->cap : 1;
+      char what[96];
+      snprintf(what, sizeof what, "page %d of %ux%u pixels", page, w, h);
+      /* the stack grown to cap pages, and the image it is copied into */
+      if (mdp_image_check_memory(2.0 * (double)per * cap, file, what, err)) {
+        rc = 1;
+        break;
+      }
+      st->cap = cap;
       uint8_t *d = realloc(st->data, per * (size_t)st->cap);
       if (!d) {
         snprintf(err, MDP_IMAGE_ERR_LEN, "%s: out of memory", file);
@@ -90,7 +108,20 @@ static int read_pages(const char *file, stack_t_ *st, char *err) {
       }
       st->data = d;
     }
-    tdata_t line = _TIFFmalloc(TIFFScanlineSize(t));
+    const tmsize_t line_bytes = TIFFScanlineSize(t);
+    if (line_bytes < (tmsize_t)w * (bps / 8)) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s page %d: rows of %lld bytes (expected %u pixels of %u bits; damaged tags)", file,
+               page, (long long)line_bytes, w, bps);
+      rc = 1;
+      break;
+    }
+    tdata_t line = _TIFFmalloc(line_bytes);
+    if (!line) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s page %d: out of memory for a row", file, page);
+      rc = 1;
+      break;
+    }
     for (uint32_t y = 0; y < h && !rc; y++) {
       if (TIFFReadScanline(t, line, y, 0) < 0) {
         snprintf(err, MDP_IMAGE_ERR_LEN, "%s page %d: cannot read row %u", file, page, y);
@@ -113,7 +144,27 @@ static int read_pages(const char *file, stack_t_ *st, char *err) {
     if (rc) break;
     st->nz++;
     page++;
-  } while (TIFFReadDirectory(t));
+    uint16_t pnum = 0, ptotal = 0;
+    if (TIFFLastDirectory(t)) {
+      /* the last page: a PageNumber tag that counts more pages means a truncated stack */
+      if (whole_stack && TIFFGetField(t, TIFFTAG_PAGENUMBER, &pnum, &ptotal) && ptotal > page) {
+        snprintf(err, MDP_IMAGE_ERR_LEN,
+                 "%s: %d pages, but tag PageNumber says %u (expected every page: a truncated "
+                 "stack?)",
+                 file, page, ptotal);
+        rc = 1;
+      }
+      break;
+    }
+    if (!TIFFReadDirectory(t)) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s: page %d cannot be read after %d pages (expected a complete stack: a truncated "
+               "or damaged file?)",
+               file, page, page);
+      rc = 1;
+      break;
+    }
+  } while (1);
   TIFFClose(t);
   return rc;
 }
@@ -158,17 +209,20 @@ int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp
     for (int f = 0; f < n && !rc; f++) {
       char file[4096];
       snprintf(file, sizeof file, "%s/%s", path, names[f]);
-      rc = read_pages(file, &st, err);
+      rc = read_pages(file, &st, 0, err);
     }
     for (int f = 0; f < n; f++) free(names[f]);
     free(names);
   } else {
-    rc = read_pages(path, &st, err);
+    rc = read_pages(path, &st, 1, err);
   }
-  if (!rc && !(rc = mdp_image_alloc(img, st.nx, st.ny, st.nz, err))) {
+  if (!rc && (rc = mdp_image_alloc(img, st.nx, st.ny, st.nz, err)))
+    mdp_image_err_prefix(err, path, "ImageWidth/ImageLength");
+  else if (!rc) {
     memcpy(img->label, st.data, mdp_image_count(img));
     rc = mdp_image_parse_labels(opts->labels[0] ? opts->labels : MDP_IMAGE_DEFAULT_LABELS,
                                 img->phase_of, err);
+    if (rc) mdp_image_err_prefix(err, path, "labels");
     if (opts->voxel_size > 0) img->voxel_size = opts->voxel_size;
     if (opts->unit[0]) snprintf(img->unit, sizeof img->unit, "%s", opts->unit);
     if (!rc) rc = mdp_image_check_labels(img, path, err);
