@@ -1,5 +1,6 @@
 /* Image basics: allocation, metadata, voxel-size units. */
 #include "image_internal.h"
+#include "common/memory_limit.h"
 #include "mdpore_image.h"
 
 #include <ctype.h>
@@ -7,26 +8,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 void mdp_image_read_opts_init(mdp_image_read_opts_t *o) {
   memset(o, 0, sizeof *o);
   o->header_bytes = -1;
 }
 
-double mdp_image_memory_limit(void) {
-  const char *env = getenv("MDPORE_MEMORY_LIMIT");
-  char *end;
-  if (env && *env) {
-    const double v = strtod(env, &end);
-    if (end != env && v > 0) return v;
-  }
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  return pages > 0 && page > 0 ? (double)pages * (double)page : 1e18;
-}
-
 int mdp_image_check_memory(double bytes, const char *path, const char *what, char *err) {
-  const double limit = mdp_image_memory_limit();
+  const double limit = mdp_memory_limit();
   if (bytes <= limit) return 0;
   snprintf(err, MDP_IMAGE_ERR_LEN,
            "%.400s: %.200s needs %.3g GB of memory, more than the %.3g GB this machine allows "

@@ -13,10 +13,7 @@ int mdp_image_parse_dims(const char *text, int dims[3]);
 
 /* Prefix err with "PATH: key 'KEY': " (a message of a helper that does not know the file). */
 void mdp_image_err_prefix(char *err, const char *path, const char *key);
-/* The bytes a reader may allocate: MDPORE_MEMORY_LIMIT (bytes) when set, else the physical memory.
- */
-double mdp_image_memory_limit(void);
-/* 0 when `bytes` fit under that limit; else err = "PATH: WHAT needs N GB of memory, more than ..." and
+/* 0 when `bytes` fit under mdp_memory_limit() (common/memory_limit.h); else err = "PATH: WHAT needs N GB of memory, more than ..." and
  * 1. `what` names the key or header value the size comes from. */
 int mdp_image_check_memory(double bytes, const char *path, const char *what, char *err);
 

@@ -115,13 +115,7 @@ static int open_h5(flux_log_t *log, const scene_t *s, const flux_def_t *d, const
   }
   log->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (log->file < 0) return -1;
-  hsize_t dims[2] = {0, FLUX_LOG_NCOL}, maxd[2] = {H5S_UNLIMITED, FLUX_LOG_NCOL},
-          chunk[2] = {256, FLUX_LOG_NCOL};
-  hid_t sp = H5Screate_simple(2, dims, maxd), pl = H5Pcreate(H5P_DATASET_CREATE);
-  H5Pset_chunk(pl, 2, chunk);
-  log->dset = H5Dcreate2(log->file, "flux", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
-  H5Pclose(pl);
-  H5Sclose(sp);
+  log->dset = h5_create_row_table(log->file, "flux", FLUX_LOG_NCOL);
   if (log->dset < 0) return -1;
   h5_attr_string(log->dset, "columns", columns);
   h5_attr_string(log->dset, "definitions", head);
@@ -164,16 +158,7 @@ void flux_log_row(flux_log_t *log, const flux_sample_t *r) {
     fflush(log->fp);
     return;
   }
-  hsize_t dims[2] = {(hsize_t)log->rows + 1, FLUX_LOG_NCOL}, start[2] = {(hsize_t)log->rows, 0},
-          count[2] = {1, FLUX_LOG_NCOL};
-  H5Dset_extent(log->dset, dims);
-  hid_t fs = H5Dget_space(log->dset), ms = H5Screate_simple(2, count, NULL);
-  H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
-  H5Dwrite(log->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, row);
-  H5Sclose(ms);
-  H5Sclose(fs);
-  H5Fflush(log->file, H5F_SCOPE_LOCAL);
-  log->rows++;
+  h5_append_row(log->file, log->dset, log->rows++, FLUX_LOG_NCOL, row);
 }
 
 void flux_log_close(flux_log_t *log) {

@@ -82,6 +82,27 @@ long h5_dataset_rows(hid_t loc, const char *name) {
   return (long)dims[0];
 }
 
+hid_t h5_create_row_table(hid_t loc, const char *name, hsize_t ncol) {
+  hsize_t dims[2] = {0, ncol}, maxd[2] = {H5S_UNLIMITED, ncol}, chunk[2] = {256, ncol};
+  hid_t sp = H5Screate_simple(2, dims, maxd), pl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(pl, 2, chunk);
+  const hid_t d = H5Dcreate2(loc, name, H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
+  H5Pclose(pl);
+  H5Sclose(sp);
+  return d;
+}
+
+void h5_append_row(hid_t file, hid_t dset, long rows, hsize_t ncol, const double *row) {
+  hsize_t dims[2] = {(hsize_t)rows + 1, ncol}, start[2] = {(hsize_t)rows, 0}, count[2] = {1, ncol};
+  H5Dset_extent(dset, dims);
+  hid_t fs = H5Dget_space(dset), ms = H5Screate_simple(2, count, NULL);
+  H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
+  H5Dwrite(dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, row);
+  H5Sclose(ms);
+  H5Sclose(fs);
+  H5Fflush(file, H5F_SCOPE_LOCAL);
+}
+
 int h5_read_dataset(hid_t loc, const char *name, hid_t type, void *data, hsize_t n, hsize_t m,
                     const char *file) {
   if (H5Lexists(loc, name, H5P_DEFAULT) <= 0) {

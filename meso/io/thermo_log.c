@@ -46,13 +46,7 @@ int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, int a
     } else {
       log->file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
       if (log->file >= 0) {
-        hsize_t dims[2] = {0, NCOL}, maxd[2] = {H5S_UNLIMITED, NCOL}, chunk[2] = {256, NCOL};
-        hid_t sp = H5Screate_simple(2, dims, maxd), pl = H5Pcreate(H5P_DATASET_CREATE);
-        H5Pset_chunk(pl, 2, chunk);
-        log->dset =
-            H5Dcreate2(log->file, "thermo", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, pl, H5P_DEFAULT);
-        H5Pclose(pl);
-        H5Sclose(sp);
+        log->dset = h5_create_row_table(log->file, "thermo", (hsize_t)NCOL);
         if (log->dset >= 0) h5_attr_string(log->dset, "columns", names);
         h5_attr_string(log->file, "scene", s->name);
       }
@@ -102,16 +96,7 @@ void thermo_log_row(thermo_log_t *log, const thermo_t *t) {
     fflush(log->fp);
     return;
   }
-  hsize_t dims[2] = {(hsize_t)log->rows + 1, NCOL}, start[2] = {(hsize_t)log->rows, 0},
-          count[2] = {1, NCOL};
-  H5Dset_extent(log->dset, dims);
-  hid_t fs = H5Dget_space(log->dset), ms = H5Screate_simple(2, count, NULL);
-  H5Sselect_hyperslab(fs, H5S_SELECT_SET, start, NULL, count, NULL);
-  H5Dwrite(log->dset, H5T_NATIVE_DOUBLE, ms, fs, H5P_DEFAULT, row);
-  H5Sclose(ms);
-  H5Sclose(fs);
-  H5Fflush(log->file, H5F_SCOPE_LOCAL);
-  log->rows++;
+  h5_append_row(log->file, log->dset, log->rows++, (hsize_t)NCOL, row);
 }
 
 void thermo_log_close(thermo_log_t *log) {

@@ -18,30 +18,16 @@
  *    below its error, not for too few samples. */
 #include "analysis/steady_state.h"
 
+#include "test_engine_common.h"
+
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#define CHECK(cond, ...)                                                                           \
-  do {                                                                                             \
-    if (!(cond)) {                                                                                 \
-      fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                         \
-      fprintf(stderr, __VA_ARGS__);                                                                \
-      fprintf(stderr, "\n");                                                                       \
-      return 1;                                                                                    \
-    }                                                                                              \
-  } while (0)
-
-static uint64_t next(uint64_t *s) {
-  uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 static double gauss(uint64_t *s) {
-  const double u = ((next(s) >> 11) + 0.5) * 0x1.0p-53, v = ((next(s) >> 11) + 0.5) * 0x1.0p-53;
+  const double u = ((test_rng_next(s) >> 11) + 0.5) * 0x1.0p-53,
+               v = ((test_rng_next(s) >> 11) + 0.5) * 0x1.0p-53;
   return sqrt(-2.0 * log(u)) * cos(2.0 * M_PI * v);
 }
 

@@ -1,5 +1,6 @@
 /* YAML configuration reader for `mdpore darcy` (see darcy_config.h, docs/darcy-config.md). Every
  * mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got ...)" (common/yaml_tree.h). */
+#include "common/memory_limit.h"
 #include "darcy_config.h"
 
 #include <libgen.h>
@@ -7,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "common/yaml_tree.h"
 #include "darcy_k_dataset.h"
@@ -196,18 +196,6 @@ static int need_number_list(ytree_t *t, yaml_node_t *map, const char *path, cons
   return 0;
 }
 
-/* The bytes the config may ask for: MDPORE_MEMORY_LIMIT (bytes) when set, else physical memory. */
-static double memory_limit(void) {
-  const char *env = getenv("MDPORE_MEMORY_LIMIT");
-  char *end;
-  if (env && *env) {
-    const double v = strtod(env, &end);
-    if (end != env && v > 0) return v;
-  }
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-  return pages > 0 && page > 0 ? (double)pages * (double)page : 1e18;
-}
-
 static int parse_grid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   static const char *const keys[] = {"cells", "size", NULL};
   yaml_node_t *g = yt_need(t, root, "grid", "grid", "a mapping {cells: [...], size: [...]}");
@@ -244,7 +232,7 @@ static int parse_grid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
                     darcy_nblocks(p));
   /* the per-block arrays of the problem (laws, k_lin, sources, one face of pressures) */
   const double bytes = (double)darcy_nblocks(p) * (sizeof(flow_law) + 3 * sizeof(double));
-  const double limit = memory_limit();
+  const double limit = mdp_memory_limit();
   if (bytes > limit)
     return yt_error(t, yt_get(t, g, "cells"), "grid.cells",
                     "expected a grid that fits in memory (got %ld blocks, %.3g GB for the blocks "

@@ -67,7 +67,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import (BOUNDARIES, RC_PER_VOXEL, boundary_effect, bulk_viscosity, mdval, mu_reference, pm, propagate,  # noqa: E402
+from common import (BOUNDARIES, RC_PER_VOXEL, image_scene, bulk_viscosity, mdval, mu_reference, pm, propagate,  # noqa: E402
                     run_or_reuse, wls)
 
 
@@ -83,26 +83,10 @@ def make_image(workdir, width_vox, wall_vox, length_vox, depth_vox):
 
 def scene_for(name, box, image, patches, g, a_wall, steps, start, every, bins, seed, patch_seed,
               boundary="bounce_back"):
-    return {
-        "name": name,
-        "box": {"lo": [0.0, 0.0, 0.0], "hi": [float(v) for v in box], "periodic": [True, True, True]},
-        "species": [{"name": "liquid", "mass": 1.0}, {"name": "wall", "mass": 1.0, "frozen": True}],
-        "pairs": {"default": {"A": -40.0, "B": 25.0, "gamma": 4.5, "rc": 1.0, "rd": 0.75},
-                  "liquid-wall": {"A": float(a_wall)}},
-        "density_kernel": "warren",
-        "kT": 1.0,
-        "effects": {"mdpd_attraction": {}, "mdpd_repulsion": {}, "dpd_thermostat": {},
-                    "body_force": {"liquid": [float(g), 0.0, 0.0]}, **boundary_effect(boundary)},
-        "geometry": {"image": image, "rc_per_voxel": RC_PER_VOXEL, "flow_axis": "x",
-                     "species": {"fluid": "liquid", "inorganic": "wall"},
-                     "patches": {"file": patches, "seed": int(patch_seed)}},
-        "initial": {"temperature": 1.0},
-        "run": {"dt": 0.01, "steps": int(steps), "seed": int(seed)},
-        "output": {"thermo": {"every": 100, "file": "thermo.csv"},
-                   "profile": {"axis": "y", "bins": int(bins), "every": int(every), "start": int(start),
-                               "file": "profile.csv"},
-                   "summary": "summary.json", "progress": False},
-    }
+    """The slit scene: common.image_scene with the body force along x and a y profile."""
+    return image_scene(name, box, image, patches, steps=steps, seed=seed, patch_seed=patch_seed,
+                       a_wall=a_wall, g=[g, 0.0, 0.0], boundary=boundary,
+                       profile={"axis": "y", "bins": int(bins), "every": int(every), "start": int(start)})
 
 
 def roots_sp(p):
