@@ -20,3 +20,7 @@ int cmd_darcy(int argc, char **argv) {
   (void)argc;
   return missing(argv[0]);
 }
+int cmd_couple(int argc, char **argv) {
+  (void)argc;
+  return missing(argv[0]);
+}

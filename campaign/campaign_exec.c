@@ -81,10 +81,17 @@ int camp_spawn(const char *dir, char **argv, const char *log) {
   }
   setpgid(pid, pid);
   child_pid = pid;
+  /* a signal to us while the child runs goes to its process group too (mdpore couple spawns
+   * campaigns, which spawn runs: killing the loop kills the run) */
+  void (*old_int)(int) = signal(SIGINT, forward), (*old_term)(int) = signal(SIGTERM, forward),
+       (*old_hup)(int) = signal(SIGHUP, forward);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   child_pid = 0;
+  signal(SIGINT, old_int);
+  signal(SIGTERM, old_term);
+  signal(SIGHUP, old_hup);
   free(env);
   free(blob);
   if (WIFEXITED(status)) return WEXITSTATUS(status);

@@ -13,6 +13,7 @@ static void usage(FILE *to) {
       to,
       "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--json]\n"
       "       mdpore image convert IMAGE -o OUT.h5|OUT.raw|OUT.tif [options]\n"
+      "       mdpore image stack IMAGE IMAGE [...] --axis x|y|z -o OUT   (one after another)\n"
       "       mdpore image make slit --width N [--wall W] [--length L] [--depth D] -o OUT\n"
       "       mdpore image make cylinders --cell L --c C [--cells N] [--depth D] -o OUT\n"
       "       mdpore image make spheres --cell L --c C [--cells N] -o OUT\n"
@@ -281,6 +282,73 @@ static int cmd_make(int argc, char **argv) {
   return rc;
 }
 
+/* mdpore image stack A B [C ...] --axis x|y|z -o OUT: the images one after another along an axis
+ * (a layered sample, e.g. for mdpore couple). */
+static int cmd_stack(int argc, char **argv) {
+  char err[MDP_IMAGE_ERR_LEN];
+  mdp_image_cli_t cli;
+  mdp_image_cli_init(&cli);
+  const char *out = NULL, *inputs[64];
+  int n = 0, axis = -1;
+  for (int i = 1; i < argc;) {
+    int r = mdp_image_cli_parse(argc, argv, &i, &cli, err);
+    if (r < 0) {
+      fprintf(stderr, "mdpore image stack: %s\n", err);
+      return 2;
+    }
+    if (r) continue;
+    if (!strcmp(argv[i], "--axis") && i + 1 < argc) {
+      if ((axis = axis_of(argv[++i])) < 0) {
+        fprintf(stderr, "mdpore image stack: --axis '%s': expected x, y or z\n", argv[i]);
+        return 2;
+      }
+    } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+      out = argv[++i];
+    } else if (argv[i][0] == '-') {
+      fprintf(stderr, "mdpore image stack: unknown option '%s'\n", argv[i]);
+      return 2;
+    } else if (n < 64) {
+      inputs[n++] = argv[i];
+    } else {
+      fprintf(stderr, "mdpore image stack: at most 64 images\n");
+      return 2;
+    }
+    i++;
+  }
+  if (n < 2 || axis < 0 || !out) {
+    fprintf(stderr, "mdpore image stack: expected two or more images, --axis x|y|z and -o OUT\n");
+    return 2;
+  }
+  mdp_image_t acc;
+  if (mdp_image_cli_load(inputs[0], &cli, &acc, err)) {
+    fprintf(stderr, "mdpore image stack: %s\n", err);
+    return 1;
+  }
+  for (int i = 1; i < n; i++) {
+    mdp_image_t next, joined;
+    if (mdp_image_cli_load(inputs[i], &cli, &next, err)) {
+      fprintf(stderr, "mdpore image stack: %s\n", err);
+      mdp_image_free(&acc);
+      return 1;
+    }
+    int bad = mdp_image_concat(&acc, &next, axis, &joined, err);
+    mdp_image_free(&next);
+    mdp_image_free(&acc);
+    if (bad) {
+      fprintf(stderr, "mdpore image stack: %s: %s\n", inputs[i], err);
+      return 1;
+    }
+    acc = joined;
+  }
+  int rc = write_any(&acc, out, err);
+  if (rc)
+    fprintf(stderr, "mdpore image stack: %s\n", err);
+  else
+    printf("wrote %s (%d x %d x %d)\n", out, acc.nx, acc.ny, acc.nz);
+  mdp_image_free(&acc);
+  return rc ? 1 : 0;
+}
+
 int cmd_image(int argc, char **argv) {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     usage(argc < 2 ? stderr : stdout);
@@ -289,6 +357,7 @@ int cmd_image(int argc, char **argv) {
   if (!strcmp(argv[1], "info")) return cmd_info_or_convert(argc - 1, argv + 1, 0);
   if (!strcmp(argv[1], "convert")) return cmd_info_or_convert(argc - 1, argv + 1, 1);
   if (!strcmp(argv[1], "make")) return cmd_make(argc - 1, argv + 1);
-  fprintf(stderr, "mdpore image: unknown subcommand '%s' (info, convert, make)\n", argv[1]);
+  if (!strcmp(argv[1], "stack")) return cmd_stack(argc - 1, argv + 1);
+  fprintf(stderr, "mdpore image: unknown subcommand '%s' (info, convert, make, stack)\n", argv[1]);
   return 2;
 }

@@ -24,6 +24,48 @@ int mdp_image_crop(const mdp_image_t *in, const int lo[3], const int size[3], md
   return 0;
 }
 
+int mdp_image_concat(const mdp_image_t *a, const mdp_image_t *b, int axis, mdp_image_t *out,
+                     char *err) {
+  const int na[3] = {a->nx, a->ny, a->nz}, nb[3] = {b->nx, b->ny, b->nz};
+  for (int d = 0; d < 3; d++)
+    if (d != axis && na[d] != nb[d]) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "stack along %c: the images differ along %c (%d and %d voxels); every axis but "
+               "the stacking one must match",
+               'x' + axis, 'x' + d, na[d], nb[d]);
+      return 1;
+    }
+  if (memcmp(a->phase_of, b->phase_of, sizeof a->phase_of)) {
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "stack: the images have different label maps (give --labels so that they agree)");
+    return 1;
+  }
+  if (a->voxel_size != b->voxel_size || strcmp(a->unit, b->unit)) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "stack: different voxel sizes (%g %s and %g %s)",
+             a->voxel_size, a->unit, b->voxel_size, b->unit);
+    return 1;
+  }
+  int n[3] = {na[0], na[1], na[2]};
+  if ((long long)n[axis] + nb[axis] > INT_MAX) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "stack along %c: %d + %d voxels overflow", 'x' + axis,
+             na[axis], nb[axis]);
+    return 1;
+  }
+  n[axis] += nb[axis];
+  if (mdp_image_alloc(out, n[0], n[1], n[2], err)) return 1;
+  mdp_image_copy_meta(out, a);
+  for (int k = 0; k < n[2]; k++)
+    for (int j = 0; j < n[1]; j++)
+      for (int i = 0; i < n[0]; i++) {
+        int c[3] = {i, j, k};
+        const mdp_image_t *src = c[axis] < na[axis] ? a : b;
+        if (src == b) c[axis] -= na[axis];
+        out->label[mdp_image_index(out, i, j, k)] =
+            src->label[mdp_image_index(src, c[0], c[1], c[2])];
+      }
+  return 0;
+}
+
 int mdp_image_downsample(const mdp_image_t *in, int f, mdp_image_t *out, char *err) {
   if (f < 1 || in->nx < f || in->ny < f || in->nz < f) {
     snprintf(err, MDP_IMAGE_ERR_LEN,

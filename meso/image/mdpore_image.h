@@ -112,6 +112,9 @@ int mdp_image_crop(const mdp_image_t *in, const int lo[3], const int size[3], md
 /* Majority vote of labels over factor^3 blocks (ties: the smaller label value). Voxels beyond the
  * last whole block are dropped; the voxel size grows by factor. */
 int mdp_image_downsample(const mdp_image_t *in, int factor, mdp_image_t *out, char *err);
+/* b after a along axis (0..2): the other sizes, label maps and voxel sizes must agree. */
+int mdp_image_concat(const mdp_image_t *a, const mdp_image_t *b, int axis, mdp_image_t *out,
+                     char *err);
 /* widths[6] = x-, x+, y-, y+, z-, z+ layers of `label` added around the image. */
 int mdp_image_pad(const mdp_image_t *in, const int widths[6], uint8_t label, mdp_image_t *out,
                   char *err);

@@ -1,0 +1,233 @@
+/* `mdpore couple CONFIG` (docs/coupling.md): the pore-scale <-> continuum loop.
+ *
+ * pass 1: blocks -> one campaign per block (auto ladder) -> fitted laws -> continuum solve -> block
+ *         gradients. A block whose gradient lies above its calibrated range, or below it but within
+ *         resolvable_fraction of its smallest gradient, gets a run at that gradient (g = G / n).
+ * pass p: the campaigns again (finished runs are reused, only the new ones run), refit, solve; stop
+ *         when every block flux agrees with the previous pass within tolerance_sigma combined
+ *         standard errors (converged, exit 0), or after max_passes (exit 4, said so). Slurm
+ *         launcher: a pass whose runs are not all finished writes the job array and exits 3.
+ * Decisions depend only on finished runs and fixed seeds, so a killed loop rerun redoes the same
+ * passes from its cache. */
+#include <math.h>
+#include <mpi.h>
+#include <petscsys.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "common/atomic_file.h"
+#include "couple.h"
+
+static const char *usage =
+    "usage: mdpore couple CONFIG.yaml\n"
+    "The pore-scale <-> continuum loop (docs/coupling.md): a permeability campaign per block of a\n"
+    "segmented image, the fitted laws into the continuum solve, block gradients fed back as new\n"
+    "pore-scale runs until the block fluxes of two passes agree within their errors.\n"
+    "Exit status: 0 converged, 4 stopped at loop.max_passes without agreement, 3 runs pending\n"
+    "(launcher: slurm: submit the job array it wrote, then run it again), 1 error, 2 usage.\n";
+
+/* The gradient the sample is driven at, in reduced units. */
+static double drive_gradient(const couple_config *c, const couple_block *blocks, int n) {
+  if (c->gradient_si) {
+    for (int b = 0; b < n; b++)
+      if (blocks[b].percolates && blocks[b].law.G_Pa_per_m > 0)
+        return c->gradient_si_value / blocks[b].law.G_Pa_per_m;
+    return NAN;
+  }
+  if (!c->gradient_auto) return c->gradient;
+  /* auto: the geometric mean of the middles of the blocks' calibrated ranges */
+  double s = 0;
+  int m = 0;
+  for (int b = 0; b < n; b++)
+    if (blocks[b].percolates) {
+      s += 0.5 * log(blocks[b].law.g_min * blocks[b].law.g_max);
+      m++;
+    }
+  return m ? exp(s / m) : NAN;
+}
+
+/* Adds a run at the block's gradient when it lies outside the calibrated range but is resolvable.
+ * Returns 1 when a run was added. */
+static int feed_back(const couple_config *c, couple_block *b, double G) {
+  const couple_law *L = &b->law;
+  if (!b->percolates || !(b->density > 0)) return 0;
+  int above = G > L->g_max * 1.05;
+  int below = G < L->g_min / 1.05 && G >= L->g_min * c->resolvable_fraction;
+  if (!above && !below) return 0;
+  char text[32];
+  snprintf(text, sizeof text, "%.4g", G / b->density); /* g = G / (n m), m = 1 */
+  double g = strtod(text, NULL);
+  for (int i = 0; i < b->n_ladder + b->n_extra; i++) {
+    double have = i < b->n_ladder ? b->ladder_g[i] : b->extra_g[i - b->n_ladder];
+    if (fabs(have - g) <= 0.1 * g) return 0; /* a run within 10% exists */
+  }
+  if (b->n_ladder + b->n_extra >= COUPLE_MAX_GRADIENTS) return 0;
+  b->extra_g[b->n_extra++] = g;
+  return 1;
+}
+
+static int run_loop(couple_config *c) {
+  int n = c->blocks[0] * c->blocks[1] * c->blocks[2];
+  couple_block *blocks = calloc((size_t)n, sizeof *blocks);
+  int *new_runs = calloc((size_t)n, sizeof(int));
+  double *prev_flux = calloc((size_t)n, sizeof(double)),
+         *prev_err = calloc((size_t)n, sizeof(double));
+  couple_history h;
+  memset(&h, 0, sizeof h);
+  couple_solution s = {0};
+  double size[3];
+  int rc = 1;
+  if (!blocks || !new_runs || !prev_flux || !prev_err) goto out;
+  if (make_dirs(c->workdir) || couple_make_blocks(c, blocks, size)) goto out;
+  int spanning = 0;
+  for (int b = 0; b < n; b++) spanning += blocks[b].percolates;
+  printf("mdpore couple: %s: %d x %d x %d blocks of %.4g x %.4g x %.4g rc along %c, %d with pore "
+         "space spanning the axis; work folder %s\n",
+         c->path, c->blocks[0], c->blocks[1], c->blocks[2], size[0], size[1], size[2],
+         'x' + c->axis, spanning, c->workdir);
+  if (!spanning) {
+    fprintf(stderr, "mdpore couple: %s: no block's pore space spans %c: k = 0, nothing to run\n",
+            c->path, 'x' + c->axis);
+    goto out;
+  }
+  double gradient = NAN;
+  for (int pass = 1; pass <= c->max_passes; pass++) {
+    int pending = 0;
+    if (couple_run_campaigns(c, blocks, n, pass, &pending)) goto out;
+    if (pending) {
+      h.pending = 1;
+      snprintf(h.stop_reason, sizeof h.stop_reason,
+               "pass %d: %d pore-scale runs pending: sbatch %.200s/pass_%d/slurm.sh, then run "
+               "mdpore couple %.200s again",
+               pass, pending, c->workdir, pass, c->path);
+      printf("mdpore couple: %s\n", h.stop_reason);
+      couple_write_summary(c, blocks, n, size, NULL, &h);
+      rc = 3;
+      goto out;
+    }
+    for (int b = 0; b < n; b++)
+      if (couple_read_law(c, &blocks[b])) goto out;
+    if (pass == 1) {
+      gradient = drive_gradient(c, blocks, n);
+      if (!(gradient > 0)) {
+        fprintf(stderr, "mdpore couple: no drive gradient (no SI mapping in the campaigns)\n");
+        goto out;
+      }
+      printf("mdpore couple: sample driven at G = %.5g kT/rc^4 (%s) = %.4g Pa/m with the "
+             "campaigns' SI mapping\n",
+             gradient,
+             c->gradient_si     ? "given in SI"
+             : c->gradient_auto ? "auto: geometric mean of the blocks' calibrated ranges"
+                                : "given",
+             gradient * blocks[0].law.G_Pa_per_m);
+      if (gradient < 1e-6)
+        printf("mdpore couple: linear response: G is far below any pore-scale run (those run at "
+               "G ~ 1e-2): every block law is extrapolated from its calibrated range; fitted "
+               "non-Darcy terms are flagged below\n");
+    }
+    couple_solution_free(&s);
+    if (couple_solve(c, blocks, size, gradient, &s)) goto out;
+    if (!s.converged) {
+      fprintf(stderr, "mdpore couple: pass %d: the continuum solve did not converge\n", pass);
+      goto out;
+    }
+    int added = 0;
+    for (int b = 0; b < n; b++) added += new_runs[b] = feed_back(c, &blocks[b], fabs(s.grad[b]));
+    if (couple_write_pass_table(c, blocks, n, pass, &s, new_runs) ||
+        couple_write_field(c, blocks, pass, size, &s))
+      goto out;
+    double worst = 0;
+    if (pass > 1)
+      for (int b = 0; b < n; b++) {
+        double e = sqrt(s.flux_err[b] * s.flux_err[b] + prev_err[b] * prev_err[b]);
+        double d = fabs(s.flux[b] - prev_flux[b]);
+        worst = fmax(worst, e > 0 ? d / e : (d > 0 ? INFINITY : 0));
+      }
+    h.passes = pass;
+    h.keff[pass - 1] = s.keff;
+    h.keff_err[pass - 1] = s.keff_err;
+    h.max_dq_sigma[pass - 1] = pass > 1 ? worst : NAN;
+    h.new_runs[pass - 1] = added;
+    printf("pass %d: k_eff = %.5g +- %.2g rc^2 (%d Monte-Carlo samples), %d new pore-scale runs",
+           pass, s.keff, s.keff_err, s.samples_ok, added);
+    if (pass > 1) printf(", largest block-flux change %.3g standard errors", worst);
+    printf("\n");
+    if (pass > 1 && worst <= c->tolerance_sigma) {
+      h.converged = 1;
+      snprintf(h.stop_reason, sizeof h.stop_reason,
+               "converged at pass %d: every block flux agrees with pass %d within %.3g combined "
+               "standard errors (largest change %.3g)",
+               pass, pass - 1, c->tolerance_sigma, worst);
+      break;
+    }
+    memcpy(prev_flux, s.flux, (size_t)n * sizeof(double));
+    memcpy(prev_err, s.flux_err, (size_t)n * sizeof(double));
+    if (pass == c->max_passes)
+      snprintf(h.stop_reason, sizeof h.stop_reason,
+               "NOT converged: stopped at loop.max_passes = %d with block fluxes still changing "
+               "by %.3g standard errors",
+               c->max_passes, worst);
+  }
+  printf("mdpore couple: %s\n", h.stop_reason);
+  double rc_m = NAN;
+  for (int b = 0; b < n; b++)
+    if (blocks[b].percolates) {
+      rc_m = blocks[b].law.length_unit_m;
+      break;
+    }
+  printf("effective permeability along %c: %.5g +- %.2g rc^2 = %.4g m^2 = %.4g +- %.2g nD (rc = "
+         "%.3g m; superficial velocity q = Q / A_total)\n",
+         'x' + c->axis, s.keff, s.keff_err, s.keff * rc_m * rc_m,
+         s.keff * rc_m * rc_m / 9.869233e-22, s.keff_err * rc_m * rc_m / 9.869233e-22, rc_m);
+  if (couple_write_summary(c, blocks, n, size, &s, &h)) goto out;
+  printf("wrote %s/couple.json and per pass %s/pass_N/{blocks.csv,field.h5,field.xmf}\n",
+         c->workdir, c->workdir);
+  couple_plot(c);
+  rc = h.converged ? 0 : 4;
+out:
+  couple_solution_free(&s);
+  free(blocks);
+  free(new_runs);
+  free(prev_flux);
+  free(prev_err);
+  return rc;
+}
+
+int cmd_couple(int argc, char **argv) {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+    fputs(usage, stdout);
+    return 0;
+  }
+  if (argc != 2 || argv[1][0] == '-') {
+    fputs(usage, stderr);
+    return 2;
+  }
+  if (size > 1) {
+    fprintf(stderr, "mdpore couple: run it as one process; it starts its pore-scale runs itself "
+                    "(campaign.np ranks each)\n");
+    return 2;
+  }
+  couple_config c;
+  if (couple_config_read(argv[1], &c)) return 1;
+  ssize_t len = readlink("/proc/self/exe", c.self_exe, sizeof c.self_exe - 1);
+  if (len <= 0) {
+    fprintf(stderr, "mdpore couple: cannot find this binary (/proc/self/exe)\n");
+    couple_config_free(&c);
+    return 1;
+  }
+  c.self_exe[len] = 0;
+  int pargc = 1;
+  char *pargv0[] = {argv[0], NULL}, **pargv = pargv0;
+  if (PetscInitialize(&pargc, &pargv, NULL, NULL)) {
+    couple_config_free(&c);
+    return 1;
+  }
+  int rc = run_loop(&c);
+  PetscFinalize();
+  couple_config_free(&c);
+  return rc;
+}

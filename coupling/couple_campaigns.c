@@ -1,0 +1,220 @@
+/* The per-block permeability campaigns of the loop, through `mdpore permeability` (campaign/): the
+ * same cache (a run folder named by the hash of its scene and binary), so a rerun or a later pass
+ * only runs what is new. Launchers (no scheduler of our own):
+ *   mpiexec  the campaign runs its runs one after another (mpiexec -n NP mdpore run);
+ *   slurm    the campaign only writes its scenes (--emit-scenes); the unfinished runs of every block
+ *            go into one job array (WORKDIR/pass_N/commands.txt + slurm.sh, one run per task); the
+ *            next `mdpore couple` collects what finished and goes on. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "campaign.h"
+#include "common/atomic_file.h"
+#include "couple.h"
+
+static int add(char **argv, int *n, const char *s) {
+  argv[(*n)++] = strdup(s);
+  return argv[*n - 1] ? 0 : -1;
+}
+
+/* The gradients as a --gradients LIST: the block's ladder plus the loop's extra ones. */
+static void gradient_list(const couple_block *b, char *out, size_t len) {
+  size_t used = 0;
+  out[0] = 0;
+  for (int i = 0; i < b->n_ladder + b->n_extra && used + 32 < len; i++) {
+    double g = i < b->n_ladder ? b->ladder_g[i] : b->extra_g[i - b->n_ladder];
+    used += (size_t)snprintf(out + used, len - used, "%s%.17g", i ? "," : "", g);
+  }
+}
+
+/* argv of `mdpore permeability` for block b; mode: "" (run), "--emit-scenes" or "--collect". */
+static int campaign_argv(const couple_config *c, const couple_block *b, const char *mode,
+                         char **argv) {
+  int n = 0;
+  char v[4096];
+  int bad = add(argv, &n, c->self_exe) || add(argv, &n, "permeability");
+  if (!strcmp(mode, "--collect")) {
+    bad = bad || add(argv, &n, "--collect") || add(argv, &n, b->workdir);
+    argv[n] = NULL;
+    return bad ? -1 : 0;
+  }
+  snprintf(v, sizeof v, "%c", 'x' + c->axis);
+  bad = bad || add(argv, &n, b->image) || add(argv, &n, "--axis") || add(argv, &n, v);
+  bad = bad || add(argv, &n, mode[0] ? mode : "--workdir") || add(argv, &n, b->workdir);
+  if (b->n_extra > 0) {
+    gradient_list(b, v, sizeof v);
+    bad = bad || add(argv, &n, "--gradients") || add(argv, &n, v);
+  } else {
+    snprintf(v, sizeof v, "%d", c->n_gradients);
+    bad = bad || add(argv, &n, "--n-gradients") || add(argv, &n, v);
+    snprintf(v, sizeof v, "%.17g,%.17g", c->u_lo, c->u_hi);
+    bad = bad || add(argv, &n, "--velocity-range") || add(argv, &n, v);
+  }
+  snprintf(v, sizeof v, "%.17g", c->target_error);
+  bad = bad || add(argv, &n, "--target-error") || add(argv, &n, v);
+  snprintf(v, sizeof v, "%lld", c->max_steps);
+  bad = bad || add(argv, &n, "--max-steps") || add(argv, &n, v);
+  snprintf(v, sizeof v, "%d", c->np);
+  bad = bad || add(argv, &n, "--np") || add(argv, &n, v);
+  snprintf(v, sizeof v, "%lld", c->seed);
+  bad = bad || add(argv, &n, "--seed") || add(argv, &n, v);
+  snprintf(v, sizeof v, "%.17g", c->rc_per_voxel);
+  bad = bad || add(argv, &n, "--rc-per-voxel") || add(argv, &n, v);
+  if (c->voxel_size[0]) bad = bad || add(argv, &n, "--voxel-size") || add(argv, &n, c->voxel_size);
+  if (c->viscosity > 0) {
+    snprintf(v, sizeof v, "%.17g", c->viscosity);
+    bad = bad || add(argv, &n, "--viscosity") || add(argv, &n, v);
+  }
+  if (c->mpiexec[0]) bad = bad || add(argv, &n, "--mpiexec") || add(argv, &n, c->mpiexec);
+  snprintf(v, sizeof v, "b%d_%d_%d", b->index[0], b->index[1], b->index[2]);
+  bad = bad || add(argv, &n, "--sample") || add(argv, &n, v);
+  argv[n] = NULL;
+  return bad ? -1 : 0;
+}
+
+static void free_argv(char **argv) {
+  for (int i = 0; argv[i]; i++) free(argv[i]);
+}
+
+static int spawn(const couple_config *c, const couple_block *b, const char *mode, const char *log) {
+  char *argv[64] = {0};
+  if (campaign_argv(c, b, mode, argv)) {
+    free_argv(argv);
+    return -1;
+  }
+  int st = camp_spawn(NULL, argv, log);
+  free_argv(argv);
+  return st;
+}
+
+int couple_read_ladder(couple_block *b) {
+  campaign *m = malloc(sizeof *m);
+  if (!m) return -1;
+  int rc = camp_read_manifest(b->workdir, m);
+  if (!rc) {
+    b->n_ladder = 0;
+    b->density = m->fluid_density;
+    camp_units u;
+    camp_units_make(m->length_unit_m, m->fluid_density, m->temperature_K, &u);
+    b->law.length_unit_m = m->length_unit_m;
+    b->law.G_Pa_per_m = u.G_Pa_per_m;
+    for (int i = 0; i < m->n_runs && b->n_ladder < COUPLE_MAX_GRADIENTS; i++) {
+      int known = 0;
+      for (int j = 0; j < b->n_extra; j++) known |= m->runs[i].g == b->extra_g[j];
+      if (!known) b->ladder_g[b->n_ladder++] = m->runs[i].g;
+    }
+  }
+  free(m);
+  return rc;
+}
+
+/* Appends the lines of WORKDIR/commands.txt whose run folder has no summary.json to `out`. */
+static int pending_commands(const couple_block *b, FILE *out, int *count) {
+  char path[COUPLE_PATH + 32], line[3 * COUPLE_PATH];
+  snprintf(path, sizeof path, "%s/commands.txt", b->workdir);
+  FILE *f = fopen(path, "r");
+  if (!f) {
+    fprintf(stderr, "mdpore couple: %s: missing (the campaign's --emit-scenes should write it)\n",
+            path);
+    return -1;
+  }
+  while (fgets(line, sizeof line, f)) {
+    /* "cd 'DIR' && ..." (the campaign quotes the folder) or "cd DIR && ..." */
+    char dir[3 * COUPLE_PATH];
+    if (strncmp(line, "cd ", 3)) continue;
+    const char *p = line + 3;
+    char end = ' ';
+    if (*p == '\'' || *p == '"') end = *p++;
+    size_t len = strcspn(p, end == ' ' ? " \n" : (end == '"' ? "\"" : "'"));
+    if (len == 0 || len >= sizeof dir) continue;
+    memcpy(dir, p, len);
+    dir[len] = 0;
+    char summary[3 * COUPLE_PATH + 32];
+    snprintf(summary, sizeof summary, "%s/summary.json", dir);
+    if (access(summary, R_OK)) {
+      fputs(line, out);
+      (*count)++;
+    }
+  }
+  fclose(f);
+  return 0;
+}
+
+static int write_slurm(const couple_config *c, int pass, const char *commands, int count) {
+  char path[COUPLE_PATH + 64], tmp[COUPLE_PATH + 128];
+  snprintf(path, sizeof path, "%.4000s/pass_%d/slurm.sh", c->workdir, pass);
+  FILE *f = atomic_open(path, tmp, sizeof tmp);
+  if (!f) return -1;
+  fprintf(f,
+          "#!/bin/bash\n# mdpore couple: the unfinished pore-scale runs of pass %d, one per array "
+          "task.\n# Submit: sbatch %s ; when the array is done, run mdpore couple %s again.\n"
+          "#SBATCH --job-name=mdpore-couple\n#SBATCH --array=1-%d\n#SBATCH --ntasks=%d\n%s%s"
+          "sed -n \"${SLURM_ARRAY_TASK_ID}p\" '%s' | bash\n",
+          pass, path, c->path, count, c->np, c->slurm_header,
+          c->slurm_header[0] && c->slurm_header[strlen(c->slurm_header) - 1] != '\n' ? "\n" : "",
+          commands);
+  return atomic_commit(f, tmp, path);
+}
+
+int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, int pass,
+                         int *pending) {
+  *pending = 0;
+  char passdir[COUPLE_PATH + 32], cmds[COUPLE_PATH + 64], tmp[COUPLE_PATH + 128];
+  snprintf(passdir, sizeof passdir, "%.4000s/pass_%d", c->workdir, pass);
+  if (make_dirs(passdir)) return -1;
+  FILE *array = NULL;
+  int count = 0;
+  if (c->launcher == COUPLE_LAUNCH_SLURM) {
+    snprintf(cmds, sizeof cmds, "%s/commands.txt", passdir);
+    if (!(array = atomic_open(cmds, tmp, sizeof tmp))) return -1;
+  }
+  for (int i = 0; i < n; i++) {
+    couple_block *b = &blocks[i];
+    b->pending = 0;
+    if (!b->percolates) continue;
+    if (b->n_extra_run == b->n_extra) continue; /* no new gradient: its runs and fit stand */
+    char log[COUPLE_PATH + 64];
+    snprintf(log, sizeof log, "%.4000s/campaign.log", b->workdir);
+    if (make_dirs(b->workdir)) goto fail;
+    fprintf(stderr, "mdpore couple: pass %d: block (%d,%d,%d): campaign %s (%d gradients%s)\n",
+            pass, b->index[0], b->index[1], b->index[2], b->workdir,
+            b->n_extra ? b->n_ladder + b->n_extra : c->n_gradients,
+            b->n_extra ? ", with the loop's" : ", auto ladder");
+    if (c->launcher == COUPLE_LAUNCH_SLURM) {
+      int before = count;
+      if (spawn(c, b, "--emit-scenes", log) != 0 || pending_commands(b, array, &count)) {
+        fprintf(stderr, "mdpore couple: the campaign of block (%d,%d,%d) failed: see %s\n",
+                b->index[0], b->index[1], b->index[2], log);
+        goto fail;
+      }
+      b->pending = count - before;
+      if (!b->pending && spawn(c, b, "--collect", log) != 0) {
+        fprintf(stderr, "mdpore couple: collecting block (%d,%d,%d) failed: see %s\n", b->index[0],
+                b->index[1], b->index[2], log);
+        goto fail;
+      }
+    } else if (spawn(c, b, "", log) != 0) {
+      fprintf(stderr, "mdpore couple: the campaign of block (%d,%d,%d) failed: see %s\n",
+              b->index[0], b->index[1], b->index[2], log);
+      goto fail;
+    }
+    if (couple_read_ladder(b)) goto fail;
+    if (!b->pending) b->n_extra_run = b->n_extra;
+  }
+  if (array) {
+    if (atomic_commit(array, tmp, cmds)) return -1;
+    if (count && write_slurm(c, pass, cmds, count)) return -1;
+    if (!count) remove(cmds);
+    *pending = count;
+  }
+  return 0;
+fail:
+  if (array) {
+    fclose(array);
+    remove(tmp);
+  }
+  return -1;
+}
