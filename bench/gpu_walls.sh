@@ -6,7 +6,9 @@
 # STEPS steps on the GPU; then the paper's ring medium (gpu_bench porous 72) in the same call.
 # Prints the builder's report, the summary's particle-steps per second (all particles) and the wall
 # time; fluid-only throughput = MPS x fluid / particles.
-# usage: [BOUNDARY=...] bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
+# With CACHE_AB=1 each image runs twice, the density cache of the static walls off then on
+# (MDPORE_DENSITY_CACHE=0 / =1; on the GPU the cache is opt-in; docs/walls.md section 15).
+# usage: [BOUNDARY=...] [CACHE_AB=1] bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
 set -u
 B=$1; BCC=$2; S=${3:-1.5}; N=${4:-400}; W=${5:-/tmp/gpu-walls}
 # BOUNDARY: bounce_back (default), wall_boundary, or wall_boundary+bounce_back
@@ -44,8 +46,17 @@ output:
   summary: summary.json
   progress: false
 YAML
-  /usr/bin/time -f "$img: wall time %e s, max RSS %M kB" $M run --backend cuda --output-dir out-$img $img.yaml \
-    > $img.log 2>&1 || tail -5 $img.log
-  grep -E "^  (walls|wall particles|fluid|particles):|performance|penetrations|T = |wall time" $img.log
+  # CACHE_AB=1: each image with the density cache of the static walls off (MDPORE_DENSITY_CACHE=0),
+  # then on, in the same call (docs/walls.md, "Wall densities computed once")
+  modes=default
+  [ -n "${CACHE_AB:-}" ] && modes="0 1"
+  for cache in $modes; do
+    log=$img.log
+    [ -n "${CACHE_AB:-}" ] && log=$img-cache$cache.log && echo "$img, density cache $cache:"
+    [ "$cache" = default ] && unset MDPORE_DENSITY_CACHE || export MDPORE_DENSITY_CACHE=$cache
+    /usr/bin/time -f "$img: wall time %e s, max RSS %M kB" $M run --backend cuda \
+      --output-dir out-$img-$cache $img.yaml > $log 2>&1 || tail -5 $log
+    grep -E "^  (walls|wall particles|fluid|particles):|performance|penetrations|T = |wall time" $log
+  done
 done
 $B/bin/gpu_bench porous 72 100 50 cuda 2>&1 | tail -1

@@ -17,6 +17,13 @@
 #define CAMP_MAX_RUNS (3 * CAMP_MAX_GRADIENTS)
 #define CAMP_PATH 4096
 
+/* How the runs are driven (--drive): a body force on every fluid particle, or an inlet force in an
+ * open reservoir added along the flow axis (pressure-driven; docs/permeability.md). */
+enum { CAMP_DRIVE_BODY, CAMP_DRIVE_PRESSURE };
+/* Pressure drive: probe slabs of this width, this far outside the sample faces (rc). */
+#define CAMP_PROBE_GAP 0.5
+#define CAMP_PROBE_WIDTH 0.5
+
 typedef struct {
   char input[CAMP_PATH];            /* IMAGE or SCENE (absolute) */
   int input_is_scene;               /* 1: a .yaml/.yml scene used as the template */
@@ -42,6 +49,8 @@ typedef struct {
   char models[128];         /* --models for mdpore fit ("" = its default set) */
   char sample[256];         /* sample name of the tables */
   char self_exe[CAMP_PATH]; /* this mdpore binary */
+  int drive;                /* CAMP_DRIVE_BODY (default) or CAMP_DRIVE_PRESSURE */
+  double reservoir;         /* pressure drive: reservoir length along the axis, rc (default 4) */
 } camp_opts;
 
 /* One planned run. */
@@ -53,7 +62,9 @@ typedef struct {
   int have;   /* summary with a flux result read */
   int reused; /* found finished, not rerun */
   double q, q_err, G, rel_err;
-  int reached; /* 1 met the target, 0 not, -1 no target */
+  double G_err;      /* pressure drive: error of the measured G (NAN for a body force) */
+  double dp_balance; /* pressure drive: dp / (inlet force / A_total) (NAN for a body force) */
+  int reached;       /* 1 met the target, 0 not, -1 no target */
   long long steps, particles, steady_from;
   double seconds; /* loop seconds of the run */
 } camp_run;
@@ -75,6 +86,8 @@ typedef struct {
   double temperature_K;
   double target_error;
   int np;
+  int drive;        /* CAMP_DRIVE_* */
+  double reservoir; /* pressure drive: the reservoir added, rc (whole voxels) */
   int n_runs;
   camp_run runs[CAMP_MAX_RUNS];
 } campaign;
@@ -95,7 +108,15 @@ int camp_gradients(camp_opts *o, const campaign *c);
 /* Parses "a,b,c" into grads. 0, or -1 with a message into err. */
 int camp_parse_gradient_list(const char *text, double *grads, int *n, char *err, int errlen);
 
-/* campaign_scene.c: the scene text of one run (template + axis + g), malloc'd; NULL + message. */
+/* campaign_template.c: pressure drive: the reservoir in voxels and the padded image of an axis
+ * (WORKDIR/reservoir_<axis>.raw). */
+int camp_reservoir_voxels(const camp_opts *o);
+void camp_padded_image_path(const camp_opts *o, int axis, char *out, int len);
+
+/* campaign_scene.c: the scene text of one run (template + axis + g), malloc'd; NULL + message.
+ * Pressure drive: g is the equivalent body force per particle, G_nominal = n g; the inlet force per
+ * particle is g L_sample / L_slab, so that the inlet force per area n g L_sample equals the pressure
+ * drop G_nominal L_sample that drives the sample. */
 char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, double g);
 
 /* campaign_hash.c: FNV-1a 64 and the version string of this binary. */

@@ -41,7 +41,13 @@ const char *camp_usage =
     "  --seed S            base seed (default 12345; each gradient gets its own)\n"
     "  --flux-every N      flux sample interval in steps (default 10)\n"
     "  --models LIST       laws passed to mdpore fit (default: its default set)\n"
-    "  --sample NAME       sample name in the tables (default: the input's file name)\n";
+    "  --sample NAME       sample name in the tables (default: the input's file name)\n"
+    "  --drive body|pressure  body: a body force on every fluid particle (default); pressure:\n"
+    "                      the image padded along the axis with an open reservoir, an inlet force\n"
+    "                      in it, G measured from the pressure drop across the sample (IMAGE "
+    "only)\n"
+    "  --reservoir R       pressure drive: reservoir length along the axis in rc (default 4, >= "
+    "3)\n";
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore permeability: %s: expected %s, got '%s'\n", opt, expected, got);
@@ -110,6 +116,8 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->temperature_K = 298.15;
   o->seed = 12345;
   o->flux_every = 10;
+  o->drive = CAMP_DRIVE_BODY;
+  o->reservoir = 4.0;
   snprintf(o->mpiexec, sizeof o->mpiexec, "mpiexec");
   const char *input = NULL, *workdir = NULL;
   int have_axis = 0;
@@ -180,7 +188,16 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       snprintf(o->models, sizeof o->models, "%s", v);
     else if (!strcmp(s, "--sample"))
       snprintf(o->sample, sizeof o->sample, "%s", v);
-    else if (s[0] == '-') {
+    else if (!strcmp(s, "--drive")) {
+      if (!strcmp(v, "body"))
+        o->drive = CAMP_DRIVE_BODY;
+      else if (!strcmp(v, "pressure"))
+        o->drive = CAMP_DRIVE_PRESSURE;
+      else
+        return bad(s, "body or pressure", v);
+    } else if (!strcmp(s, "--reservoir")) {
+      if (parse_double(s, v, 2.999999, 1e6, "a reservoir length >= 3 rc", &o->reservoir)) return -1;
+    } else if (s[0] == '-') {
       fprintf(stderr, "mdpore permeability: unknown option '%s'\n", s);
       return -1;
     } else if (!input) {
@@ -217,6 +234,14 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   }
   absolute(input, o->input, sizeof o->input);
   o->input_is_scene = ends_with(input, ".yaml") || ends_with(input, ".yml");
+  if (o->input_is_scene && o->drive == CAMP_DRIVE_PRESSURE) {
+    fprintf(stderr,
+            "mdpore permeability: --drive pressure: expected an IMAGE input (got the scene %s; "
+            "for a scene, name effects.inlet_force with its sample yourself, "
+            "docs/scene-format.md)\n",
+            input);
+    return -1;
+  }
   if (!o->sample[0]) {
     const char *b = strrchr(o->input, '/');
     snprintf(o->sample, sizeof o->sample, "%.255s", b ? b + 1 : o->input);

@@ -144,8 +144,20 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   t.length_unit_m = c->length_unit_m;
   if (isfinite(c->rc_per_voxel)) t.voxel_size = c->rc_per_voxel;
   char line[CAMP_PATH + 256];
-  flow_table_add_comment(&t, "made by mdpore permeability (docs/permeability.md): body-force runs, "
-                             "G = n m g (body force per fluid volume)");
+  if (c->drive == CAMP_DRIVE_PRESSURE) {
+    snprintf(
+        line, sizeof line,
+        "made by mdpore permeability (docs/permeability.md): pressure-driven runs (inlet force "
+        "in an open reservoir of %g rc added along the axis); G = (P_in - P_out) / L_sample "
+        "measured between probe slabs outside the sample faces (its error per run below); "
+        "darcy_velocity_stderr = sqrt(q_err^2 + (q G_err / G)^2), the effective variance "
+        "that carries G's error into q's for the fit (q_err alone per run below)",
+        c->reservoir);
+    flow_table_add_comment(&t, line);
+  } else
+    flow_table_add_comment(&t,
+                           "made by mdpore permeability (docs/permeability.md): body-force runs, "
+                           "G = n m g (body force per fluid volume)");
   flow_table_add_comment(&t, "convention: superficial (Darcy) velocity q = Q / A_total, A_total = "
                              "the whole cross-section (solid included); k = mu q / G");
   snprintf(line, sizeof line, "input = %s", c->input);
@@ -159,13 +171,25 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   snprintf(line, sizeof line, "run_length = steps run; target relative error %g", c->target_error);
   flow_table_add_comment(&t, line);
   for (int i = 0; i < n; i++) {
-    snprintf(line, sizeof line, "run g = %.6g: %s (steady from step %lld, target %s)", rows[i]->g,
+    char measured[160] = "";
+    if (c->drive == CAMP_DRIVE_PRESSURE)
+      snprintf(measured, sizeof measured,
+               ", G = %.6g +- %.2g, q_err = %.3g, dp / (inlet force / A) = %.4g", rows[i]->G,
+               rows[i]->G_err, rows[i]->q_err, rows[i]->dp_balance);
+    snprintf(line, sizeof line, "run g = %.6g: %s (steady from step %lld, target %s%s)", rows[i]->g,
              rows[i]->dir, rows[i]->steady_from,
              rows[i]->reached < 0 ? "none"
              : rows[i]->reached   ? "reached"
-                                  : "NOT reached");
+                                  : "NOT reached",
+             measured);
     flow_table_add_comment(&t, line);
-    flow_table_add_row(&t, rows[i]->G, rows[i]->q, rows[i]->q_err, (double)rows[i]->steps);
+    /* Pressure drive: G is measured, so its error joins q's (effective variance, linear law) */
+    const double rel_G = c->drive == CAMP_DRIVE_PRESSURE && isfinite(rows[i]->G_err)
+                             ? rows[i]->G_err / rows[i]->G
+                             : 0.0;
+    const double sigma =
+        sqrt(rows[i]->q_err * rows[i]->q_err + rows[i]->q * rows[i]->q * rel_G * rel_G);
+    flow_table_add_row(&t, rows[i]->G, rows[i]->q, sigma, (double)rows[i]->steps);
   }
   char table[CAMP_PATH + 32], fitjson[CAMP_PATH + 32], png[CAMP_PATH + 32], err[1024];
   snprintf(table, sizeof table, "%s/flow_%c.csv", workdir, 'x' + axis);
@@ -181,6 +205,13 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
            rows[i]->G * u->G_Pa_per_m, rows[i]->q, rows[i]->q_err, rows[i]->q * u->q_m_per_s,
            rows[i]->steps, rows[i]->reached == 0 ? " (target not reached)" : "",
            rows[i]->reused ? " (reused)" : "");
+  if (c->drive == CAMP_DRIVE_PRESSURE) {
+    printf("  pressure drive (reservoir %g rc): G measured, g = the equivalent body force of the "
+           "inlet force;\n  per run G_err and dp / (inlet force / A_total):",
+           c->reservoir);
+    for (int i = 0; i < n; i++) printf(" %.2g/%.3f", rows[i]->G_err, rows[i]->dp_balance);
+    printf("\n");
+  }
   printf("  wrote %s\n", table);
   fflush(stdout);
   if (!rc) {
@@ -258,6 +289,8 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
   json_number(&j, "rc_per_voxel", c->rc_per_voxel);
   json_number(&j, "viscosity", c->viscosity);
   json_string(&j, "viscosity_source", c->viscosity_source);
+  json_string(&j, "drive", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body");
+  if (c->drive == CAMP_DRIVE_PRESSURE) json_number(&j, "reservoir_rc", c->reservoir);
   json_string(&j, "convention",
               "superficial (Darcy) velocity q = Q / A_total, A_total = the "
               "whole cross-section (solid included); k = mu q / G");

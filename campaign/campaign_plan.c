@@ -70,9 +70,12 @@ int camp_plan(camp_opts *o, campaign *c) {
       snprintf(path, sizeof path, "%s/scene.yaml", r->dir);
       char header[512];
       snprintf(header, sizeof header,
-               "# mdpore permeability run: axis %c, body force g = %.15g per particle; folder = "
+               "# mdpore permeability run: axis %c, %s g = %.15g per particle; folder = "
                "FNV-1a 64 of the text below and '%s'\n",
-               'x' + axis, o->grads[i], version);
+               'x' + axis,
+               o->drive == CAMP_DRIVE_PRESSURE ? "pressure drive, equivalent body force"
+                                               : "body force",
+               o->grads[i], version);
       size_t len = strlen(header) + strlen(scene) + 1;
       char *text = malloc(len);
       if (!text) return -1;
@@ -109,6 +112,8 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   fprintf(f, "length_unit_m: %.17g\nlength_source: %s\n", c->length_unit_m, c->length_source);
   fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
           c->target_error, c->np);
+  fprintf(f, "drive: %s\nreservoir: %.17g\n", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body",
+          c->reservoir);
   for (int i = 0; i < c->n_runs; i++)
     fprintf(f, "run: %c %.17g %s\n", 'x' + c->runs[i].axis, c->runs[i].g, c->runs[i].dir);
   return atomic_commit(f, tmp, path);
@@ -161,7 +166,14 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       snprintf(c->viscosity_source, sizeof c->viscosity_source, "%s", v);
     else if (!strcmp(k, "length_source"))
       snprintf(c->length_source, sizeof c->length_source, "%s", v);
-    else if (!strcmp(k, "percolates")) {
+    else if (!strcmp(k, "drive")) {
+      c->drive = !strcmp(v, "pressure") ? CAMP_DRIVE_PRESSURE : CAMP_DRIVE_BODY;
+      if (strcmp(v, "pressure") && strcmp(v, "body")) {
+        fprintf(stderr, "mdpore permeability: %s:%d: key 'drive': expected body or pressure\n",
+                path, ln);
+        rc = -1;
+      }
+    } else if (!strcmp(k, "percolates")) {
       if (sscanf(v, "%d %d %d", &c->percolates[0], &c->percolates[1], &c->percolates[2]) != 3) {
         fprintf(stderr, "mdpore permeability: %s:%d: key 'percolates': expected 3 flags\n", path,
                 ln);
@@ -188,7 +200,8 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       } nums[] = {{"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
                   {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
                   {"viscosity", &c->viscosity},         {"length_unit_m", &c->length_unit_m},
-                  {"temperature_K", &c->temperature_K}, {"target_error", &c->target_error}};
+                  {"temperature_K", &c->temperature_K}, {"target_error", &c->target_error},
+                  {"reservoir", &c->reservoir}};
       for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
         if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
       if (!strcmp(k, "np")) {

@@ -7,7 +7,9 @@
  *   output.summary       summary.json; output.progress false
  *   run.target_error     --target-error; run.steps --max-steps (when given); run.seed base + a hash
  *                        of g (independent noise per gradient)
- *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute. */
+ *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute.
+ * --drive pressure: box and image grow by the reservoir, effects.inlet_force replaces body_force
+ * (pressure_drive below). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -103,6 +105,87 @@ static int write_handler(void *data, unsigned char *buffer, size_t size) {
   return 1;
 }
 
+/* Removes `key` from mapping `map_id` (no-op when absent). */
+static void unset(doc_t *d, int map_id, const char *key) {
+  yaml_node_t *m = yaml_document_get_node(d, map_id);
+  if (!m || m->type != YAML_MAPPING_NODE) return;
+  for (yaml_node_pair_t *p = m->data.mapping.pairs.start; p < m->data.mapping.pairs.top; p++) {
+    yaml_node_t *k = yaml_document_get_node(d, p->key);
+    if (k && k->type == YAML_SCALAR_NODE && !strcmp((char *)k->data.scalar.value, key)) {
+      memmove(p, p + 1, (size_t)(m->data.mapping.pairs.top - p - 1) * sizeof *p);
+      m->data.mapping.pairs.top--;
+      return;
+    }
+  }
+}
+
+static int pair_of_numbers(doc_t *d, double a, double b) {
+  int seq = yaml_document_add_sequence(d, NULL, YAML_FLOW_SEQUENCE_STYLE);
+  yaml_document_append_sequence_item(d, seq, number(d, a));
+  yaml_document_append_sequence_item(d, seq, number(d, b));
+  return seq;
+}
+
+/* Pressure drive (docs/permeability.md): the box grows by the reservoir along the axis, the
+ * geometry reads the padded image, the body force goes and inlet_force acts in the middle of the
+ * reservoir, between probe slabs next to the sample faces:
+ *   sample [lo, lo + Ls), reservoir [lo + Ls, lo + Ls + R), slab [lo + Ls + gap + w, lo + Ls + R -
+ *   gap - w), force per particle f = g Ls / L_slab. */
+static int pressure_drive(doc_t *d, int root, int effects, const camp_opts *o, int axis, double g,
+                          const char (*fluid)[256], int nf, const char *template_path) {
+  int box = get(d, root, "box");
+  yaml_node_t *lo_n = yaml_document_get_node(d, get(d, box, "lo"));
+  yaml_node_t *hi_n = yaml_document_get_node(d, get(d, box, "hi"));
+  if (!lo_n || !hi_n || lo_n->type != YAML_SEQUENCE_NODE || hi_n->type != YAML_SEQUENCE_NODE ||
+      hi_n->data.sequence.items.top - hi_n->data.sequence.items.start != 3) {
+    fprintf(stderr, "mdpore permeability: %s: key 'box': expected lo and hi lists of 3 numbers\n",
+            template_path);
+    return -1;
+  }
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++) {
+    lo[k] = atof(text_of(d, lo_n->data.sequence.items.start[k]));
+    hi[k] = atof(text_of(d, hi_n->data.sequence.items.start[k]));
+  }
+  const double ls = hi[axis] - lo[axis], r = camp_reservoir_voxels(o) * o->rc_per_voxel;
+  const double gw = CAMP_PROBE_GAP + CAMP_PROBE_WIDTH;
+  const double slab_lo = lo[axis] + ls + gw, slab_hi = lo[axis] + ls + r - gw;
+  if (!(slab_hi - slab_lo >= 0.5)) {
+    fprintf(stderr,
+            "mdpore permeability: --reservoir %g: expected room for the inlet slab between the "
+            "probes (the reservoir is %g rc in whole voxels)\n",
+            o->reservoir, r);
+    return -1;
+  }
+  int hi_new = yaml_document_add_sequence(d, NULL, YAML_FLOW_SEQUENCE_STYLE);
+  for (int k = 0; k < 3; k++)
+    yaml_document_append_sequence_item(d, hi_new, number(d, k == axis ? hi[k] + r : hi[k]));
+  set(d, box, "hi", hi_new);
+  char image[CAMP_PATH];
+  camp_padded_image_path(o, axis, image, sizeof image);
+  set(d, get(d, root, "geometry"), "image", scalar(d, image));
+  unset(d, effects, "body_force");
+  const double f = g * ls / (slab_hi - slab_lo);
+  int inlet = yaml_document_add_mapping(d, NULL, YAML_FLOW_MAPPING_STYLE);
+  for (int i = 0; i < nf; i++) {
+    int vec = yaml_document_add_sequence(d, NULL, YAML_FLOW_SEQUENCE_STYLE);
+    for (int c = 0; c < 3; c++)
+      yaml_document_append_sequence_item(d, vec, number(d, c == axis ? f : 0));
+    yaml_document_append_mapping_pair(d, inlet, scalar(d, fluid[i]), vec);
+  }
+  const char axis_name[2] = {(char)('x' + axis), 0};
+  yaml_document_append_mapping_pair(d, inlet, scalar(d, "along"), scalar(d, axis_name));
+  yaml_document_append_mapping_pair(d, inlet, scalar(d, "slab"),
+                                    pair_of_numbers(d, slab_lo, slab_hi));
+  yaml_document_append_mapping_pair(d, inlet, scalar(d, "sample"),
+                                    pair_of_numbers(d, lo[axis], lo[axis] + ls));
+  yaml_document_append_mapping_pair(d, inlet, scalar(d, "probe_gap"), number(d, CAMP_PROBE_GAP));
+  yaml_document_append_mapping_pair(d, inlet, scalar(d, "probe_width"),
+                                    number(d, CAMP_PROBE_WIDTH));
+  set(d, effects, "inlet_force", inlet);
+  return 0;
+}
+
 /* The fluid species names: geometry.species.fluid, else the species not frozen. */
 static int fluid_species(doc_t *d, int root, const char **names, int max) {
   int g = get(d, root, "geometry");
@@ -158,12 +241,16 @@ char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, d
     yaml_document_append_mapping_pair(d, bf, scalar(d, fluid_copy[i]), vec);
   }
   set(d, effects, "body_force", bf);
+  if (o->drive == CAMP_DRIVE_PRESSURE &&
+      pressure_drive(d, root, effects, o, axis, g, (const char(*)[256])fluid_copy, nf,
+                     template_path))
+    goto done;
 
   const char axis_name[2] = {(char)('x' + axis), 0};
   int geo = get(d, root, "geometry");
   if (geo) {
     set(d, geo, "flow_axis", scalar(d, axis_name));
-    absolutize(d, geo, "image", dir);
+    absolutize(d, geo, "image", dir); /* the padded image of a pressure drive is absolute */
     int patches = get(d, geo, "patches");
     if (patches && yaml_document_get_node(d, patches)->type == YAML_MAPPING_NODE)
       absolutize(d, patches, "file", dir);

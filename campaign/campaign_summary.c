@@ -39,6 +39,9 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   r->q = num(&t, flux, "q");
   r->q_err = num(&t, flux, "q_err");
   r->G = num(&t, flux, "G");
+  r->G_err = num(&t, flux, "G_err"); /* measured G (pressure drive); absent for a body force */
+  yaml_node_t *pd = yt_get(&t, flux, "pressure_drop");
+  r->dp_balance = pd && pd->type == YAML_MAPPING_NODE ? num(&t, pd, "dp_over_force_per_area") : NAN;
   r->rel_err = num(&t, flux, "relative_error");
   double sf = num(&t, flux, "steady_from_step");
   r->steady_from = isfinite(sf) ? (long long)sf : -1;

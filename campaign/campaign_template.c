@@ -165,6 +165,41 @@ out:
   return rc;
 }
 
+int camp_reservoir_voxels(const camp_opts *o) {
+  return (int)lround(o->reservoir / o->rc_per_voxel);
+}
+
+void camp_padded_image_path(const camp_opts *o, int axis, char *out, int len) {
+  snprintf(out, len, "%.4000s/reservoir_%c.raw", o->workdir, 'x' + axis);
+}
+
+/* Pressure drive: per axis, the image with the reservoir's pore voxels added after its high face
+ * along the axis (the sample keeps [0, L_sample); periodic, so the reservoir touches both faces). */
+static int write_padded_images(const camp_opts *o, const mdp_image_t *img) {
+  int pore = -1;
+  for (int v = 0; v < 256 && pore < 0; v++)
+    if (img->phase_of[v] == MDP_PHASE_PORE) pore = v;
+  for (int a = 0; a < o->n_axes; a++) {
+    int w[6] = {0};
+    w[2 * o->axes[a] + 1] = camp_reservoir_voxels(o);
+    char err[MDP_IMAGE_ERR_LEN], path[CAMP_PATH];
+    camp_padded_image_path(o, o->axes[a], path, sizeof path);
+    mdp_image_t padded;
+    if (pore < 0 || mdp_image_pad(img, w, (uint8_t)pore, &padded, err)) {
+      fprintf(stderr, "mdpore permeability: %s: --drive pressure: %s\n", o->input,
+              pore < 0 ? "the image has no pore label for the reservoir" : err);
+      return -1;
+    }
+    int rc = mdp_image_write_raw(&padded, path, err);
+    mdp_image_free(&padded);
+    if (rc) {
+      fprintf(stderr, "mdpore permeability: %s: %s\n", path, err);
+      return -1;
+    }
+  }
+  return 0;
+}
+
 int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int len) {
   snprintf(c->sample, sizeof c->sample, "%s", o->sample);
   snprintf(c->input, sizeof c->input, "%s", o->input);
@@ -182,6 +217,8 @@ int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int
   c->temperature_K = o->temperature_K;
   c->target_error = o->target_error;
   c->np = o->np;
+  c->drive = o->drive;
+  c->reservoir = o->drive == CAMP_DRIVE_PRESSURE ? camp_reservoir_voxels(o) * o->rc_per_voxel : 0;
   if (make_dirs(o->workdir)) return -1;
   if (o->input_is_scene) {
     if (!o->viscosity_given)
@@ -196,6 +233,7 @@ int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int
     if (image_meta(o->input, NULL, o->rc_per_voxel, o, c, &img)) return -1;
     snprintf(template_path, len, "%s/template.yaml", o->workdir);
     int rc = write_image_template(o, &img, template_path);
+    if (!rc && o->drive == CAMP_DRIVE_PRESSURE) rc = write_padded_images(o, &img);
     mdp_image_free(&img);
     if (rc) return -1;
   }

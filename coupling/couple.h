@@ -55,6 +55,7 @@ typedef struct {
   char voxel_size[64]; /* --voxel-size in metres as text ("" = default) */
   double viscosity;    /* 0 = the campaign's default */
   char mpiexec[512];   /* "" = the campaign's default */
+  int drive_pressure;  /* 1: --drive pressure (inlet force in a reservoir, measured G) */
   /* loop */
   int max_passes;
   double tolerance_sigma;     /* fluxes agree when |dq| <= tol * combined standard error */

@@ -69,6 +69,7 @@ static int campaign_argv(const couple_config *c, const couple_block *b, const ch
     bad = bad || add(argv, &n, "--viscosity") || add(argv, &n, v);
   }
   if (c->mpiexec[0]) bad = bad || add(argv, &n, "--mpiexec") || add(argv, &n, c->mpiexec);
+  if (c->drive_pressure) bad = bad || add(argv, &n, "--drive") || add(argv, &n, "pressure");
   snprintf(v, sizeof v, "b%d_%d_%d", b->index[0], b->index[1], b->index[2]);
   bad = bad || add(argv, &n, "--sample") || add(argv, &n, v);
   argv[n] = NULL;

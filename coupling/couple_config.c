@@ -99,6 +99,10 @@ static int read_campaign(ytree_t *t, yaml_node_t *m, couple_config *c) {
       return yt_error(t, n, "campaign.voxel_size", "expected a voxel edge in metres in (0, 1)");
     snprintf(c->voxel_size, sizeof c->voxel_size, "%.10g", size);
   }
+  static const char *const drive_words[] = {"body", "pressure", NULL};
+  if ((n = yt_get(t, m, "drive")) &&
+      (c->drive_pressure = yt_enum(t, n, "campaign.drive", drive_words)) < 0)
+    return -1;
   if ((n = yt_get(t, m, "mpiexec")) &&
       yt_string(t, n, "campaign.mpiexec", c->mpiexec, sizeof c->mpiexec))
     return -1;

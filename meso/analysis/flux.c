@@ -1,6 +1,7 @@
 /* The flux output's definitions (see flux.h). */
 #include "analysis/flux.h"
 #include "effects/effect_list.h"
+#include "effects/inlet_force.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -73,6 +74,11 @@ int flux_def_init(flux_def_t *d, const scene_t *s, const double count[SCENE_MAX_
     d->gradient_source = b->reverse_axis >= 0 ? FLUX_G_REVERSE : FLUX_G_BODY_FORCE;
     d->G = b->reverse_axis >= 0 ? NAN : force / fluid_volume;
   }
+  if (s->effect[EFFECT_INLET_FORCE] &&
+      SCENE_EFFECT_OPTIONS(s, EFFECT_INLET_FORCE, const inlet_force_options_t)->has_sample) {
+    d->gradient_source = FLUX_G_PRESSURE; /* measured per sample: run/run_flux.c */
+    d->G = NAN;
+  }
   return 0;
 }
 
@@ -111,6 +117,9 @@ const char *flux_gradient_source_name(int source) {
     return "body_force: G = sum_s N_s F_s / V_fluid = n F";
   case FLUX_G_REVERSE:
     return "body_force with reverse_along: no net gradient";
+  case FLUX_G_PRESSURE:
+    return "inlet_force: G = (P_in - P_out) / L_sample, measured per sample between probe slabs "
+           "outside the sample faces";
   default:
     return "none: no driving effect";
   }

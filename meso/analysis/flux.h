@@ -17,14 +17,16 @@
  * G = -dp/dx, the driving gradient: with body_force, the body force per fluid volume,
  * G = sum_s N_s F_s,axis / V_fluid, V_fluid = sum_s N_s / n_s (one species: G = n F = n m g with g
  * the acceleration); NaN with reverse_along (no net gradient); 0 without a driving effect.
- * Pressure-driven runs (issue 11 item 4) will measure G per sample: flux_sample is the hook. */
+ * With inlet_force and its `sample` (pressure-driven, issue 11 item 4) G is measured per sample from
+ * the pressure drop across the sample (analysis/pressure_drop.h; the run's flux hook sets it): NaN
+ * here. */
 #ifndef MESO_ANALYSIS_FLUX_H
 #define MESO_ANALYSIS_FLUX_H
 
 #include "scene/scene.h"
 
 enum flux_density_source { FLUX_DENSITY_GIVEN, FLUX_DENSITY_FILL, FLUX_DENSITY_GEOMETRY };
-enum flux_gradient_source { FLUX_G_NONE, FLUX_G_BODY_FORCE, FLUX_G_REVERSE };
+enum flux_gradient_source { FLUX_G_NONE, FLUX_G_BODY_FORCE, FLUX_G_REVERSE, FLUX_G_PRESSURE };
 
 typedef struct {
   int axis;

@@ -34,6 +34,8 @@ typedef struct sim_state {
   int host_stale;    /* the device holds a newer state than p */
   char err[2048];    /* last error message on this rank */
   void *impl;        /* the backend's own state */
+  /* steps that passed the drift check (the dt advice of a stop) */
+  step_history_t hist;
 } sim_state_t;
 
 typedef struct backend_ops {

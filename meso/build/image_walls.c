@@ -205,6 +205,47 @@ static double wall_thickness(const scene_t *s) {
   return t;
 }
 
+/* The wall species of a voxel's phase (-1: pore or a phase without one). */
+static int wall_species_of_phase(const scene_geometry_t *geo, int phase) {
+  return phase == MDP_PHASE_ORGANIC     ? geo->organic_species
+         : phase == MDP_PHASE_INORGANIC ? geo->inorganic_species
+                                        : -1;
+}
+
+/* A moving wall species (species[].velocity) slides along its axis, so its solid voxels must be
+ * the same after any shift along that axis (e.g. a slit wall, not a sphere): every voxel of the
+ * species has a voxel of the same species as its neighbour along the axis (periodic). Otherwise
+ * the frozen particles would leave their voxels and bounce_back's solid map would be wrong. */
+static int check_moving_walls(const scene_t *s, const mdp_image_t *img, char *err, size_t errlen) {
+  const scene_geometry_t *geo = &s->geometry;
+  const int n[3] = {img->nx, img->ny, img->nz};
+  for (int k = 0; k < 2; k++) {
+    const int sp = k ? geo->inorganic_species : geo->organic_species;
+    if (sp < 0 || !s->species[sp].moving) continue;
+    const int ax = s->species[sp].move_axis;
+    for (int z = 0; z < n[2]; z++)
+      for (int y = 0; y < n[1]; y++)
+        for (int x = 0; x < n[0]; x++) {
+          int c[3] = {x, y, z};
+          const size_t i = mdp_image_index(img, c[0], c[1], c[2]);
+          if (wall_species_of_phase(geo, mdp_image_phase(img, i)) != sp) continue;
+          c[ax] = (c[ax] + 1) % n[ax];
+          const size_t j = mdp_image_index(img, c[0], c[1], c[2]);
+          if (wall_species_of_phase(geo, mdp_image_phase(img, j)) == sp) continue;
+          snprintf(err, errlen,
+                   "%s: key 'species[%d].velocity': expected the solid voxels of the moving "
+                   "species '%s' (geometry.species.%s) to be translation-invariant along %c, the "
+                   "axis it moves along (got voxel (%d, %d, %d) of it followed by voxel (%d, %d, "
+                   "%d) that is not: a moving wall must be the same after any shift along its "
+                   "velocity, e.g. a slit wall)",
+                   s->file, sp, s->species[sp].name, k ? "inorganic" : "organic", "xyz"[ax], x, y,
+                   z, c[0], c[1], c[2]);
+          return -1;
+        }
+  }
+  return 0;
+}
+
 /* Steps of the build that every rank runs alike; -1 with the message in err. */
 static int build_local(const scene_t *s, image_walls_t *g, char *err, size_t errlen) {
   const scene_geometry_t *geo = &s->geometry;
@@ -249,6 +290,10 @@ static int build_local(const scene_t *s, image_walls_t *g, char *err, size_t err
       mdp_image_free(&img);
       return -1;
     }
+  if (check_moving_walls(s, &img, err, errlen)) {
+    mdp_image_free(&img);
+    return -1;
+  }
   g->cls = calloc(total ? total : 1, 1);
   int32_t *cl = malloc((total ? total : 1) * sizeof *cl);
   if (!g->cls || !cl) {

@@ -12,36 +12,72 @@ void step_problem_note(step_problem_t *pr, int kind, int64_t id, const double x[
   pr->value = value;
 }
 
+void step_history_pass(step_history_t *h, const step_problem_t *pr) {
+  h->steps_ok++;
+  if (pr->disp_step > h->disp_max_ok) h->disp_max_ok = pr->disp_step;
+}
+
+/* What the run saw before this step, and a dt to try. The one-step displacement of the fastest
+ * particle grows about linearly with dt (v dt + f dt^2 / 2m with v set by kT), so
+ *   dt_try = dt * (limit / 2) / displacement
+ * keeps it at half the safe limit; without a displacement (non-finite values), dt / 2. */
+static void dt_advice(const step_problem_t *pr, double displacement, char *out, size_t len) {
+  const step_history_t *h = pr->hist;
+  if (!h || !(h->dt > 0)) {
+    snprintf(out, len, "try a smaller dt (run.dt)");
+    return;
+  }
+  const double dt_try =
+      displacement > 0 && pr->limit > 0 ? h->dt * 0.5 * pr->limit / displacement : 0.5 * h->dt;
+  char seen[256] = "";
+  if (h->steps_ok > 0 && h->disp_max_ok > 0)
+    snprintf(seen, sizeof seen,
+             "; the %ld step(s) before ran at dt %g with displacements up to %.3g rc on this rank "
+             "(dt <= %.3g keeps those at half the limit)",
+             h->steps_ok, h->dt, h->disp_max_ok,
+             pr->limit > 0 ? h->dt * 0.5 * pr->limit / h->disp_max_ok : h->dt);
+  else if (h->steps_ok > 0)
+    snprintf(seen, sizeof seen, "; the %ld step(s) before ran at dt %g", h->steps_ok, h->dt);
+  snprintf(out, len, "try run.dt <= %.3g (dt %g now)%s, or weaker forcing", dt_try, h->dt, seen);
+}
+
 static void describe(const step_problem_t *pr, long step, char *err, size_t errlen) {
   const char *head = "mdpore: step";
+  char advice[512];
   switch (pr->kind) {
   case STEP_NONFINITE:
+    dt_advice(pr, 0, advice, sizeof advice);
     snprintf(err, errlen,
              "%s %ld: particle %lld at (%g, %g, %g): non-finite %s (NaN or Inf): the integration "
-             "blew up: time step too large or forces too strong",
+             "blew up: time step too large or forces too strong: %s; check the pair parameters",
              head, step, (long long)pr->id, pr->x[0], pr->x[1], pr->x[2],
-             pr->field ? pr->field : "value");
+             pr->field ? pr->field : "value", advice);
     break;
   case STEP_TOO_FAST:
+    dt_advice(pr, pr->value, advice, sizeof advice);
     snprintf(err, errlen,
-             "%s %ld: particle %lld at (%g, %g, %g) moved %g in one step (safe limit %g = half the "
-             "cutoff): time step too large or forcing too strong",
-             head, step, (long long)pr->id, pr->x[0], pr->x[1], pr->x[2], pr->value, pr->limit);
+             "%s %ld: particle %lld at (%g, %g, %g) moved %g rc in one step (safe limit %g = half "
+             "the cutoff): time step too large or forcing too strong: %s",
+             head, step, (long long)pr->id, pr->x[0], pr->x[1], pr->x[2], pr->value, pr->limit,
+             advice);
     break;
   case STEP_LOST:
-    snprintf(
-        err, errlen,
-        "%s %ld: particle lost: %g particle(s) left the box through a non-periodic face or moved "
-        "farther than a neighbouring subdomain; first: particle %lld at (%g, %g, %g)",
-        head, step, pr->value, (long long)pr->id, pr->x[0], pr->x[1], pr->x[2]);
+    dt_advice(pr, 0, advice, sizeof advice);
+    snprintf(err, errlen,
+             "%s %ld: particle lost: %g particle(s) left the box through a non-periodic face or "
+             "moved farther than a neighbouring subdomain; first: particle %lld at (%g, %g, %g). "
+             "Try walls on the non-periodic faces (box_walls, bounce_back) or %s",
+             head, step, pr->value, (long long)pr->id, pr->x[0], pr->x[1], pr->x[2], advice);
     break;
   case STEP_COUNT_CHANGED:
     snprintf(err, errlen,
-             "%s %ld: particle lost: the global particle count changed from %ld to %ld", head, step,
-             (long)pr->limit, (long)pr->value);
+             "%s %ld: particle lost: the global particle count changed from %ld to %ld (a "
+             "migration or wall lost track of particles; try a smaller dt, or report it with the "
+             "scene)",
+             head, step, (long)pr->limit, (long)pr->value);
     break;
   case STEP_NO_MEMORY:
-    snprintf(err, errlen, "%s %ld: out of memory", head, step);
+    snprintf(err, errlen, "%s %ld: out of memory (try more ranks or a smaller box)", head, step);
     break;
   default:
     snprintf(err, errlen, "%s %ld: stopped: another rank found a problem (see its message)", head,

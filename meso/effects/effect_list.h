@@ -16,6 +16,7 @@
 #include "physics/body_force.h"
 #include "physics/bounce_back.h"
 #include "physics/box_walls.h"
+#include "physics/inlet_force.h"
 #include "physics/wall_boundary.h"
 
 /* X(name, ID, kind), in the order --explain lists them and the backends apply them (bounce_back
@@ -26,6 +27,7 @@
   X(dpd_conservative, DPD_CONSERVATIVE, PAIR)                                                      \
   X(dpd_thermostat, DPD_THERMOSTAT, PAIR)                                                          \
   X(body_force, BODY_FORCE, PARTICLE_FORCE)                                                        \
+  X(inlet_force, INLET_FORCE, PARTICLE_FORCE)                                                      \
   X(box_walls, BOX_WALLS, AFTER_DRIFT)                                                             \
   X(wall_boundary, WALL_BOUNDARY, AFTER_DRIFT)                                                     \
   X(bounce_back, BOUNCE_BACK, AFTER_DRIFT)

@@ -188,7 +188,15 @@ static int build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
     plan->mass[a] = s->species[a].mass;
     plan->inv_mass[a] = 1.0 / s->species[a].mass;
     plan->mobile[a] = !s->species[a].frozen;
+    plan->moving[a] = s->species[a].frozen && s->species[a].moving;
+    for (int d = 0; d < 3; d++)
+      plan->wall_u[a][d] = plan->moving[a] ? s->species[a].velocity[d] : 0;
+    plan->any_moving |= plan->moving[a];
+    plan->static_frozen[a] = s->species[a].frozen && !plan->moving[a];
+    if (plan->density && plan->static_frozen[a]) plan->density_cache = 1;
   }
+  const char *cache_env = getenv("MDPORE_DENSITY_CACHE");
+  if (cache_env && !strcmp(cache_env, "0")) plan->density_cache = 0;
   if (plan->pair_terms && !(plan->rcut > 0)) {
     snprintf(err, errlen, "%s: pair effects are named but every pair cutoff is 0", s->file);
     return -1;

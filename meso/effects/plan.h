@@ -79,6 +79,18 @@ typedef struct {
   int n_species;
   double mass[SCENE_MAX_SPECIES], inv_mass[SCENE_MAX_SPECIES];
   int mobile[SCENE_MAX_SPECIES];
+  /* Moving frozen species (species[].velocity, plane Couette): never integrated from forces, but
+   * translated by wall_u dt every step with v = wall_u (the thermostat's wall velocity). */
+  int moving[SCENE_MAX_SPECIES];
+  double wall_u[SCENE_MAX_SPECIES][3];
+  int any_moving;
+  /* Densities of static frozen particles computed once (backend/cpu/density_pass.c,
+   * backend/cuda/cuda_density.cu): their part from other static frozen particles is kept per
+   * particle and each step adds only the mobile (and moving) neighbours' part. On when the plan has
+   * a density pass and a static frozen species, unless MDPORE_DENSITY_CACHE=0 (comparisons); the
+   * CUDA backend uses it only with MDPORE_DENSITY_CACHE=1 (there it cost more than it saved). */
+  int density_cache;
+  int static_frozen[SCENE_MAX_SPECIES]; /* frozen and not moving: its density part is cached */
   pair_coef_t coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
   particle_effects_t particle; /* parameters of the per-particle effects (both backends) */
   /* Arrays the per-particle effects read (a pointer field inside `particle`, at byte `offset`,

@@ -127,6 +127,11 @@ static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
   w->g_norm = 12.0 * norm / (h * h * rho_w);
   w->phi_c = o->phi_c;
   w->dt = s->dt;
+  for (int a = 0; a < s->n_species; a++) /* moving walls: the reflection is relative to them */
+    if (s->species[a].moving) {
+      w->moving = 1;
+      for (int d = 0; d < 3; d++) w->wall_u[a][d] = s->species[a].velocity[d];
+    }
   plan->wall_field = 1;
   if (o->no_slip) plan->pair_terms |= PAIR_TERM_WALL_NO_SLIP;
   return 0;

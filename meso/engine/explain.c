@@ -42,8 +42,12 @@ static void describe_phase(const scene_t *s, const plan_t *plan, int phase, int 
   case PHASE_KICK_DRIFT:
     fprintf(out, "first half kick v += dt/2 f/m + drift x += dt v (mobile species: ");
     list_species(s, out, 0);
-    fprintf(out, "; frozen, never moved: ");
+    fprintf(out, "; frozen, never integrated: ");
     list_species(s, out, 1);
+    for (int a = 0; a < s->n_species; a++) /* moving walls (species[].velocity) */
+      if (plan->moving[a])
+        fprintf(out, "; %s moves at the fixed velocity [%g, %g, %g]", s->species[a].name,
+                plan->wall_u[a][0], plan->wall_u[a][1], plan->wall_u[a][2]);
     fprintf(out, ")");
     break;
   case PHASE_AFTER_DRIFT:
@@ -81,6 +85,11 @@ static void describe_phase(const scene_t *s, const plan_t *plan, int phase, int 
     fprintf(out, "density pass (%s kernel, rd = ", s->density_kernel == 1 ? "Lucy" : "Warren");
     effect_print_pair_param(s, out, offsetof(scene_pair_t, rd));
     fprintf(out, "; self term excluded)");
+    if (plan->density_cache)
+      fprintf(out,
+              "; static frozen particles: the part from other static frozen particles computed "
+              "once, each step only the mobile and moving neighbours (CPU; MDPORE_DENSITY_CACHE=0: "
+              "off; the GPU only with MDPORE_DENSITY_CACHE=1)");
     break;
   case PHASE_RHO_SYNC:
     fprintf(out, "ghost sync: rho");

@@ -24,6 +24,7 @@ sim_t *sim_create(const scene_t *scene, MPI_Comm comm) {
   sim_state_t *st = &sim->st;
   st->scene = *scene;
   st->dc.cart = MPI_COMM_NULL;
+  st->hist.dt = scene->dt;
   if (plan_build(&st->plan, scene, st->err, sizeof st->err) ||
       decomp_create(&st->dc, scene, comm, st->plan.rcut, st->err, sizeof st->err)) {
     report(comm, st->err);
@@ -101,7 +102,8 @@ int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], con
   p->species[i] = species;
   for (int d = 0; d < 3; d++) {
     p->x[d][i] = pos[d];
-    p->v[d][i] = mobile ? v[d] : 0.0; /* frozen particles are at rest */
+    /* frozen particles are at rest, or move with their species' fixed velocity (plan.wall_u) */
+    p->v[d][i] = mobile ? v[d] : st->plan.wall_u[species][d];
     p->f[d][i] = 0.0;
   }
   return 1;

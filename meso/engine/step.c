@@ -12,9 +12,12 @@ int sim_run_phases(sim_t *sim, const unsigned char *list, int n) {
   for (int k = 0; k < n; k++) {
     const int phase = list[k];
     int (*op)(sim_state_t *) = sim->ops->phase[phase];
+    const int is_check = phase == PHASE_CHECK_DRIFT || phase == PHASE_CHECK;
+    if (is_check) st->pr.hist = &st->hist; /* a stop suggests a dt from what passed */
     const int rc = op ? op(st) : 0;
-    if (phase == PHASE_CHECK_DRIFT || phase == PHASE_CHECK) {
+    if (is_check) {
       if (rc) return rc;
+      if (phase == PHASE_CHECK_DRIFT && !st->in_setup) step_history_pass(&st->hist, &st->pr);
       memset(&st->pr, 0, sizeof st->pr);
       if (phase == PHASE_CHECK_DRIFT) st->step++;
       continue;

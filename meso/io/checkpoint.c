@@ -1,11 +1,49 @@
 /* Checkpoint/restart files (see checkpoint.h). */
 #include "io/checkpoint.h"
 #include "common/atomic_file.h"
+#include "io/crc32.h"
 #include "io/gather.h"
 #include "io/h5_util.h"
 
 #include <stdlib.h>
 #include <string.h>
+
+/* The checksums (attributes "crc32_<dataset>" and "crc32_header"): CRC-32 of each dataset's bytes
+ * as stored (native types), and of the header attributes step, time, nranks, seed, scene_hash. */
+static uint32_t header_crc(long step, double time, long nranks, unsigned long long seed,
+                           unsigned long long hash) {
+  uint32_t c = crc32_update(0, &step, sizeof step);
+  c = crc32_update(c, &time, sizeof time);
+  c = crc32_update(c, &nranks, sizeof nranks);
+  c = crc32_update(c, &seed, sizeof seed);
+  return crc32_update(c, &hash, sizeof hash);
+}
+
+static void put_crc(hid_t f, const char *dataset, const void *data, size_t bytes) {
+  char name[64];
+  snprintf(name, sizeof name, "crc32_%s", dataset);
+  h5_attr_u64(f, name, crc32_update(0, data, bytes));
+}
+
+/* 0 when the stored CRC of `dataset` matches its bytes (or the file has none: *unchecked set);
+ * -1 after a message naming the file, the dataset and both values. */
+static int check_crc(hid_t f, const char *path, const char *dataset, const void *data, size_t bytes,
+                     int *unchecked) {
+  char name[64];
+  snprintf(name, sizeof name, "crc32_%s", dataset);
+  unsigned long long stored;
+  if (h5_read_attr_u64(f, name, &stored)) {
+    *unchecked = 1;
+    return 0;
+  }
+  const uint32_t computed = crc32_update(0, data, bytes);
+  if (stored == computed) return 0;
+  fprintf(stderr,
+          "%s: corrupted checkpoint refused: dataset '%s' has CRC-32 0x%08x, the file records "
+          "0x%08llx (over its %zu bytes); restart from an earlier or an intact copy\n",
+          path, dataset, computed, stored, bytes);
+  return -1;
+}
 
 /* Every rank's subdomain (lo, hi) on rank 0, 6 doubles per rank (NULL elsewhere). Collective. */
 static double *gather_subdomains(sim_t *sim, MPI_Comm comm, int rank, int size) {
@@ -52,6 +90,18 @@ int checkpoint_write(const char *path, sim_t *sim) {
       h5_attr_u64(f, "seed", (unsigned long long)s->seed);
       h5_attr_u64(f, "scene_hash", (unsigned long long)scene_physics_hash(s));
       h5_attr_string(f, "scene", s->name);
+      h5_attr_u64(f, "crc32_header",
+                  header_crc(sim_step_index(sim), time, size, (unsigned long long)s->seed,
+                             (unsigned long long)scene_physics_hash(s)));
+      const size_t nb = (size_t)set.n, nr = (size_t)size;
+      put_crc(f, "rank_counts", c64, nr * sizeof *c64);
+      put_crc(f, "subdomain_lo", lo, 3 * nr * sizeof *lo);
+      put_crc(f, "subdomain_hi", hi, 3 * nr * sizeof *hi);
+      put_crc(f, "id", set.id, nb * sizeof *set.id);
+      put_crc(f, "species", set.species, nb * sizeof *set.species);
+      put_crc(f, "position", set.x, 3 * nb * sizeof *set.x);
+      put_crc(f, "velocity", set.v, 3 * nb * sizeof *set.v);
+      put_crc(f, "force", set.f, 3 * nb * sizeof *set.f);
       const hsize_t n = (hsize_t)set.n;
       rc |= h5_write_dataset(f, "rank_counts", H5T_NATIVE_INT64, c64, (hsize_t)size, 1);
       rc |= h5_write_dataset(f, "subdomain_lo", H5T_NATIVE_DOUBLE, lo, (hsize_t)size, 3);
@@ -92,7 +142,9 @@ static int read_on_root(const char *path, sim_t *sim, int size, const double *bo
   int rc = -1;
   hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   long nranks = -1;
-  unsigned long long hash = 0;
+  unsigned long long hash = 0, seed = 0, stored_header = 0;
+  double time = 0;
+  int unchecked = 0;
   if (f < 0) {
     fprintf(stderr, "%s: cannot open checkpoint (restart)\n", path);
     goto out;
@@ -103,6 +155,21 @@ static int read_on_root(const char *path, sim_t *sim, int size, const double *bo
             "%s: expected an mdpore checkpoint (attributes nranks, step, scene_hash missing)\n",
             path);
     goto out;
+  }
+  if (h5_read_attr_u64(f, "crc32_header", &stored_header) == 0) {
+    h5_read_attr_double(f, "time", &time, 1);
+    h5_read_attr_u64(f, "seed", &seed);
+    const uint32_t computed = header_crc(*step, time, nranks, seed, hash);
+    if (computed != stored_header) {
+      fprintf(stderr,
+              "%s: corrupted checkpoint refused: the header attributes (step %ld, time, nranks "
+              "%ld, seed, scene_hash) have CRC-32 0x%08x, the file records 0x%08llx; restart "
+              "from an earlier or an intact copy\n",
+              path, *step, nranks, computed, stored_header);
+      goto out;
+    }
+  } else {
+    unchecked = 1;
   }
   if (nranks != size) {
     fprintf(stderr,
@@ -125,6 +192,10 @@ static int read_on_root(const char *path, sim_t *sim, int size, const double *bo
   int bad = h5_read_dataset(f, "subdomain_lo", H5T_NATIVE_DOUBLE, lo, (hsize_t)size, 3, path) ||
             h5_read_dataset(f, "subdomain_hi", H5T_NATIVE_DOUBLE, hi, (hsize_t)size, 3, path) ||
             h5_read_dataset(f, "rank_counts", H5T_NATIVE_INT64, c64, (hsize_t)size, 1, path);
+  const size_t nr = (size_t)size;
+  bad = bad || check_crc(f, path, "subdomain_lo", lo, 3 * nr * sizeof *lo, &unchecked) ||
+        check_crc(f, path, "subdomain_hi", hi, 3 * nr * sizeof *hi, &unchecked) ||
+        check_crc(f, path, "rank_counts", c64, nr * sizeof *c64, &unchecked);
   for (int r = 0; r < size && !bad; r++)
     for (int d = 0; d < 3; d++)
       if (lo[3 * r + d] != boxes[6 * r + d] || hi[3 * r + d] != boxes[6 * r + 3 + d]) {
@@ -151,6 +222,20 @@ static int read_on_root(const char *path, sim_t *sim, int size, const double *bo
     particle_set_free(set);
     goto out;
   }
+  const size_t nb = (size_t)total;
+  if (check_crc(f, path, "id", set->id, nb * sizeof *set->id, &unchecked) ||
+      check_crc(f, path, "species", set->species, nb * sizeof *set->species, &unchecked) ||
+      check_crc(f, path, "position", set->x, 3 * nb * sizeof *set->x, &unchecked) ||
+      check_crc(f, path, "velocity", set->v, 3 * nb * sizeof *set->v, &unchecked) ||
+      check_crc(f, path, "force", set->f, 3 * nb * sizeof *set->f, &unchecked)) {
+    particle_set_free(set);
+    goto out;
+  }
+  if (unchecked)
+    fprintf(stderr,
+            "mdpore: warning: %s has no checksums (written by an older mdpore): restarting "
+            "without verifying it\n",
+            path);
   rc = 0;
 out:
   if (f >= 0) H5Fclose(f);

@@ -5,7 +5,9 @@
  * for the first half-kick. Layout: /rank_counts (int64 nranks), /subdomain_lo, /subdomain_hi
  * (nranks x 3), /id, /species, /position, /velocity, /force (all particles, rank blocks one after
  * another); attributes step, time, nranks, seed, scene_hash, scene. Written by rank 0 into a
- * temporary file and renamed. */
+ * temporary file and renamed. Checksums: attribute crc32_<dataset> (CRC-32 of each dataset's
+ * bytes) and crc32_header (of step, time, nranks, seed, scene_hash); a restart recomputes them and
+ * refuses a file whose values differ, naming the file and the dataset (io/crc32.h). */
 #ifndef MESO_IO_CHECKPOINT_H
 #define MESO_IO_CHECKPOINT_H
 

@@ -3,7 +3,9 @@
 #include "io/gather.h"
 
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 int dump_lammps_frame(const char *path, sim_t *sim, int truncate) {
   MPI_Comm comm = sim_comm(sim);
@@ -38,4 +40,52 @@ int dump_lammps_frame(const char *path, sim_t *sim, int truncate) {
   particle_set_free(&set);
   MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
   return rc;
+}
+
+/* Frames are appended in step order, each 9 + N lines (TIMESTEP, step, NUMBER OF ATOMS, N, BOX
+ * BOUNDS + 3 lines, ATOMS header, N atom lines): the file is cut at the start of the first frame
+ * that is incomplete or after `upto`. */
+int dump_lammps_trim(const char *path, long upto) {
+  FILE *fp = fopen(path, "r");
+  if (!fp) return 0;
+  char *line = NULL;
+  size_t cap = 0;
+  long keep = 0, kept = 0, step = -1, atoms = -1, at = 0; /* at: line within the frame */
+  ssize_t L;
+  int cut = 0;
+  while (!cut && (L = getline(&line, &cap, fp)) > 0) {
+    if (line[L - 1] != '\n') { /* a half-written last line */
+      cut = 1;
+      break;
+    }
+    if (at == 0 && strncmp(line, "ITEM: TIMESTEP", 14) != 0) {
+      cut = 1; /* not a frame boundary: garbage after the last complete frame */
+      break;
+    }
+    if (at == 1) step = strtol(line, NULL, 10);
+    if (at == 3) atoms = strtol(line, NULL, 10);
+    if (at == 1 && step > upto) {
+      cut = 1;
+      break;
+    }
+    at++;
+    if (at >= 9 && atoms >= 0 && at == 9 + atoms) { /* a complete frame */
+      keep = ftell(fp);
+      kept++;
+      at = 0;
+    }
+  }
+  if (at != 0) cut = 1; /* ended inside a frame */
+  free(line);
+  fclose(fp);
+  if (!cut) return 0;
+  if (truncate(path, keep) != 0) {
+    fprintf(stderr, "%s: cannot cut the dump back to step %ld: %s\n", path, upto, strerror(errno));
+    return -1;
+  }
+  fprintf(stderr,
+          "mdpore: %s: restart at step %ld: kept %ld complete frame(s), dropped what followed "
+          "(frames after the checkpoint or a half-written frame)\n",
+          path, upto, kept);
+  return 0;
 }

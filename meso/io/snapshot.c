@@ -5,6 +5,7 @@
 #include "io/h5_util.h"
 #include "physics/density_kernels.h"
 
+#include <dirent.h>
 #include <hdf5.h>
 #include <libgen.h>
 #include <stdlib.h>
@@ -209,6 +210,86 @@ static int write_xdmf(const snapshot_series_t *ser) {
   return atomic_commit(fp, tmp, path);
 }
 
+static int series_push(snapshot_series_t *ser, long step, double time, long count, int has_rho) {
+  if (ser->n == ser->cap) {
+    const int cap = ser->cap ? 2 * ser->cap : 16;
+    long *steps = realloc(ser->steps, (size_t)cap * sizeof *steps);
+    if (steps) ser->steps = steps;
+    double *times = realloc(ser->times, (size_t)cap * sizeof *times);
+    if (times) ser->times = times;
+    long *counts = realloc(ser->counts, (size_t)cap * sizeof *counts);
+    if (counts) ser->counts = counts;
+    if (!steps || !times || !counts) return -1;
+    ser->cap = cap;
+  }
+  ser->steps[ser->n] = step;
+  ser->times[ser->n] = time;
+  ser->counts[ser->n] = count;
+  ser->has_rho = has_rho;
+  ser->n++;
+  return 0;
+}
+
+static int step_cmp(const void *a, const void *b) {
+  const long x = *(const long *)a, y = *(const long *)b;
+  return (x > y) - (x < y);
+}
+
+int snapshot_series_resume(snapshot_series_t *ser, const scene_t *s, long upto) {
+  char dir[1024], stem[1024];
+  snprintf(dir, sizeof dir, "%s", ser->base);
+  snprintf(stem, sizeof stem, "%s", ser->base);
+  const char *d = dirname(dir), *b = basename(stem);
+  const size_t bl = strlen(b);
+  DIR *dp = opendir(d);
+  if (!dp) return 0;
+  long *keep = NULL, nkeep = 0, cap = 0, removed = 0;
+  struct dirent *e;
+  while ((e = readdir(dp))) {
+    /* "<stem>_<9 digits>.h5" */
+    const char *name = e->d_name;
+    if (strncmp(name, b, bl) != 0 || name[bl] != '_' || strlen(name) != bl + 13 ||
+        strcmp(name + bl + 10, ".h5") != 0)
+      continue;
+    char *end;
+    const long step = strtol(name + bl + 1, &end, 10);
+    if (end != name + bl + 10) continue;
+    if (step > upto) {
+      char path[2200];
+      snprintf(path, sizeof path, "%s/%s", d, name);
+      if (remove(path) == 0) removed++;
+      continue;
+    }
+    if (nkeep == cap) {
+      cap = cap ? 2 * cap : 16;
+      long *k = realloc(keep, (size_t)cap * sizeof *k);
+      if (!k) break;
+      keep = k;
+    }
+    keep[nkeep++] = step;
+  }
+  closedir(dp);
+  if (removed)
+    fprintf(stderr,
+            "mdpore: %s_*.h5: restart at step %ld: removed %ld snapshot(s) written after it\n",
+            ser->base, upto, removed);
+  if (nkeep) qsort(keep, (size_t)nkeep, sizeof *keep, step_cmp);
+  int rc = 0;
+  for (long k = 0; k < nkeep && !rc; k++) {
+    char path[1100];
+    snapshot_series_path(ser, keep[k], path, sizeof path);
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0) continue;
+    const long count = h5_dataset_rows(f, "particles/id");
+    const int rho = H5Lexists(f, "particles/density", H5P_DEFAULT) > 0;
+    H5Fclose(f);
+    if (count >= 0) rc = series_push(ser, keep[k], keep[k] * s->dt, count, rho);
+  }
+  free(keep);
+  if (!rc && ser->n > 0) rc = write_xdmf(ser);
+  return rc;
+}
+
 int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
   int rank, rc = 0;
   MPI_Comm comm = sim_comm(sim);
@@ -222,20 +303,8 @@ int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
     char path[1100];
     snapshot_series_path(ser, step, path, sizeof path);
     rc = snapshot_write_set(path, s, &set, step, step * s->dt);
-    if (!rc) {
-      if (ser->n == ser->cap) {
-        ser->cap = ser->cap ? 2 * ser->cap : 16;
-        ser->steps = realloc(ser->steps, (size_t)ser->cap * sizeof *ser->steps);
-        ser->times = realloc(ser->times, (size_t)ser->cap * sizeof *ser->times);
-        ser->counts = realloc(ser->counts, (size_t)ser->cap * sizeof *ser->counts);
-      }
-      ser->steps[ser->n] = step;
-      ser->times[ser->n] = step * s->dt;
-      ser->counts[ser->n] = set.n;
-      ser->has_rho = set.rho != NULL;
-      ser->n++;
-      rc = write_xdmf(ser);
-    }
+    if (!rc) rc = series_push(ser, step, step * s->dt, set.n, set.rho != NULL);
+    if (!rc) rc = write_xdmf(ser);
   }
   particle_set_free(&set);
   MPI_Bcast(&rc, 1, MPI_INT, 0, comm);

@@ -31,6 +31,10 @@ void snapshot_series_init(snapshot_series_t *ser, const char *base);
 void snapshot_series_free(snapshot_series_t *ser);
 /* Collective: gather, write the step's file and the XDMF index on rank 0. 0 or -1. */
 int snapshot_series_write(snapshot_series_t *ser, sim_t *sim);
+/* A restart at step `upto` (rank 0, after init): take the series' existing files up to that step
+ * back into the index (the XDMF is rewritten with them) and remove the files a killed run wrote
+ * after it (said on stderr). 0 or -1. */
+int snapshot_series_resume(snapshot_series_t *ser, const scene_t *scene, long upto);
 /* Path of the snapshot file of a step. */
 void snapshot_series_path(const snapshot_series_t *ser, long step, char *out, size_t len);
 

@@ -3,7 +3,8 @@
  *   v(t + dt/2) = v(t) + dt/2 f(t)/m;   x(t + dt) = x(t) + dt v(t + dt/2)
  *   v~(t + dt)  = v(t + dt/2) + (lambda - 1/2) dt f(t)/m      (the velocity the thermostat sees)
  *   f(t + dt)   = F(x(t + dt), v~(t + dt));   v(t + dt) = v(t + dt/2) + dt/2 f(t + dt)/m
- * Frozen species are never moved: the callers skip them. Everything in double. */
+ * Frozen species are never integrated: the callers skip them (a moving frozen species translates
+ * at its fixed velocity: verlet_moving_wall_drift). Everything in double. */
 #ifndef MESO_PHYSICS_VERLET_H
 #define MESO_PHYSICS_VERLET_H
 
@@ -23,6 +24,16 @@ MESO_HD double verlet_kick_drift(double x[3], double v[3], const double f[3], do
     d2 += (dt * v[d]) * (dt * v[d]);
   }
   return d2;
+}
+
+/* A frozen particle of a moving species (a wall translating at the fixed velocity u, plane
+ * Couette): x += dt u, v = u. Never integrated from forces; v = u is the wall velocity the
+ * thermostat's pairs see. */
+MESO_HD void verlet_moving_wall_drift(double x[3], double v[3], const double u[3], double dt) {
+  for (int d = 0; d < 3; d++) {
+    x[d] += dt * u[d];
+    v[d] = u[d];
+  }
 }
 
 /* v~ = v + k f with k = (lambda - 1/2) dt / m (plan.predict_c / m), or k = 0 at set-up. */

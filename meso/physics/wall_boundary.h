@@ -10,7 +10,8 @@
  *    n = -grad phi / |grad phi|.
  *  - Reflection: a particle whose drift takes it past phi_c (0.5) is put on a path from its OLD
  *    position, x = x_old + dt v', with v' = -v + 2 max(0, v.n) n (tangential part reversed, normal
- *    part into the fluid). phi at the new position is phi_i + grad phi_i . (x - x_old), the field of
+ *    part into the fluid), v taken relative to the wall's velocity u when walls move (u + that
+ *    reflection of v - u; u the W-weighted mean velocity of the frozen neighbours' species). phi at the new position is phi_i + grad phi_i . (x - x_old), the field of
  *    the last force evaluation (at x_old) carried one drift by its gradient: walls do not move, a
  *    drift is ~0.02 rc, so the neglected second-order term is ~1e-3 of phi_c.
  *  - No slip: the dissipation of the pairs with wall particles grows near the surface, with
@@ -31,7 +32,7 @@
 
 #include <math.h>
 
-/* The wall field of one particle (24 bytes). */
+/* The wall field of one particle (36 bytes; 40 on the GPU, 8-byte aligned). */
 typedef struct
 #ifdef __CUDACC__
     __align__(8)
@@ -39,6 +40,7 @@ typedef struct
 {
   float phi, gx, gy, gz;   /* phi_i and grad phi_i */
   float ratio, sqrt_ratio; /* the no-slip dissipation ratio of its wall pairs (capped) */
+  float ux, uy, uz;        /* the wall's velocity there (W-weighted mean; 0 unless walls move) */
 }
 wall_field_t;
 
@@ -52,20 +54,34 @@ typedef struct {
   double g_norm; /* 12 N / (r_phi^2 rho_wall) */
   double phi_c;  /* the surface phi = phi_c */
   double dt;     /* x = x_old + dt v' after a reflection */
+  int moving;    /* some frozen species moves (species[].velocity): the field carries its u */
+  double wall_u[MESO_MAX_SPECIES][3]; /* velocity of each frozen species (0 at rest) */
 } wall_boundary_params_t;
 
-/* Accumulators of the wall-field pass: acc[0..3] the phi sums, acc[4] = S_i (stability cap). */
-#define WALL_FIELD_ACC 5
+/* Accumulators of the wall-field pass: acc[0..3] the phi sums, acc[4] = S_i (stability cap),
+ * acc[5..7] sum_j W(r_ij) u_j (moving walls only). */
+#define WALL_FIELD_ACC 8
 
 /* Accumulate the contribution of one wall particle at separation (dx, dy, dz) = x_i - x_j,
- * r2 < r_phi^2: acc[0] += (1 + 3 s)(1 - s)^3, acc[1..3] += (1 - s)^2 r_ij. */
-MESO_HD void wall_field_add(meso_real inv_h, meso_real r2, meso_real dx, meso_real dy, meso_real dz,
-                            meso_real acc[4]) {
+ * r2 < r_phi^2: acc[0] += (1 + 3 s)(1 - s)^3, acc[1..3] += (1 - s)^2 r_ij. Returns the weight added
+ * to acc[0] (for the wall velocity, wall_field_add_velocity). */
+MESO_HD meso_real wall_field_add(meso_real inv_h, meso_real r2, meso_real dx, meso_real dy,
+                                 meso_real dz, meso_real acc[4]) {
   const meso_real s = meso_sqrt(r2) * inv_h, q = MESO_R(1.0) - s, q2 = q * q;
-  acc[0] += (MESO_R(1.0) + MESO_R(3.0) * s) * q2 * q;
+  const meso_real weight = (MESO_R(1.0) + MESO_R(3.0) * s) * q2 * q;
+  acc[0] += weight;
   acc[1] += q2 * dx;
   acc[2] += q2 * dy;
   acc[3] += q2 * dz;
+  return weight;
+}
+
+/* Moving walls: acc[5..7] += weight u_j, u_j the velocity of wall particle j's species. */
+MESO_HD void wall_field_add_velocity(const wall_boundary_params_t *w, int species_j,
+                                     meso_real weight, meso_real acc[WALL_FIELD_ACC]) {
+  acc[5] += weight * (meso_real)w->wall_u[species_j][0];
+  acc[6] += weight * (meso_real)w->wall_u[species_j][1];
+  acc[7] += weight * (meso_real)w->wall_u[species_j][2];
 }
 
 /* The dissipation ratio of the pairs with wall particles at wall fraction phi (Li et al. 2018). */
@@ -91,6 +107,10 @@ MESO_HD wall_field_t wall_field_finish(const wall_boundary_params_t *w,
   if (ratio * dts > MESO_R(1.0)) ratio = dts < MESO_R(1.0) ? MESO_R(1.0) / dts : MESO_R(1.0);
   f.ratio = (float)ratio;
   f.sqrt_ratio = (float)meso_sqrt(ratio);
+  const meso_real inv_w = acc[0] > MESO_R(0.0) ? MESO_R(1.0) / acc[0] : MESO_R(0.0);
+  f.ux = (float)(acc[5] * inv_w); /* the W-weighted mean wall velocity (0 at rest) */
+  f.uy = (float)(acc[6] * inv_w);
+  f.uz = (float)(acc[7] * inv_w);
   return f;
 }
 
@@ -107,10 +127,13 @@ MESO_HD int wall_boundary_after_drift(const wall_boundary_params_t *w, int i, do
   if (!(g2 > 0.0)) return 0; /* no direction (a symmetric spot): leave it to the next step */
   const double inv_g = 1.0 / sqrt(g2);
   const double n[3] = {-f.gx * inv_g, -f.gy * inv_g, -f.gz * inv_g}; /* into the fluid */
-  const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+  /* relative to the wall's velocity u (moving walls; u = 0 at rest): v - u reflected, u added */
+  const double u[3] = {(double)f.ux, (double)f.uy, (double)f.uz};
+  const double vr[3] = {v[0] - u[0], v[1] - u[1], v[2] - u[2]};
+  const double vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
   const double k = 2.0 * (vn > 0.0 ? vn : 0.0);
   for (int d = 0; d < 3; d++) {
-    v[d] = -v[d] + k * n[d];
+    v[d] = u[d] - vr[d] + k * n[d];
     x[d] = x_old[d] + w->dt * v[d];
   }
   return 0;

@@ -26,14 +26,22 @@ int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank)
                         &rf->q) != 0;
   rf->samples = rf->q.n;
   MPI_Comm comm = sim_comm(sim);
-  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
   MPI_Bcast(&rf->samples, 1, MPI_LONG, 0, comm);
+  if (pressure_drop_init(&rf->pd, s, rf->samples, rank)) {
+    if (rank == 0) fprintf(stderr, "mdpore: out of memory for the pressure drop\n");
+    bad = 1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
   rf->next_check = rf->samples > FLUX_FIRST_CHECK ? rf->samples : FLUX_FIRST_CHECK;
   return bad ? -1 : 0;
 }
 
 int run_flux_due(const run_flux_t *rf, long step) {
   return rf->on && step % rf->every == 0;
+}
+
+int run_flux_wants_virial(const run_flux_t *rf, long step) {
+  return rf->pd.on && run_flux_due(rf, step);
 }
 
 int run_flux_check_at(const run_flux_t *rf, long step) {
@@ -47,6 +55,7 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
   if (sim_flux_sums(sim, rf->def.axis, count, vsum)) return -1;
   flux_sample_t r;
   flux_sample(&rf->def, step, step * s->dt, count, vsum, &r);
+  if (rf->pd.on) r.G = pressure_drop_sample(&rf->pd, sim, rank); /* the measured G */
   rf->samples++;
   if (rank == 0) {
     flux_log_row(&rf->log, &r);
@@ -80,9 +89,25 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
 void run_flux_finish(run_flux_t *rf, int rank) {
   if (!rf->on || rank != 0) return;
   steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
+  if (rf->pd.on) {
+    pressure_drop_analyse(&rf->pd, rf->result.start, &rf->pd_result);
+    if (pressure_drop_write_profile(&rf->pd, rf->result.start, rf->pd.profile_path))
+      fprintf(stderr, "mdpore: could not write %s\n", rf->pd.profile_path);
+  }
   if (rf->target > 0 && !rf->reached) rf->reached = steady_state_converged(&rf->result, rf->target);
-  if (rf->target <= 0 || rf->reached) return;
+  if (rf->reached) return;
   const steady_state_t *r = &rf->result;
+  if (rf->target <= 0) { /* no target: still say when q is not a converged value (guardrail) */
+    if (r->n > 0 && (!r->steady || !r->avg.plateau))
+      fprintf(stderr,
+              "mdpore: flux: q = %.4g is NOT converged: %s; the summary's q is the mean of what "
+              "was sampled. Run longer (--steps), or set run.target_error to stop at a converged "
+              "q.\n",
+              r->avg.mean,
+              !r->steady ? "no steady state found (MSER-5: the flux still drifts)"
+                         : "the blocked error has no plateau (its error bar is underestimated)");
+    return;
+  }
   const char *why = !r->steady ? "no steady state found (MSER-5: the flux still drifts)"
                     : !r->avg.plateau
                         ? "the blocked error has no plateau yet (the series is short for its "
@@ -98,6 +123,7 @@ void run_flux_finish(run_flux_t *rf, int rank) {
 void run_flux_close(run_flux_t *rf) {
   if (!rf->on) return;
   flux_log_close(&rf->log);
+  pressure_drop_free(&rf->pd);
   series_free(&rf->steps);
   series_free(&rf->q);
   rf->on = 0;

@@ -7,6 +7,7 @@
 #ifndef MESO_RUN_RUN_FLUX_H
 #define MESO_RUN_RUN_FLUX_H
 
+#include "analysis/pressure_drop.h"
 #include "analysis/steady_state.h"
 #include "engine/sim.h"
 #include "io/flux_log.h"
@@ -26,6 +27,8 @@ typedef struct run_flux {
   int stopped_early;     /* the run stopped before its last step because of it */
   long stop_step;        /* step at which it stopped */
   steady_state_t result; /* rank 0: the latest analysis (the final one after run_flux_finish) */
+  pressure_drop_t pd;    /* inlet_force with a sample: the measured G (analysis/pressure_drop.h) */
+  pressure_drop_result_t pd_result; /* rank 0, after run_flux_finish */
 } run_flux_t;
 
 /* Collective: the definitions (one flux reduction for the counts) and the file; `restart`: the run
@@ -34,6 +37,8 @@ typedef struct run_flux {
 int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank);
 /* Is `step` a flux sample step? */
 int run_flux_due(const run_flux_t *rf, long step);
+/* Does a sample at `step` need the per-particle virial (the measured pressure drop)? */
+int run_flux_wants_virial(const run_flux_t *rf, long step);
 /* Would a sample at `step` run an early-stop check? (The same answer on every rank.) */
 int run_flux_check_at(const run_flux_t *rf, long step);
 /* Collective, at a sample step: reduce, write the row, and check the target when due. Returns 1

@@ -8,6 +8,9 @@
 #include "io/snapshot.h"
 #include "io/thermo_log.h"
 #include "analysis/penetration.h"
+#include "analysis/density_guard.h"
+#include "analysis/temperature_guard.h"
+#include "io/stale_tmp.h"
 #include "run/progress.h"
 #include "run/run_flux.h"
 #include "run/run_stats.h"
@@ -85,6 +88,12 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   const double t_start = MPI_Wtime();
+  if (rank == 0) { /* temporary files of writes a killed run did not finish */
+    const char *const paths[] = {scene->thermo.path,  scene->profile.path,    scene->snapshot.path,
+                                 scene->dump.path,    scene->checkpoint.path, scene->flux.path,
+                                 scene->summary_path, scene->restart_from};
+    for (size_t k = 0; k < sizeof paths / sizeof *paths; k++) stale_tmp_cleanup(paths[k]);
+  }
   sim_t *sim = sim_create(scene, comm);
   if (!sim) return 1;
   const scene_t *s = sim_scene(sim);
@@ -103,7 +112,10 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   run_stats_t st;
   snapshot_series_t snaps;
   progress_t pr;
-  int dump_started = 0, err = thermo_log_open(&log, s, s->thermo.path, restart, rank);
+  int dump_started = 0, err = thermo_log_open(&log, s, s->thermo.path, restart ? first : -1, rank);
+  if (restart && rank == 0 && !err) { /* cut the series a killed run wrote past the checkpoint */
+    if (s->dump.every > 0 && dump_lammps_trim(s->dump.path, first)) err = 1;
+  }
   MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm);
   if (err) {
     sim_destroy(sim);
@@ -125,8 +137,15 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     return 1;
   }
   st.penetration_on = pmap.on;
+  temperature_guard_t tguard;
+  density_guard_t dguard;
+  err = temperature_guard_init(&tguard, sim) | density_guard_init(&dguard, sim, &pmap);
+  MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm);
   run_flux_t rf;
-  if (run_flux_open(&rf, sim, restart, first, rank)) {
+  if (err || run_flux_open(&rf, sim, restart, first, rank)) {
+    if (err) memset(&rf, 0, sizeof rf);
+    temperature_guard_free(&tguard);
+    density_guard_free(&dguard);
     run_flux_close(&rf);
     thermo_log_close(&log);
     run_stats_free(&st);
@@ -137,11 +156,15 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   }
   st.flux = &rf;
   snapshot_series_init(&snaps, s->snapshot.path);
+  if (restart && rank == 0 && s->snapshot.every > 0) err = snapshot_series_resume(&snaps, s, first);
+  MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm);
   progress_start(&pr, s->progress, rank, first, last);
+  char gmsg[2048] = "";
 
   thermo_t th;
   sim_thermo(sim, &th);
-  err = penetration_sample(&pmap, sim, &th, &st, s, rank);
+  if (!err) err = penetration_sample(&pmap, sim, &th, &st, s, rank);
+  if (!err) err = density_guard_check(&dguard, sim, first, gmsg, sizeof gmsg); /* reference */
   st.n_total = th.n_total;
   if (!restart && !err) {
     if (due(&s->thermo, first)) thermo_log_row(&log, &th);
@@ -151,7 +174,8 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   double loop = 0;
   for (long step = first + 1; step <= last && !err; step++) {
     const int sample = s->profile.nbins > 0 && profile_wants(&prof, step);
-    if (sample) sim_request_virial(sim, 1);
+    const int virial_for_flux = run_flux_wants_virial(&rf, step); /* measured pressure drop */
+    if (sample || virial_for_flux) sim_request_virial(sim, 1);
     const int log_row = due(&s->thermo, step), stat = run_stats_wants(&st, step);
     sim_announce_thermo(sim, log_row || stat);
     /* A checkpoint after this step: build the neighbour lists in this step, as a restart from it
@@ -177,11 +201,22 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     if (log_row || stat) {
       sim_thermo(sim, &th);
       if (penetration_sample(&pmap, sim, &th, &st, s, rank)) {
+        if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
+        err = 1;
+        break;
+      }
+      if (temperature_guard_sample(&tguard, &th, gmsg, sizeof gmsg)) {
+        if (rank == 0) fprintf(stderr, "%s\nmdpore: run stopped at step %ld\n", gmsg, step);
         err = 1;
         break;
       }
       if (log_row) thermo_log_row(&log, &th);
       if (stat && rank == 0) run_stats_add(&st, &th);
+    }
+    if (density_guard_check(&dguard, sim, step, gmsg, sizeof gmsg)) {
+      if (rank == 0) fprintf(stderr, "%s\nmdpore: run stopped at step %ld\n", gmsg, step);
+      err = 1;
+      break;
     }
     progress_update(&pr, step, th.step, th.temperature,
                     (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3);
@@ -192,6 +227,8 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       err = 1;
       break;
     }
+    if (virial_for_flux && !(s->profile.nbins > 0 && profile_wants(&prof, step + 1)))
+      sim_request_virial(sim, 0);
     err = write_outputs(sim, step, !restart, step == last || stop, &snaps, &dump_started);
     if (!err && s->profile.nbins > 0 && s->checkpoint.every > 0 && due(&s->checkpoint, step) &&
         rank == 0)
@@ -200,6 +237,12 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   }
   progress_end(&pr);
   thermo_log_close(&log);
+  if (dguard.on && rank == 0)
+    fprintf(stderr,
+            "mdpore: density guard: %ld checks (every %ld steps, %ld of %ld bins watched), %.3g s "
+            "= %.2g%% of the step loop\n",
+            dguard.checks, dguard.every, dguard.watched, dguard.nbins, dguard.seconds,
+            loop > 0 ? 100.0 * dguard.seconds / loop : 0.0);
   if (!err) {
     st.steps_done = sim_step_index(sim) - first;
     st.last_step = sim_step_index(sim); /* earlier than planned after an early stop */
@@ -215,6 +258,8 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   }
   run_flux_close(&rf);
   run_stats_free(&st);
+  temperature_guard_free(&tguard);
+  density_guard_free(&dguard);
   penetration_map_free(&pmap);
   snapshot_series_free(&snaps);
   if (s->profile.nbins > 0) profile_free(&prof);

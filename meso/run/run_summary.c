@@ -27,6 +27,45 @@ static const char *const flux_method =
     "MSER-5 truncation of the transient (White 1997); mean after it; standard error by block "
     "averaging at the plateau of the blocked error (Flyvbjerg & Petersen 1989)";
 
+/* The driving gradient of the flux: the body force's constant G, or the measured one. */
+static double flux_G(const run_flux_t *f) {
+  return f->pd.on ? f->pd_result.G : f->def.G;
+}
+
+/* The measured pressure drop of a pressure-driven run (inlet_force with a sample), as JSON. */
+static void pressure_drop_json(FILE *fp, const run_flux_t *f) {
+  const pressure_drop_t *pd = &f->pd;
+  const pressure_drop_result_t *r = &f->pd_result;
+  const struct {
+    const char *name;
+    double mean, err;
+  } v[] = {{"P_in", r->p_in.mean, r->p_in.err},
+           {"P_out", r->p_out.mean, r->p_out.err},
+           {"dp", r->dp.mean, r->dp.err},
+           {"G", r->G, r->G_err},
+           {"inlet_force_total", r->force.mean, r->force.err},
+           {"inlet_force_per_area", r->force_per_area, r->force_per_area_err}};
+  fprintf(fp, "    \"pressure_drop\": {");
+  for (size_t k = 0; k < sizeof v / sizeof v[0]; k++) {
+    fprintf(fp, "\"%s\": ", v[k].name);
+    json_num(fp, v[k].mean);
+    fprintf(fp, ", \"%s_err\": ", v[k].name);
+    json_num(fp, v[k].err);
+    fprintf(fp, ", ");
+  }
+  fprintf(fp, "\"dp_over_force_per_area\": ");
+  json_num(fp, r->balance);
+  fprintf(fp,
+          ",\n      \"sample\": [%.10g, %.10g], \"length\": %.10g, \"probe_in\": [%.10g, %.10g], "
+          "\"probe_out\": [%.10g, %.10g], \"samples_used\": %ld, \"profile_bins\": %d, "
+          "\"profile_file\": \"%s\",\n",
+          pd->sample_lo, pd->sample_hi, pd->length, pd->in_lo, pd->in_lo + pd->width, pd->out_lo,
+          pd->out_lo + pd->width, r->samples_used, pd->nbins, pd->profile_path);
+  fprintf(fp, "      \"definition\": \"P = sum_{i in slab} (m v_a^2 + W_i,aa) / V_slab (kinetic + "
+              "per-particle pair virial); dp = P_in - P_out; G = dp / length; averaged from the "
+              "flux's steady-state start, block errors\"},\n");
+}
+
 /* The flux lines of the human summary. */
 static void flux_text(FILE *out, const run_flux_t *f) {
   const steady_state_t *r = &f->result;
@@ -34,8 +73,18 @@ static void flux_text(FILE *out, const run_flux_t *f) {
   fprintf(out,
           "flux along %c: q = %.6g +- %.2g (superficial Darcy velocity q = Q / A_total, A_total = "
           "%.6g = whole cross-section), G = %.6g (%s)\n",
-          ax, r->avg.mean, r->avg.err, f->def.area, f->def.G,
+          ax, r->avg.mean, r->avg.err, f->def.area, flux_G(f),
           flux_gradient_source_name(f->def.gradient_source));
+  if (f->pd.on) {
+    const pressure_drop_result_t *p = &f->pd_result;
+    fprintf(out,
+            "  pressure drop across the sample [%g, %g]: dp = P_in - P_out = %.6g +- %.2g "
+            "(P_in %.6g, P_out %.6g), G = dp / %g = %.6g +- %.2g\n",
+            f->pd.sample_lo, f->pd.sample_hi, p->dp.mean, p->dp.err, p->p_in.mean, p->p_out.mean,
+            f->pd.length, p->G, p->G_err);
+    fprintf(out, "  momentum balance: inlet force / A_total = %.6g +- %.2g, dp / (F / A) = %.4g\n",
+            p->force_per_area, p->force_per_area_err, p->balance);
+  }
   if (r->n > 0)
     fprintf(out,
             "  steady from step %.0f (MSER-5%s), %ld of %ld samples used, block length %ld%s\n",
@@ -61,8 +110,13 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
   fprintf(fp, ", \"relative_error\": ");
   json_num(fp, r->rel_err);
   fprintf(fp, ", \"G\": ");
-  json_num(fp, f->def.G);
+  json_num(fp, flux_G(f));
+  if (f->pd.on) {
+    fprintf(fp, ", \"G_err\": ");
+    json_num(fp, f->pd_result.G_err);
+  }
   fprintf(fp, ", \"G_source\": \"%s\",\n", flux_gradient_source_name(f->def.gradient_source));
+  if (f->pd.on) pressure_drop_json(fp, f);
   fprintf(fp, "    \"area_total\": %.10g, \"length\": %.10g, \"fluid_fraction\": %.10g, ",
           f->def.area, f->def.length, f->def.fluid_fraction);
   fprintf(fp, "\"density\": {");

@@ -30,6 +30,11 @@ typedef struct {
   char name[SCENE_NAME_LEN];
   double mass;
   int frozen; /* 1: takes part in density and forces, never integrated */
+  /* A frozen species may move as a rigid body at a fixed velocity (species[].velocity; plane
+   * Couette): x += velocity dt every step, v = velocity in every pair term. moving = 1 when any
+   * component is non-zero (then exactly one is, along a periodic box axis: move_axis). */
+  double velocity[3];
+  int moving, move_axis;
 } scene_species_t;
 
 /* Pair parameters of one species pair (symmetric: pair[a][b] == pair[b][a]). */
@@ -117,6 +122,15 @@ typedef struct {
   char path[SCENE_PATH_LEN];
 } scene_flux_t;
 
+/* Run guardrails beyond the per-step checks (`guard:`, docs/scene-format.md "Guardrails"). */
+typedef struct {
+  double temperature_tolerance; /* stop when the fluid T > (1 + tol) kT ... (0: off)            */
+  long temperature_window;      /* ... at every thermo sample over this many steps              */
+  long density_every;           /* density collapse check every N steps (0: off)                */
+  double density_bin;           /* its bin edge (rc)                                            */
+  double density_fraction;      /* stop when a watched bin < fraction x the mean fluid density  */
+} scene_guard_t;
+
 /* Engine backends (meso/backend/<name>). */
 enum scene_backend { SCENE_BACKEND_CPU = 0, SCENE_BACKEND_CUDA = 1 };
 
@@ -153,6 +167,7 @@ typedef struct {
   scene_flux_t flux;                 /* flux (Darcy velocity) time series                */
   double target_error;               /* run.target_error (0: none; needs output.flux)    */
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
+  scene_guard_t guard;               /* guardrails (scene/scene_guard.h)                 */
   int progress;                      /* progress + ETA on stderr (default 1)             */
   char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */
   int backend; /* enum scene_backend: where the engine runs; set by mdpore run/forces --backend,

@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 #include "scene/scene_catalog.h"
 #include "scene/scene_geometry.h"
+#include "scene/scene_guard.h"
 
 #include <stdarg.h>
 
@@ -69,6 +70,40 @@ static int parse_box(ytree_t *t, yaml_node_t *n, scene_t *s) {
   return 0;
 }
 
+/* species[i].velocity: a frozen species translating at a fixed velocity along one periodic box axis
+ * (moving walls, plane Couette; docs/walls.md). The box is parsed before the species. */
+static int parse_species_velocity(ytree_t *t, yaml_node_t *v, const char *path, const scene_t *s,
+                                  scene_species_t *sp) {
+  char sub[96];
+  join(sub, sizeof sub, path, "velocity");
+  double u[3];
+  TRY(yt_vec3(t, v, sub, u));
+  int n_axes = 0, axis = -1;
+  for (int d = 0; d < 3; d++) {
+    if (!isfinite(u[d])) return yt_error(t, v, sub, "expected finite numbers [ux, uy, uz]");
+    if (u[d] != 0.0) n_axes++, axis = d;
+  }
+  if (n_axes == 0) return 0; /* at rest: a plain frozen species */
+  if (!sp->frozen)
+    return yt_error(t, v, sub,
+                    "expected 'frozen: true' before a velocity: only a frozen species moves at a "
+                    "fixed velocity (got a mobile species '%s')",
+                    sp->name);
+  if (n_axes > 1)
+    return yt_error(t, v, sub,
+                    "expected a velocity along one box axis, e.g. [0.5, 0, 0] (got [%g, %g, %g])",
+                    u[0], u[1], u[2]);
+  if (!s->periodic[axis])
+    return yt_error(t, v, sub,
+                    "expected a velocity along a periodic box axis (got one along %c, which is not "
+                    "periodic: the particles would leave the box)",
+                    "xyz"[axis]);
+  for (int d = 0; d < 3; d++) sp->velocity[d] = u[d];
+  sp->moving = 1;
+  sp->move_axis = axis;
+  return 0;
+}
+
 static int parse_species(ytree_t *t, yaml_node_t *n, scene_t *s) {
   TRY(yt_expect_seq(t, n, "species"));
   const int count = yt_seq_size(n);
@@ -77,7 +112,7 @@ static int parse_species(ytree_t *t, yaml_node_t *n, scene_t *s) {
   if (count > SCENE_MAX_SPECIES)
     return yt_error(t, n, "species", "expected at most %d species (got %d)", SCENE_MAX_SPECIES,
                     count);
-  static const char *const keys[] = {"name", "mass", "frozen", NULL};
+  static const char *const keys[] = {"name", "mass", "frozen", "velocity", NULL};
   for (int i = 0; i < count; i++) {
     char path[64], sub[96];
     snprintf(path, sizeof path, "species[%d]", i);
@@ -104,6 +139,7 @@ static int parse_species(ytree_t *t, yaml_node_t *n, scene_t *s) {
       join(sub, sizeof sub, path, "frozen");
       TRY(yt_bool(t, v, sub, &sp->frozen));
     }
+    if ((v = yt_get(t, item, "velocity"))) TRY(parse_species_velocity(t, v, path, s, sp));
   }
   s->n_species = count;
   return 0;
@@ -626,13 +662,14 @@ static void set_defaults(scene_t *s) {
   s->neighbour_skin = -1.0; /* the backend's default (mdpore run --skin) */
   s->init.temperature = -1; /* -> kT after parsing */
   strcpy(s->summary_path, "summary.json");
+  scene_guard_defaults(s);
 }
 
 static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   yaml_node_t *root = yt_root(t), *v;
   static const char *const keys[] = {"name",   "box",     "species",  "pairs",   "density_kernel",
                                      "kT",     "effects", "geometry", "initial", "run",
-                                     "output", "restart", NULL};
+                                     "output", "restart", "guard",    NULL};
   TRY(yt_check_keys(t, root, "", keys));
   if ((v = yt_get(t, root, "name")))
     TRY(yt_string(t, v, "name", s->name, SCENE_NAME_LEN));
@@ -691,6 +728,7 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   if (s->init.temperature < 0) s->init.temperature = s->kT;
 
   if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));
+  if ((v = yt_get(t, root, "guard"))) TRY(scene_parse_guard(t, v, s));
   if (s->target_error > 0 && s->flux.every == 0)
     return yt_error(t, node_at(t, "run.target_error"), "run.target_error",
                     "expected output.flux as well: the target is the relative error of the flux q "

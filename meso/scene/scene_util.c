@@ -42,6 +42,7 @@ uint64_t scene_physics_hash(const scene_t *s) {
     h = fnv(h, s->species[a].name, strlen(s->species[a].name));
     h = fnv(h, &s->species[a].mass, sizeof(double));
     h = fnv(h, &s->species[a].frozen, sizeof(int));
+    if (s->species[a].moving) h = fnv(h, s->species[a].velocity, sizeof s->species[a].velocity);
     for (int b = 0; b < s->n_species; b++) h = fnv(h, &s->pair[a][b], sizeof(scene_pair_t));
   }
   h = fnv(h, &s->density_kernel, sizeof s->density_kernel);

@@ -20,6 +20,7 @@ typedef struct {
   double *saved_f;          /* set-up after a restart: the loaded forces, kept over the pass */
   wall_field_t *wall_field; /* wall_boundary: phi and grad phi per owned particle */
   int wall_field_cap;
+  density_cache_t density_cache; /* static frozen particles' densities (plan.density_cache) */
 } cpu_state_t;
 
 static cpu_state_t *cpu(sim_state_t *st) {
@@ -40,6 +41,7 @@ static void destroy(sim_state_t *st) {
   sort_scratch_free(&c->sort);
   free(c->saved_f);
   free(c->wall_field);
+  cpu_density_cache_free(&c->density_cache);
   free(c);
   st->impl = NULL;
 }
@@ -48,18 +50,34 @@ static void position_of(const particles_t *p, int i, double x[3]) {
   for (int d = 0; d < 3; d++) x[d] = p->x[d][i];
 }
 
+/* A particle of a moving frozen species (species[].velocity): x += u dt, v = u; never integrated
+ * from forces. The wrap and the move to another rank follow in the migrate phase. */
+static void moving_wall_drift(const plan_t *plan, particles_t *p, int i, int s) {
+  double x[3], v[3];
+  for (int d = 0; d < 3; d++) x[d] = p->x[d][i];
+  verlet_moving_wall_drift(x, v, plan->wall_u[s], plan->dt);
+  for (int d = 0; d < 3; d++) {
+    p->x[d][i] = x[d];
+    p->v[d][i] = v[d];
+  }
+}
+
 /* First half kick + drift (physics/verlet.h), then the position constraints of the named
  * AFTER_DRIFT effects on the same particle while its old position is at hand. */
 static int kick_drift(sim_state_t *st) {
   const plan_t *plan = &st->plan;
   particles_t *p = &st->p;
   const double max2 = plan->max_disp * plan->max_disp;
+  double step_max2 = 0; /* the step's largest displacement: the dt advice of a later stop */
   long n_lost = 0;
   int64_t lost_id = -1;
   double lost_x[3] = {0, 0, 0};
   for (int i = 0; i < p->n_local; i++) {
     const int s = p->species[i];
-    if (!plan->mobile[s]) continue;
+    if (!plan->mobile[s]) {
+      if (plan->moving[s]) moving_wall_drift(plan, p, i, s);
+      continue;
+    }
     double x[3], v[3], f[3], x_old[3];
     for (int d = 0; d < 3; d++) {
       x_old[d] = x[d] = p->x[d][i];
@@ -67,6 +85,7 @@ static int kick_drift(sim_state_t *st) {
       f[d] = p->f[d][i];
     }
     const double d2 = verlet_kick_drift(x, v, f, plan->dt, plan->half_dt, plan->inv_mass[s]);
+    if (d2 > step_max2) step_max2 = d2;
     if (!(d2 < max2)) { /* also catches NaN */
       if (isfinite(d2)) {
         step_problem_note(&st->pr, STEP_TOO_FAST, p->id[i], x, sqrt(d2));
@@ -88,6 +107,7 @@ static int kick_drift(sim_state_t *st) {
     }
   }
   if (n_lost) step_problem_note(&st->pr, STEP_LOST, lost_id, lost_x, (double)n_lost);
+  st->pr.disp_step = sqrt(step_max2);
   return 0;
 }
 
@@ -134,13 +154,14 @@ static int neighbours(sim_state_t *st) {
   if (st->failed) return 0;
   cpu_state_t *c = cpu(st);
   if (cell_list_build(&c->cells, &st->p, st->dc.lo, st->dc.hi, st->plan.rcut)) return -1;
-  return cpu_neighbours_build(&c->neighbours, &st->plan, &st->p, &c->cells);
+  if (cpu_density_cache_prepare(&c->density_cache, &st->plan, &st->p, &c->cells)) return -1;
+  return cpu_neighbours_build(&c->neighbours, &st->plan, &st->p, &c->cells, &c->density_cache);
 }
 
 static int density(sim_state_t *st) {
   if (st->failed) return 0;
-  cpu_density_pass(&st->plan, &st->p, &cpu(st)->cells, &cpu(st)->neighbours);
-  return 0;
+  cpu_state_t *c = cpu(st);
+  return cpu_density_pass(&st->plan, &st->p, &c->cells, &c->neighbours, &c->density_cache);
 }
 
 /* wall_boundary: the wall field of the owned particles at this step's positions; the next drift's

@@ -39,8 +39,28 @@ static int reserve(nlist_t *nl, int n, int stride) {
   return 0;
 }
 
+/* A static frozen particle under a valid density cache (cpu_passes.h): its non-static partners
+ * within near2 (rd), in bin order; rows holding no non-static particle are skipped unscanned. */
+static int gather_dynamic_near(const cell_list_t *cl, const density_cache_t *dc, int cell,
+                               double xi, double yi, double zi, double near2, int *out) {
+  int lo[9], hi[9];
+  const int nrows = neighbour_rows(cl, cell, lo, hi);
+  const int *pre = dc->dynamic_prefix;
+  int m = 0;
+  for (int r = 0; r < nrows; r++) {
+    if (pre[hi[r]] == pre[lo[r]]) continue; /* only static particles in this row */
+    for (int t = lo[r]; t < hi[r]; t++) {
+      const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
+      out[m] = t;
+      m += ((dx * dx + dy * dy + dz * dz) < near2) & (pre[t + 1] - pre[t]);
+    }
+  }
+  return m;
+}
+
 int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
-                         const cell_list_t *cl) {
+                         const cell_list_t *cl, const density_cache_t *dc) {
+  const int cached = dc && dc->valid;
   double cut2[SCENE_MAX_SPECIES] = {0}, near2[SCENE_MAX_SPECIES] = {0};
   for (int a = 0; a < plan->n_species; a++)
     for (int b = 0; b < plan->n_species; b++) {
@@ -62,6 +82,16 @@ int cpu_neighbours_build(nlist_t *nl, const plan_t *plan, const particles_t *p,
         const int i = cl->idx[q];
         if (i >= n_local || !cand) continue;
         const double xi = cl->px[q], yi = cl->py[q], zi = cl->pz[q];
+        if (cached && plan->static_frozen[p->species[i]]) {
+          const int m =
+              gather_dynamic_near(cl, dc, cl->cell_of[i], xi, yi, zi, near2[p->species[i]], cand);
+          if (m > most) most = m;
+          if (m > stride) continue;
+          int *out = nl->slot + (size_t)i * (size_t)stride;
+          for (int k = 0; k < m; k++) out[k] = cand[k];
+          nl->count[i] = nl->count_near[i] = m;
+          continue;
+        }
         const int m =
             gather_candidates(cl, cl->cell_of[i], q, xi, yi, zi, cut2[p->species[i]], cand);
         if (m > most) most = m;

@@ -18,7 +18,7 @@ void cpu_wall_field_pass(const plan_t *plan, const particles_t *p, const cell_li
     const int i = cl->idx[q];
     if (i >= p->n_local) continue;
     const int si = p->species[i];
-    double acc[WALL_FIELD_ACC] = {0, 0, 0, 0, 0};
+    double acc[WALL_FIELD_ACC] = {0, 0, 0, 0, 0, 0, 0, 0};
     if (plan->mobile[si]) {
       const double xi = cl->px[q], yi = cl->py[q], zi = cl->pz[q];
       const pair_coef_t *row = plan->coef[si];
@@ -30,7 +30,10 @@ void cpu_wall_field_pass(const plan_t *plan, const particles_t *p, const cell_li
         if (c->wall_phi2 == 0.0) continue; /* not a wall partner */
         const double dx = xi - cl->px[t], dy = yi - cl->py[t], dz = zi - cl->pz[t];
         const double r2 = dx * dx + dy * dy + dz * dz;
-        if (r2 < c->wall_phi2) wall_field_add(w->inv_h, r2, dx, dy, dz, acc);
+        if (r2 < c->wall_phi2) {
+          const double weight = wall_field_add(w->inv_h, r2, dx, dy, dz, acc);
+          if (w->moving) wall_field_add_velocity(w, p->species[cl->idx[t]], weight, acc);
+        }
         if (r2 < c->rc2) { /* S_i of the stability cap: gamma w_D = gamma w_R^2 */
           const double wR = pair_weight_random_inv(sqrt(r2), c->inv_rc, plan->weight_exp,
                                                    plan->weight_exp_is_one);

@@ -105,8 +105,16 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   q->half_dt = plan->half_dt;
   q->max_disp = plan->max_disp;
   q->predict_c = plan->predict_c;
+  /* On the GPU the cache is opt-in (MDPORE_DENSITY_CACHE=1): on the H100 it cost 2-3% at 14-28%
+   * wall particles (bench/RESULTS.md), the per-build bin flags and table loads outweighing the
+   * skipped scans. */
+  const char *cache_env = getenv("MDPORE_DENSITY_CACHE");
+  q->density_cache = plan->density_cache && cache_env && !strcmp(cache_env, "1");
   for (int a = 0; a < plan->n_species; a++) {
     q->mobile[a] = plan->mobile[a];
+    q->moving[a] = plan->moving[a];
+    q->static_frozen[a] = plan->static_frozen[a];
+    for (int d = 0; d < 3; d++) q->wall_u[a][d] = plan->wall_u[a][d];
     q->inv_mass[a] = plan->inv_mass[a];
     q->mass[a] = plan->mass[a];
     for (int b = 0; b < plan->n_species; b++) {

@@ -5,19 +5,111 @@
  * traversal order) for the force pass: the force kernel then runs only over partners in range, so a
  * warp does not pay the pair body for the ~85% of bin candidates that are out of range. With a
  * Verlet skin (one GPU) the lists hold the partners within the cutoff plus the skin and serve
- * several steps: between builds the densities come from the lists (k_density_list). */
+ * several steps: between builds the densities come from the lists (k_density_list).
+ * Density cache (plan.density_cache, one rank): a static frozen particle's density is its
+ * static-static part, summed once (in fixed point, so independent of the traversal order) and kept
+ * by particle id, plus its mobile and moving partners' part; its list holds only those partners (no
+ * pass reads a frozen particle's list otherwise), and when none of the bins around it holds a mobile
+ * or moving particle it does no scan at all. */
 #include "cuda_neighbours.cuh"
 #include "physics/density_kernels.h"
 
 #include <stdio.h>
 
-template <int KERNEL, int DENSITY>
+/* The density cache's arguments of the passes (NULL table: off). */
+struct density_cache_args {
+  meso_real *table; /* [len] static part by id, NaN until computed */
+  long long len;
+  const int64_t *id;       /* [n] ids of the owned slots */
+  const int *cell_dynamic; /* [ncell] 1: the bin holds a mobile or moving particle */
+};
+
+/* The static part in fixed point: units of 2^-32 (each term rounded once; the order of the terms
+ * does not change the sum, so a restart rebuilds the value bitwise). */
+#define STATIC_FIXED_SCALE 4294967296.0
+
+/* Mode of slot i under the cache: 0 not cached, 1 cached (value in *cached), 2 not computed yet
+ * (never seen by the passes: k_static_part fills the table before the first build). */
+__device__ __forceinline__ int cache_mode(const struct dev_params &q,
+                                          const struct density_cache_args &dc, int species, int i,
+                                          meso_real *cached, long long *id) {
+  if (!dc.table || !q.static_frozen[species]) return 0;
+  *id = dc.id[i];
+  if (*id < 0 || *id >= dc.len) return 0;
+  *cached = dc.table[*id];
+  return isnan(*cached) ? 2 : 1;
+}
+
+/* Whether any bin around bin ci holds a mobile or moving particle (one rank: no ghosts). */
+__device__ __forceinline__ int any_dynamic_near(const struct dev_params &q,
+                                                const int *__restrict__ cell_dynamic, uint32_t ci) {
+  const int bx = (int)ci % q.nb[0], by = ((int)ci / q.nb[0]) % q.nb[1],
+            bz = (int)ci / (q.nb[0] * q.nb[1]);
+  for (int oz = q.off_lo[2]; oz <= q.off_hi[2]; oz++) {
+    const int cz = dev_nbr_bin(q, 2, bz, oz);
+    if (cz < 0) continue;
+    for (int oy = q.off_lo[1]; oy <= q.off_hi[1]; oy++) {
+      const int cy = dev_nbr_bin(q, 1, by, oy);
+      if (cy < 0) continue;
+      for (int ox = q.off_lo[0]; ox <= q.off_hi[0]; ox++) {
+        const int cx = dev_nbr_bin(q, 0, bx, ox);
+        if (cx >= 0 && cell_dynamic[cx + q.nb[0] * (cy + q.nb[1] * cz)]) return 1;
+      }
+    }
+  }
+  return 0;
+}
+
+__global__ void k_cell_dynamic(const struct dev_params q, int n, const struct dev_pos *pos,
+                               const uint32_t *__restrict__ key, int *cell_dynamic) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < n && !q.static_frozen[pos[t].species]) cell_dynamic[key[t]] = 1;
+}
+
+__global__ void k_max_id(int n, const int64_t *__restrict__ id, unsigned long long *out) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n && id[i] >= 0) atomicMax(out, (unsigned long long)id[i]);
+}
+
+/* Once, before the first build: the static part of every owned static frozen particle (its static
+ * partners within rd, fixed point) into the table. */
+template <int KERNEL>
+__global__ void __launch_bounds__(CUDA_BLOCK)
+    k_static_part(const struct dev_params q, int n, const int *__restrict__ start,
+                  const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ key,
+                  const struct density_cache_args dc) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const struct dev_pos pi = pos[i];
+  if (!q.static_frozen[pi.species]) return;
+  const long long id_i = dc.id[i];
+  if (id_i < 0 || id_i >= dc.len) return;
+  const struct dev_coef *row = q.coef[pi.species];
+  long long fixed = 0;
+  dev_for_each_neighbour(
+      q, start, NULL, n, pos, pi, key[i],
+      [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
+        (void)code;
+        if (t == i || !q.static_frozen[pj.species]) return;
+        const meso_real r2 = dx * dx + dy * dy + dz * dz;
+        const struct dev_coef &c = row[pj.species];
+        if (r2 >= c.rd2) return;
+        const meso_real r = meso_sqrt(r2);
+        const meso_real w = KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
+                                                       : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
+        fixed += llrint((double)w * STATIC_FIXED_SCALE);
+      });
+  dc.table[id_i] = (meso_real)((double)fixed / STATIC_FIXED_SCALE);
+}
+
+template <int KERNEL, int DENSITY, int CACHE>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_density(const struct dev_params q, int n, int cap, int stride, const int *__restrict__ start,
               const int *__restrict__ gstart, const struct dev_pos *__restrict__ pos,
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
               uint32_t *__restrict__ nbr, int *__restrict__ count, int *most,
-              const uint32_t *__restrict__ part, uint32_t part_flag, struct dev_vel *vel) {
+              const uint32_t *__restrict__ part, uint32_t part_flag, struct dev_vel *vel,
+              const struct density_cache_args dc) {
   /* Each thread gathers NBR_CHUNK entries in its own shared-memory slots (padded: no bank
    * conflicts), then stores them as one chunk (no barrier: no thread reads another's slots). */
   __shared__ uint32_t chunk_buf[CUDA_BLOCK * (NBR_CHUNK + 1)];
@@ -31,13 +123,23 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   };
   const struct dev_pos pi = pos[i];
   const struct dev_coef *row = q.coef[pi.species];
-  meso_real sum = MESO_R(0.0);
+  meso_real sum = MESO_R(0.0), cached = MESO_R(0.0);
+  long long id_i = 0;
+  /* the table is complete before any build (k_static_part): mode 0 or 1 here */
+  const int mode = CACHE ? cache_mode(q, dc, pi.species, i, &cached, &id_i) : 0;
+  if (CACHE && mode == 1 && !any_dynamic_near(q, dc.cell_dynamic, key[i])) {
+    rho[i] = cached; /* a wall particle with no mobile neighbour: nothing to scan */
+    if (vel) vel[i].pad = cached;
+    count[i] = 0;
+    return;
+  }
   int m = 0;
   dev_for_each_neighbour(
       q, start, gstart, n, pos, pi, key[i],
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
-        if (r2 >= q.list_cut2 || t == i) return; /* most candidates */
+        if (r2 >= q.list_cut2 || t == i) return;                       /* most candidates */
+        if (CACHE && mode == 1 && q.static_frozen[pj.species]) return; /* in the cached part */
         if (m < stride) {
           mine[m % NBR_CHUNK] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
           if (m % NBR_CHUNK == NBR_CHUNK - 1) flush(m / NBR_CHUNK);
@@ -52,6 +154,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       });
   const int kept = m < stride ? m : stride;
   if (kept % NBR_CHUNK) flush(kept / NBR_CHUNK); /* the last, partial chunk */
+  if (CACHE && mode == 1) sum = cached + sum;
   if (DENSITY) rho[i] = sum;
   if (DENSITY && vel) vel[i].pad = sum; /* one rank: the force pass reads it there */
   count[i] = m;
@@ -64,28 +167,83 @@ static struct dev_vel *rho_vel(struct cuda_sim *g) {
   return g->prm.multi || !(g->prm.terms & PAIR_TERM_THERMOSTAT) ? NULL : g->vel;
 }
 
-template <int KERNEL, int DENSITY> static void launch(struct cuda_sim *g, int part) {
+/* The cache's arguments, table off (NULL) when the cache is not in use. */
+static struct density_cache_args cache_args(const struct cuda_sim *g) {
+  struct density_cache_args dc = {NULL, 0, NULL, NULL};
+  if (g->rho_static && g->prm.density_cache) {
+    dc.table = g->rho_static;
+    dc.len = g->rho_static_len;
+    dc.id = g->a.id;
+    dc.cell_dynamic = g->cell_dynamic;
+  }
+  return dc;
+}
+
+/* Before a build: the table (first use: NaN for every id up to the largest; off when ids are much
+ * sparser than the particles, or with several ranks) and this build's bin flags. 0 or -1. */
+static int cache_prepare(struct cuda_sim *g) {
+  if (!g->prm.density_cache || !g->prm.density || g->prm.multi || g->n == 0) return 0;
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  k_density<KERNEL, DENSITY><<<blocks, CUDA_BLOCK>>>(
+  if (!g->rho_static) {
+    unsigned long long *d_max = NULL, max_id = 0;
+    if (cuda_alloc(g, (void **)&d_max, sizeof *d_max) ||
+        cuda_check(cudaMemset(d_max, 0, sizeof *d_max), "density cache"))
+      return -1;
+    k_max_id<<<blocks, CUDA_BLOCK>>>(g->n, g->a.id, d_max);
+    const int rc = cuda_check(cudaMemcpy(&max_id, d_max, sizeof max_id, cudaMemcpyDeviceToHost),
+                              "density cache");
+    cuda_free_ptr(g, (void **)&d_max);
+    if (rc) return -1;
+    const long long len = (long long)max_id + 1;
+    if (len > 8LL * g->n + (1LL << 20)) { /* sparse ids: a table by id would waste memory */
+      g->prm.density_cache = 0;
+      return 0;
+    }
+    if (cuda_alloc(g, (void **)&g->rho_static, (size_t)len * sizeof(meso_real)) ||
+        cuda_alloc(g, (void **)&g->cell_dynamic, (size_t)g->prm.ncell * sizeof(int)) ||
+        cuda_check(cudaMemset(g->rho_static, 0xff, (size_t)len * sizeof(meso_real)), /* NaN */
+                   "density cache"))
+      return -1;
+    g->rho_static_len = len;
+    struct density_cache_args dc = cache_args(g);
+    if (g->prm.kernel == MESO_KERNEL_LUCY)
+      k_static_part<MESO_KERNEL_LUCY>
+          <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cell_start, g->pos, g->key_sorted, dc);
+    else
+      k_static_part<MESO_KERNEL_WARREN>
+          <<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cell_start, g->pos, g->key_sorted, dc);
+  }
+  if (cuda_check(cudaMemsetAsync(g->cell_dynamic, 0, (size_t)g->prm.ncell * sizeof(int)),
+                 "density cache"))
+    return -1;
+  k_cell_dynamic<<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->pos, g->key_sorted, g->cell_dynamic);
+  return 0;
+}
+
+template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim *g, int part) {
+  const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  k_density<KERNEL, DENSITY, CACHE><<<blocks, CUDA_BLOCK>>>(
       g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
       g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,
-      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g));
+      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g));
 }
 
 static void launch_part(struct cuda_sim *g, int part) {
+  const int cache = cache_args(g).table != NULL;
   if (!g->prm.density)
-    launch<MESO_KERNEL_WARREN, 0>(g, part);
+    launch<MESO_KERNEL_WARREN, 0, 0>(g, part);
   else if (g->prm.kernel == MESO_KERNEL_LUCY)
-    launch<MESO_KERNEL_LUCY, 1>(g, part);
+    cache ? launch<MESO_KERNEL_LUCY, 1, 1>(g, part) : launch<MESO_KERNEL_LUCY, 1, 0>(g, part);
   else
-    launch<MESO_KERNEL_WARREN, 1>(g, part);
+    cache ? launch<MESO_KERNEL_WARREN, 1, 1>(g, part) : launch<MESO_KERNEL_WARREN, 1, 0>(g, part);
 }
 
 /* Clear the overflow record and launch one part (-1: all) of the scan; lists start with room for
  * 48 entries. */
 static int start_scan(struct cuda_sim *g, int part) {
   if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
+  if (cache_prepare(g)) return -1;
   if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
   launch_part(g, part);
   return 0;
@@ -128,17 +286,22 @@ template <int KERNEL>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_density_list(const struct dev_params q, int n, int cap,
                    const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ nbr,
-                   const int *__restrict__ count, meso_real *__restrict__ rho,
-                   struct dev_vel *vel) {
+                   const int *__restrict__ count, meso_real *__restrict__ rho, struct dev_vel *vel,
+                   const struct density_cache_args dc) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const struct dev_pos pi = pos[i];
   const struct dev_coef *row = q.coef[pi.species];
-  meso_real sum = MESO_R(0.0);
+  meso_real sum = MESO_R(0.0), cached = MESO_R(0.0);
+  long long id_i = 0;
+  /* cached: the static part from the table, the list's static partners (a list built while the
+   * table was filled holds them) left out */
+  const int cached_i = cache_mode(q, dc, pi.species, i, &cached, &id_i) == 1;
   const int m = count[i];
   for (int k = 0; k < m; k++) {
     const uint32_t e = nbr[nbr_index(i, k, cap)];
     const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
+    if (cached_i && q.static_frozen[pj.species]) continue;
     meso_real dx, dy, dz;
     dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
     const meso_real r2 = dx * dx + dy * dy + dz * dz;
@@ -149,6 +312,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
                                       : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
   }
+  if (cached_i) sum = cached + sum;
   rho[i] = sum;
   if (vel) vel[i].pad = sum;
 }
@@ -157,11 +321,11 @@ void cuda_density_from_lists(struct cuda_sim *g) {
   if (!g->prm.density || g->n == 0) return;
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (g->prm.kernel == MESO_KERNEL_LUCY)
-    k_density_list<MESO_KERNEL_LUCY><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr,
-                                                             g->nbr_count, g->rho, rho_vel(g));
+    k_density_list<MESO_KERNEL_LUCY><<<blocks, CUDA_BLOCK>>>(
+        g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho, rho_vel(g), cache_args(g));
   else
-    k_density_list<MESO_KERNEL_WARREN><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr,
-                                                               g->nbr_count, g->rho, rho_vel(g));
+    k_density_list<MESO_KERNEL_WARREN><<<blocks, CUDA_BLOCK>>>(
+        g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count, g->rho, rho_vel(g), cache_args(g));
 }
 
 __global__ void k_rho_to_vel(int i0, int n, const meso_real *__restrict__ rho,

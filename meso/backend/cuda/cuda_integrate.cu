@@ -25,6 +25,8 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
       else
         dev_note(pb, CUDA_NONFINITE, 1, p.id[i], x[0], x[1], x[2], 0.0);
     }
+  } else if (q.moving[s]) { /* a moving wall: x += u dt, v = u (physics/verlet.h) */
+    verlet_moving_wall_drift(x, v, q.wall_u[s], q.dt);
   }
   /* the position constraints of the named effects (box_walls, bounce_back, wall_boundary) on
    * mobile particles, on the unwrapped drift (x - x_old is the displacement) */

@@ -36,6 +36,10 @@ struct dev_params {
   double dt, half_dt, max_disp;
   double predict_c; /* (vv_lambda - 1/2) dt: v~ = v + predict_c f / m (Groot-Warren) */
   int mobile[SCENE_MAX_SPECIES];
+  int moving[SCENE_MAX_SPECIES];        /* frozen species translating at wall_u (Couette) */
+  int static_frozen[SCENE_MAX_SPECIES]; /* frozen, not moving: density part cached */
+  int density_cache;                    /* plan.density_cache (one rank only: cuda_density.cu) */
+  double wall_u[SCENE_MAX_SPECIES][3];
   double inv_mass[SCENE_MAX_SPECIES], mass[SCENE_MAX_SPECIES];
   particle_effects_t pe; /* the per-particle effects of the plan (effects/effect_list.h) */
   /* The box (periodic wrap and walls in the integration). */
@@ -162,6 +166,12 @@ struct cuda_sim {
   /* wall_boundary: phi and grad phi per owned slot (cuda_wall_field.cu), pointed at by
    * prm.pe.wall_boundary.field; NULL without the effect. */
   wall_field_t *wall_field;
+  /* Density cache of static frozen particles (plan.density_cache, one rank; cuda_density.cu): the
+   * static-static part of each one's density by particle id (NaN: not computed yet), and per bin
+   * whether it holds a mobile or moving particle this build. */
+  meso_real *rho_static;
+  long long rho_static_len;
+  int *cell_dynamic;
 };
 
 /* Entry k of the list of particle i: chunks of NBR_CHUNK entries, chunk-major (chunk c of particle

@@ -204,7 +204,8 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->nbr_count,    (void **)&g->nbr_most,
                    (void **)&g->gcell_start,  (void **)&g->counter,
                    (void **)&g->rho_stage,    (void **)&g->pos0,
-                   (void **)&g->rebuild,      (void **)&g->wall_field};
+                   (void **)&g->rebuild,      (void **)&g->wall_field,
+                   (void **)&g->rho_static,   (void **)&g->cell_dynamic};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);

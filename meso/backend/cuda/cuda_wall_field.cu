@@ -18,7 +18,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   const struct dev_coef *row = q.coef[pi.species];
   const wall_boundary_params_t *w = &q.pe.wall_boundary;
   const meso_real inv_h = (meso_real)w->inv_h;
-  meso_real acc[WALL_FIELD_ACC] = {0, 0, 0, 0, 0};
+  meso_real acc[WALL_FIELD_ACC] = {0, 0, 0, 0, 0, 0, 0, 0};
   const int m = q.mobile[pi.species] ? count[i] : 0;
   for (int k = 0; k < m; k++) {
     const uint32_t e = nbr[nbr_index(i, k, cap)];
@@ -28,7 +28,10 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     meso_real dx, dy, dz;
     dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
     const meso_real r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 < c.wall_phi2) wall_field_add(inv_h, r2, dx, dy, dz, acc);
+    if (r2 < c.wall_phi2) {
+      const meso_real weight = wall_field_add(inv_h, r2, dx, dy, dz, acc);
+      if (w->moving) wall_field_add_velocity(w, pj.species, weight, acc);
+    }
     if (r2 < c.rc2) { /* S_i of the stability cap */
       const meso_real wR = pair_weight_random_inv(meso_sqrt(r2), c.inv_rc, q.s_exp, q.s_one);
       acc[4] += c.gamma * wR * wR;
