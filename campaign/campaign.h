@@ -34,6 +34,7 @@ typedef struct {
   double u_lo, u_hi;                /* auto: mean pore velocity range */
   double target_error;              /* run.target_error (0 < E < 1) */
   long long max_steps;              /* run.steps (0: 20000, or the scene's own) */
+  double dt;                        /* run.dt (0: the template's) */
   int np;                           /* ranks per run */
   char workdir[CAMP_PATH];
   char emit_dir[CAMP_PATH];    /* --emit-scenes DIR ("" = no) */
@@ -102,6 +103,11 @@ extern const char *camp_usage;
 /* campaign_template.c: the scene template (written to WORKDIR/template.yaml for an image) and the
  * campaign metadata from the image. 0 or -1 with a message naming the file/key. */
 int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int len);
+
+/* campaign_accuracy.c: --accuracy fast|balanced|precise (docs/accuracy.md); explicit options
+ * win. 0, or -1 with a message. */
+int camp_accuracy_preset(const char *name, camp_opts *o, int dt_given, int error_given,
+                         int steps_given);
 
 /* campaign_gradients.c: the auto ladder (fills o->grads) or a check of the LIST. */
 int camp_gradients(camp_opts *o, const campaign *c);

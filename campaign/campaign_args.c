@@ -27,6 +27,9 @@ const char *camp_usage =
     "  --target-error E    run.target_error of every run (0 < E < 1, default 0.05)\n"
     "  --max-steps N       run.steps, the step budget of every run (default 20000; a scene: its "
     "own)\n"
+    "  --dt DT             run.dt of every run (default: the template's, 0.01 for an image)\n"
+    "  --accuracy P        fast | balanced | precise: dt, target error and step budget from the\n"
+    "                      measured accuracy table (docs/accuracy.md); explicit options win\n"
     "  --np N              ranks per run: mpiexec -n N mdpore run (default 1: plain mdpore run)\n"
     "  --mpiexec CMD       launcher and its flags (default: mpiexec)\n"
     "  --workdir DIR       campaign folder (default permeability-SAMPLE)\n"
@@ -119,8 +122,8 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->drive = CAMP_DRIVE_BODY;
   o->reservoir = 4.0;
   snprintf(o->mpiexec, sizeof o->mpiexec, "mpiexec");
-  const char *input = NULL, *workdir = NULL;
-  int have_axis = 0;
+  const char *input = NULL, *workdir = NULL, *accuracy = NULL;
+  int have_axis = 0, dt_given = 0, error_given = 0, steps_given = 0;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
@@ -153,8 +156,15 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
         return bad(s, "LO,HI with 0 < LO < HI (mean pore velocities)", v);
     } else if (!strcmp(s, "--target-error")) {
       if (parse_double(s, v, 0, 1, "a relative error 0 < E < 1", &o->target_error)) return -1;
+      error_given = 1;
     } else if (!strcmp(s, "--max-steps")) {
       if (parse_ll(s, v, 1, "a positive number of steps", &o->max_steps)) return -1;
+      steps_given = 1;
+    } else if (!strcmp(s, "--dt")) {
+      if (parse_double(s, v, 0, 0.1, "a time step 0 < DT < 0.1", &o->dt)) return -1;
+      dt_given = 1;
+    } else if (!strcmp(s, "--accuracy")) {
+      accuracy = v;
     } else if (!strcmp(s, "--np")) {
       if (parse_ll(s, v, 1, "a positive number of ranks", &ll)) return -1;
       if (ll > INT_MAX) return bad(s, "a number of ranks", v);
@@ -225,6 +235,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     fprintf(stderr, "mdpore permeability: expected --axis x|y|z|all\n");
     return -1;
   }
+  if (accuracy && camp_accuracy_preset(accuracy, o, dt_given, error_given, steps_given)) return -1;
   if (access(input, R_OK)) {
     fprintf(stderr,
             "mdpore permeability: %s: cannot read the input (%s): expected a segmented "

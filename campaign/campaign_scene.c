@@ -5,7 +5,8 @@
  *   geometry.flow_axis   the axis (scenes with geometry)
  *   output.flux          axis, file flux.csv, every (kept when the template sets it)
  *   output.summary       summary.json; output.progress false
- *   run.target_error     --target-error; run.steps --max-steps (when given); run.seed base + a hash
+ *   run.target_error     --target-error; run.steps --max-steps (when given); run.dt --dt (when
+ *                        given, or from --accuracy); run.seed base + a hash
  *                        of g (independent noise per gradient)
  *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute.
  * --drive pressure: box and image grow by the reservoir, effects.inlet_force replaces body_force
@@ -272,6 +273,7 @@ char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, d
   int run = child_map(d, root, "run");
   set(d, run, "target_error", number(d, o->target_error));
   if (o->max_steps > 0) set(d, run, "steps", number(d, (double)o->max_steps));
+  if (o->dt > 0) set(d, run, "dt", number(d, o->dt));
   char gtext[64];
   snprintf(gtext, sizeof gtext, "%.15g", g);
   uint64_t hg = camp_fnv1a(14695981039346656037ULL, gtext, strlen(gtext));

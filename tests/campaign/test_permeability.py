@@ -99,6 +99,15 @@ def main():
           f"auto ladder: 5 gradients g = 12 mu u / (n h^2), u = 0.02..0.2 log-spaced: {g} vs {[round(x, 5) for x in g_exp]}")
     cmds = open(os.path.join(OUT, "emitted", "commands.txt")).read().splitlines() if p.returncode == 0 else []
     check(len(cmds) == 5 and all(" run scene.yaml" in c for c in cmds), "commands.txt: one run per line")
+    # --accuracy presets (docs/accuracy.md): the scene's run settings; explicit options win; bad name refused
+    p = mdpore("permeability", "slit.h5", "--axis", "x", "--accuracy", "precise", "--target-error", "0.02",
+               "--emit-scenes", "emitted_precise")
+    runs_p = [l.split()[3] for l in open(os.path.join(OUT, "emitted_precise", "campaign.txt")) if l.startswith("run: ")] \
+        if p.returncode == 0 else []
+    text = open(os.path.join(runs_p[0], "scene.yaml")).read() if runs_p else ""
+    check(p.returncode == 0 and "dt: 0.005" in text and "target_error: 0.02" in text and "steps: 400000" in text,
+          "--accuracy precise: dt 0.005 and 400000 steps from the preset, the explicit --target-error 0.02 wins")
+    expect_error(["permeability", "slit.h5", "--axis", "x", "--accuracy", "medium"], "--accuracy", "unknown accuracy preset")
 
     # 3. a campaign killed during its second run
     wd = os.path.join(OUT, "camp")
