@@ -51,6 +51,8 @@ typedef struct {
   double u_lo, u_hi;
   double target_error;
   long long max_steps;
+  int target_error_given, max_steps_given; /* given in the config (they win over accuracy) */
+  char accuracy[16];                       /* --accuracy preset ("" = none) */
   long long seed;
   char voxel_size[64]; /* --voxel-size in metres as text ("" = default) */
   double viscosity;    /* 0 = the campaign's default */

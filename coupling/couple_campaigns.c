@@ -53,10 +53,16 @@ static int campaign_argv(const couple_config *c, const couple_block *b, const ch
     snprintf(v, sizeof v, "%.17g,%.17g", c->u_lo, c->u_hi);
     bad = bad || add(argv, &n, "--velocity-range") || add(argv, &n, v);
   }
-  snprintf(v, sizeof v, "%.17g", c->target_error);
-  bad = bad || add(argv, &n, "--target-error") || add(argv, &n, v);
-  snprintf(v, sizeof v, "%lld", c->max_steps);
-  bad = bad || add(argv, &n, "--max-steps") || add(argv, &n, v);
+  /* an accuracy preset sets dt, the target error and the budget; options given in the config win */
+  if (c->accuracy[0]) bad = bad || add(argv, &n, "--accuracy") || add(argv, &n, c->accuracy);
+  if (!c->accuracy[0] || c->target_error_given) {
+    snprintf(v, sizeof v, "%.17g", c->target_error);
+    bad = bad || add(argv, &n, "--target-error") || add(argv, &n, v);
+  }
+  if (!c->accuracy[0] || c->max_steps_given) {
+    snprintf(v, sizeof v, "%lld", c->max_steps);
+    bad = bad || add(argv, &n, "--max-steps") || add(argv, &n, v);
+  }
   snprintf(v, sizeof v, "%d", c->np);
   bad = bad || add(argv, &n, "--np") || add(argv, &n, v);
   snprintf(v, sizeof v, "%lld", c->seed);

@@ -16,9 +16,8 @@ static const char *const top_keys[] = {
     "axis",    "gradient", "law",          "campaign",         "loop",   "launcher",
     "slurm",   NULL};
 static const char *const campaign_keys[] = {
-    "rc_per_voxel", "np",        "n_gradients", "velocity_range",
-    "target_error", "max_steps", "seed",        "voxel_size",
-    "viscosity",    "mpiexec",   NULL};
+    "rc_per_voxel", "np",   "n_gradients", "velocity_range", "target_error", "max_steps",
+    "accuracy",     "seed", "voxel_size",  "viscosity",      "mpiexec",      NULL};
 static const char *const loop_keys[] = {"max_passes", "tolerance_sigma", "resolvable_fraction",
                                         "error_samples", NULL};
 static const char *const axis_words[] = {"x", "y", "z", NULL};
@@ -89,6 +88,15 @@ static int read_campaign(ytree_t *t, yaml_node_t *m, couple_config *c) {
   v = (long)c->max_steps;
   if (integer_in(t, m, "max_steps", "campaign.max_steps", 1, 1000000000L, &v)) return -1;
   c->max_steps = v;
+  c->target_error_given = yt_get(t, m, "target_error") != NULL;
+  c->max_steps_given = yt_get(t, m, "max_steps") != NULL;
+  static const char *const accuracy_words[] = {"fast", "balanced", "precise", NULL};
+  yaml_node_t *acc = yt_get(t, m, "accuracy");
+  if (acc) {
+    int a = yt_enum(t, acc, "campaign.accuracy", accuracy_words);
+    if (a < 0) return -1;
+    snprintf(c->accuracy, sizeof c->accuracy, "%s", accuracy_words[a]);
+  }
   v = (long)c->seed;
   if (integer_in(t, m, "seed", "campaign.seed", 0, LONG_MAX, &v)) return -1;
   c->seed = v;

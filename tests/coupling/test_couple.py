@@ -197,6 +197,25 @@ def main():
     res3 = json.load(open(os.path.join(wd2, "couple.json"))) if os.path.exists(os.path.join(wd2, "couple.json")) else {}
     check(res3.get("pending") is True, "couple.json says runs are pending")
 
+    # campaign.accuracy: the preset's dt, target error and budget reach the block scenes; a given
+    # target_error wins (docs/accuracy.md); a bad preset is refused
+    wd3 = os.path.join(OUT, "accuracy")
+    cfg3 = write("accuracy.yaml", f"""block_images: [a.h5, b.h5]
+blocks: [2, 1, 1]
+axis: x
+workdir: {wd3}
+launcher: slurm
+campaign: {{np: 2, accuracy: precise, target_error: 0.02}}
+""")
+    p = mdpore("couple", cfg3)
+    cmds3 = open(os.path.join(wd3, "pass_1", "commands.txt")).read().splitlines() \
+        if os.path.exists(os.path.join(wd3, "pass_1", "commands.txt")) else []
+    scene3 = open(os.path.join(cmds3[0].split("'")[1], "scene.yaml")).read() if cmds3 else ""
+    check(p.returncode == 3 and "dt: 0.005" in scene3 and "steps: 400000" in scene3 and "target_error: 0.02" in scene3,
+          "campaign.accuracy precise: dt 0.005 and 400000 steps in the block scenes, the given target_error 0.02 wins")
+    expect_error("image: a.h5\naxis: x\ncampaign: {accuracy: medium}\n", ["'campaign.accuracy'", "precise"],
+                 "bad accuracy preset")
+
     if failures:
         print(f"{len(failures)} check(s) failed:\n  " + "\n  ".join(failures))
         sys.exit(1)
