@@ -36,6 +36,7 @@ typedef struct sim_state {
   void *impl;        /* the backend's own state */
   /* steps that passed the drift check (the dt advice of a stop) */
   step_history_t hist;
+  double busy_seconds; /* time in the phases that do not communicate (engine/sim_balance.h) */
 } sim_state_t;
 
 typedef struct backend_ops {

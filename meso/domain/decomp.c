@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char axis_name[3] = {'x', 'y', 'z'};
@@ -28,7 +29,46 @@ int decomp_dims(const scene_t *s, int nranks, int dims[3], char *err, size_t err
 }
 
 double decomp_bound(const decomp_t *dc, int d, int c) {
+  return c >= dc->dims[d] ? dc->box_hi[d] : dc->cut[d][c];
+}
+
+/* The uniform cut c of dims along axis d: the same expression on every rank. */
+static double uniform_cut(const decomp_t *dc, int d, int c) {
   return c >= dc->dims[d] ? dc->box_hi[d] : dc->box_lo[d] + c * (dc->L[d] / dc->dims[d]);
+}
+
+int decomp_set_cuts(decomp_t *dc, int d, const double *cuts, char *err, size_t errlen) {
+  const int m = dc->dims[d];
+  if (cuts[0] != dc->box_lo[d] || cuts[m] != dc->box_hi[d]) {
+    snprintf(err, errlen,
+             "cuts along %c: expected the box bounds [%g, %g] at the ends (got %g, %g)",
+             axis_name[d], dc->box_lo[d], dc->box_hi[d], cuts[0], cuts[m]);
+    return -1;
+  }
+  for (int c = 0; c < m; c++)
+    if (!(cuts[c + 1] - cuts[c] >= dc->rcut)) {
+      snprintf(err, errlen,
+               "cuts along %c: slab %d is [%g, %g), thinner than the ghost cutoff %g (expected "
+               "increasing cuts at least rcut apart)",
+               axis_name[d], c, cuts[c], cuts[c + 1], dc->rcut);
+      return -1;
+    }
+  memcpy(dc->cut[d], cuts, (size_t)(m + 1) * sizeof *cuts);
+  dc->lo[d] = decomp_bound(dc, d, dc->coords[d]);
+  dc->hi[d] = decomp_bound(dc, d, dc->coords[d] + 1);
+  return 0;
+}
+
+int decomp_coord_of(const decomp_t *dc, int d, double x) {
+  int a = 0, b = dc->dims[d] - 1; /* the last c with cut[c] <= x, by bisection */
+  while (a < b) {
+    const int mid = (a + b + 1) / 2;
+    if (dc->cut[d][mid] <= x)
+      a = mid;
+    else
+      b = mid - 1;
+  }
+  return a;
 }
 
 int decomp_create(decomp_t *dc, const scene_t *s, MPI_Comm comm, double rcut, char *err,
@@ -38,6 +78,7 @@ int decomp_create(decomp_t *dc, const scene_t *s, MPI_Comm comm, double rcut, ch
   int nranks;
   MPI_Comm_size(comm, &nranks);
   if (decomp_dims(s, nranks, dc->dims, err, errlen)) return -1;
+  dc->rcut = rcut;
   for (int d = 0; d < 3; d++) {
     dc->periodic[d] = s->periodic[d] != 0;
     dc->box_lo[d] = s->box_lo[d];
@@ -59,6 +100,13 @@ int decomp_create(decomp_t *dc, const scene_t *s, MPI_Comm comm, double rcut, ch
   dc->nranks = nranks;
   MPI_Cart_coords(dc->cart, dc->rank, 3, dc->coords);
   for (int d = 0; d < 3; d++) {
+    dc->cut[d] = malloc((size_t)(dc->dims[d] + 1) * sizeof(double));
+    if (!dc->cut[d]) {
+      snprintf(err, errlen, "out of memory for the cuts of %d subdomains along %c", dc->dims[d],
+               axis_name[d]);
+      return -1;
+    }
+    for (int c = 0; c <= dc->dims[d]; c++) dc->cut[d][c] = uniform_cut(dc, d, c);
     MPI_Cart_shift(dc->cart, d, 1, &dc->nbr[d][0], &dc->nbr[d][1]);
     dc->lo[d] = decomp_bound(dc, d, dc->coords[d]);
     dc->hi[d] = decomp_bound(dc, d, dc->coords[d] + 1);
@@ -69,6 +117,10 @@ int decomp_create(decomp_t *dc, const scene_t *s, MPI_Comm comm, double rcut, ch
 void decomp_free(decomp_t *dc) {
   if (dc->cart != MPI_COMM_NULL) MPI_Comm_free(&dc->cart);
   dc->cart = MPI_COMM_NULL;
+  for (int d = 0; d < 3; d++) {
+    free(dc->cut[d]);
+    dc->cut[d] = NULL;
+  }
 }
 
 void decomp_wrap(const decomp_t *dc, double x[3]) {

@@ -5,12 +5,6 @@
 #include <math.h>
 #include <string.h>
 
-typedef struct {
-  int64_t id;
-  int32_t species, pad;
-  double x[3], v[3], f[3];
-} migrant_t;
-
 static void note_lost(migrate_report_t *rep, int64_t id, const double x[3]) {
   if (rep->n_lost++ == 0) {
     rep->lost_id = id;
@@ -41,7 +35,7 @@ static void wrap_axis_in_place(const decomp_t *dc, particles_t *p, int d, migrat
   }
 }
 
-static void pack(const particles_t *p, int i, migrant_t *m) {
+void migrant_pack(const particles_t *p, int i, migrant_t *m) {
   m->id = p->id[i];
   m->species = p->species[i];
   m->pad = 0;
@@ -52,7 +46,7 @@ static void pack(const particles_t *p, int i, migrant_t *m) {
   }
 }
 
-static void unpack(particles_t *p, int j, const migrant_t *m) {
+void migrant_unpack(particles_t *p, int j, const migrant_t *m) {
   p->id[j] = m->id;
   p->species[j] = m->species;
   for (int c = 0; c < 3; c++) {
@@ -96,7 +90,7 @@ void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t 
       }
       migrant_t *m =
           (migrant_t *)sbuf->data + (size_t)dir * (size_t)p->n_local + (size_t)n_out[dir]++;
-      pack(p, i, m);
+      migrant_pack(p, i, m);
       /* Crossing a periodic face: wrap to the image on the other side. */
       if (dir == 0 && dc->coords[d] == 0) m->x[d] = clamp_into_box(dc, d, m->x[d] + dc->L[d]);
       if (dir == 1 && dc->coords[d] == dc->dims[d] - 1)
@@ -121,7 +115,7 @@ void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t 
       for (int s = 0; s < m; s++) {
         /* A particle that moved farther than one subdomain cannot be placed correctly. */
         if (!(in[s].x[d] >= lo && in[s].x[d] < hi)) note_lost(rep, in[s].id, in[s].x);
-        unpack(p, p->n_local++, &in[s]);
+        migrant_unpack(p, p->n_local++, &in[s]);
       }
     }
   }

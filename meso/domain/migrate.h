@@ -12,6 +12,16 @@
 
 #include <stdint.h>
 
+/* One particle on the wire (migration and redistribution). */
+typedef struct {
+  int64_t id;
+  int32_t species, pad;
+  double x[3], v[3], f[3];
+} migrant_t;
+
+void migrant_pack(const particles_t *p, int i, migrant_t *m);
+void migrant_unpack(particles_t *p, int j, const migrant_t *m);
+
 typedef struct {
   long n_lost;     /* particles that left through a non-periodic face or jumped past a neighbour */
   int64_t lost_id; /* the first of them */

@@ -161,11 +161,24 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
   }
   const backend_ops_t *ops = sim_backend_ops(s->backend, nranks);
   fprintf(out, "Step plan for scene '%s' (%s)\n", s->name, s->file);
-  fprintf(
-      out,
-      "decomposition: %d MPI rank(s) as %d x %d x %d subdomains of %g x %g x %g; ghost cutoff %g\n",
-      nranks, dims[0], dims[1], dims[2], (s->box_hi[0] - s->box_lo[0]) / dims[0],
-      (s->box_hi[1] - s->box_lo[1]) / dims[1], (s->box_hi[2] - s->box_lo[2]) / dims[2], plan.rcut);
+  fprintf(out,
+          "decomposition: %d MPI rank(s) as %d x %d x %d subdomains of %g x %g x %g%s; ghost "
+          "cutoff %g\n",
+          nranks, dims[0], dims[1], dims[2], (s->box_hi[0] - s->box_lo[0]) / dims[0],
+          (s->box_hi[1] - s->box_lo[1]) / dims[1], (s->box_hi[2] - s->box_lo[2]) / dims[2],
+          s->balance.cuts == SCENE_CUTS_COST ? " on average" : "", plan.rcut);
+  if (nranks > 1 && s->balance.cuts == SCENE_CUTS_COST) {
+    fprintf(out,
+            "load balancing: cuts placed by particle weight before the set-up (frozen particle "
+            "weight %g; a restart keeps its checkpoint's cuts)",
+            s->balance.frozen_weight);
+    if (s->balance.every > 0)
+      fprintf(out,
+              "; every %ld steps the busy-time imbalance is measured and the cuts move above %g%s",
+              s->balance.every, s->balance.threshold,
+              s->backend == SCENE_BACKEND_CUDA ? " (not on the GPU backend: not measured)" : "");
+    fprintf(out, "\n");
+  }
   fprintf(out, "periodic: x %s, y %s, z %s; dt = %g; backend: %s\n", s->periodic[0] ? "yes" : "no",
           s->periodic[1] ? "yes" : "no", s->periodic[2] ? "yes" : "no", s->dt,
           ops ? ops->name : "cuda (not in this build)");

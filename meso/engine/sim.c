@@ -131,6 +131,7 @@ int sim_setup(sim_t *sim) {
   st->in_setup = 0;
   if (rc) return rc;
   sim->is_setup = 1;
+  st->busy_seconds = 0; /* the load-balance measure counts steps only */
   return 0;
 }
 

@@ -7,6 +7,13 @@
 
 #include <string.h>
 
+/* Phases that talk to other ranks: their time includes waiting for them, so it is not busy time
+ * (the load-balance measure, engine/sim_balance.h). */
+static int communicates(int phase) {
+  return phase == PHASE_CHECK_DRIFT || phase == PHASE_MIGRATE || phase == PHASE_GHOSTS ||
+         phase == PHASE_RHO_SYNC || phase == PHASE_CHECK;
+}
+
 int sim_run_phases(sim_t *sim, const unsigned char *list, int n) {
   sim_state_t *st = &sim->st;
   for (int k = 0; k < n; k++) {
@@ -14,7 +21,10 @@ int sim_run_phases(sim_t *sim, const unsigned char *list, int n) {
     int (*op)(sim_state_t *) = sim->ops->phase[phase];
     const int is_check = phase == PHASE_CHECK_DRIFT || phase == PHASE_CHECK;
     if (is_check) st->pr.hist = &st->hist; /* a stop suggests a dt from what passed */
+    const int timed = op && !communicates(phase);
+    const double t0 = timed ? MPI_Wtime() : 0;
     const int rc = op ? op(st) : 0;
+    if (timed) st->busy_seconds += MPI_Wtime() - t0;
     if (is_check) {
       if (rc) return rc;
       if (phase == PHASE_CHECK_DRIFT && !st->in_setup) step_history_pass(&st->hist, &st->pr);

@@ -4,6 +4,7 @@
 #include "io/crc32.h"
 #include "io/gather.h"
 #include "io/h5_util.h"
+#include "engine/sim_balance.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -132,8 +133,8 @@ int checkpoint_write(const char *path, sim_t *sim) {
 
 /* Rank 0: open and check the file against this run; on success fills the set and per-rank counts.
  */
-static int read_on_root(const char *path, sim_t *sim, int size, const double *boxes,
-                        particle_set_t *set, long *counts, long *step) {
+static int read_on_root(const char *path, sim_t *sim, int size, double *boxes, particle_set_t *set,
+                        long *counts, long *step) {
   const scene_t *s = sim_scene(sim);
   H5E_auto2_t fn;
   void *cd;
@@ -196,17 +197,13 @@ static int read_on_root(const char *path, sim_t *sim, int size, const double *bo
   bad = bad || check_crc(f, path, "subdomain_lo", lo, 3 * nr * sizeof *lo, &unchecked) ||
         check_crc(f, path, "subdomain_hi", hi, 3 * nr * sizeof *hi, &unchecked) ||
         check_crc(f, path, "rank_counts", c64, nr * sizeof *c64, &unchecked);
+  /* The checkpoint's subdomains (its cuts: checkpoint_read adopts them, so that a run balanced by
+   * cost restarts on the same decomposition). */
   for (int r = 0; r < size && !bad; r++)
-    for (int d = 0; d < 3; d++)
-      if (lo[3 * r + d] != boxes[6 * r + d] || hi[3 * r + d] != boxes[6 * r + 3 + d]) {
-        fprintf(stderr,
-                "%s: decomposition mismatch: rank %d's subdomain differs from the checkpoint's "
-                "(restart "
-                "with the same box.procs)\n",
-                path, r);
-        bad = 1;
-        break;
-      }
+    for (int d = 0; d < 3; d++) {
+      boxes[6 * r + d] = lo[3 * r + d];
+      boxes[6 * r + 3 + d] = hi[3 * r + d];
+    }
   long total = 0;
   for (int r = 0; r < size; r++) total += (counts[r] = c64[r]);
   free(lo);
@@ -243,12 +240,46 @@ out:
   return rc;
 }
 
+/* Every rank takes the checkpoint's subdomains (boxes on rank 0: lo[3] hi[3] per rank) as the
+ * cuts of the grid; a set of boxes that is not this run's grid is a decomposition mismatch. */
+static int adopt_cuts(const char *path, sim_t *sim, MPI_Comm comm, int rank, int size,
+                      double *boxes) {
+  MPI_Bcast(boxes, 6 * size, MPI_DOUBLE, 0, comm);
+  const double *cut_now[3];
+  int dims[3], bad = 0;
+  sim_cuts(sim, cut_now, dims);
+  double *cuts[3] = {NULL, NULL, NULL};
+  for (int d = 0; d < 3; d++) bad |= !(cuts[d] = malloc((size_t)(dims[d] + 1) * sizeof(double)));
+  for (int d = 0; d < 3 && !bad; d++) {
+    for (int c = 0; c < dims[d]; c++) { /* the lower bound of the subdomain at coords c along d */
+      int coords[3] = {0, 0, 0}, r = 0;
+      coords[d] = c;
+      MPI_Cart_rank(comm, coords, &r);
+      cuts[d][c] = boxes[6 * r + d];
+    }
+    cuts[d][dims[d]] = cut_now[d][dims[d]];
+  }
+  bad = bad || sim_set_cuts(sim, cuts);
+  double lo[3], hi[3];
+  sim_subdomain(sim, lo, hi);
+  for (int d = 0; d < 3 && !bad; d++)
+    bad = lo[d] != boxes[6 * rank + d] || hi[d] != boxes[6 * rank + 3 + d];
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
+  if (bad && rank == 0)
+    fprintf(stderr,
+            "%s: decomposition mismatch: the checkpoint's subdomains are not a grid of this run's "
+            "box.procs (restart with the same box.procs)\n",
+            path);
+  for (int d = 0; d < 3; d++) free(cuts[d]);
+  return bad ? -1 : 0;
+}
+
 int checkpoint_read(const char *path, sim_t *sim) {
   MPI_Comm comm = sim_comm(sim);
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
-  double *boxes = gather_subdomains(sim, comm, rank, size);
+  double *boxes = malloc((size_t)size * 6 * sizeof *boxes);
   long *counts = calloc((size_t)size, sizeof *counts), step = 0;
   particle_set_t set;
   memset(&set, 0, sizeof set);
@@ -261,6 +292,11 @@ int checkpoint_read(const char *path, sim_t *sim) {
   }
   MPI_Bcast(&step, 1, MPI_LONG, 0, comm);
   MPI_Bcast(counts, size, MPI_LONG, 0, comm);
+  if (adopt_cuts(path, sim, comm, rank, size, boxes)) {
+    free(boxes);
+    free(counts);
+    return -1;
+  }
   /* Scatter each rank's block, field by field. */
   int *cnt = malloc((size_t)size * sizeof *cnt), *dsp = malloc((size_t)size * sizeof *dsp);
   int *cnt3 = malloc((size_t)size * sizeof *cnt3), *dsp3 = malloc((size_t)size * sizeof *dsp3);

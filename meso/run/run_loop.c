@@ -12,6 +12,7 @@
 #include "analysis/temperature_guard.h"
 #include "io/stale_tmp.h"
 #include "run/progress.h"
+#include "run/run_balance.h"
 #include "run/run_flux.h"
 #include "run/run_stats.h"
 
@@ -99,7 +100,8 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   const scene_t *s = sim_scene(sim);
   const int restart = s->restart_from[0] != 0;
   int rc = restart ? checkpoint_read(s->restart_from, sim) : init_configuration(sim, s);
-  if (rc || sim_setup(sim)) {
+  run_balance_t rbal;
+  if (rc || run_balance_start(&rbal, sim, restart, rank) || sim_setup(sim)) {
     sim_destroy(sim);
     return 1;
   }
@@ -192,6 +194,10 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       break;
     }
     loop += MPI_Wtime() - t0;
+    if (run_balance_step(&rbal, sim, step, rank)) {
+      err = 1;
+      break;
+    }
     if (sample) {
       profile_sample(&prof, sim);
       if (!profile_wants(&prof, step + 1)) sim_request_virial(sim, 0);
@@ -247,6 +253,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     st.steps_done = sim_step_index(sim) - first;
     st.last_step = sim_step_index(sim); /* earlier than planned after an early stop */
     run_flux_finish(&rf, rank);
+    run_balance_finish(&rbal, sim, &st);
     st.loop_seconds = loop;
     st.total_seconds = MPI_Wtime() - t_start;
     if (rank == 0) {

@@ -150,6 +150,35 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
           flux_method);
 }
 
+/* The load balance of a several-rank run (engine/sim_balance.h). */
+static void balance_text(FILE *out, const run_stats_t *st, const scene_t *s) {
+  fprintf(out, "load balance: cuts %s", s->balance.cuts == SCENE_CUTS_COST ? "by cost" : "uniform");
+  if (s->balance.cuts == SCENE_CUTS_COST)
+    fprintf(out, " (weight imbalance %.3f with uniform cuts)", st->imbalance_weight_uniform);
+  fprintf(out, "; imbalance (max / mean over %d ranks): particle weight %.3f, ", st->nranks,
+          st->imbalance_weight);
+  if (st->imbalance_busy > 0)
+    fprintf(out, "busy time %.3f", st->imbalance_busy);
+  else
+    fprintf(out, "busy time not measured (GPU backend)");
+  if (s->balance.every > 0)
+    fprintf(out, "; %ld rebalancing(s) in %.3g s", st->rebalances, st->balance_seconds);
+  fprintf(out, "\n");
+}
+
+static void balance_json(FILE *fp, const run_stats_t *st, const scene_t *s) {
+  fprintf(fp, "  \"load_balance\": {\"cuts\": \"%s\", \"imbalance_weight\": %.6g, ",
+          s->balance.cuts == SCENE_CUTS_COST ? "cost" : "uniform", st->imbalance_weight);
+  fprintf(fp, "\"imbalance_weight_uniform_cuts\": %.6g, \"imbalance_busy\": ",
+          st->imbalance_weight_uniform);
+  if (st->imbalance_busy > 0)
+    fprintf(fp, "%.6g", st->imbalance_busy);
+  else
+    fprintf(fp, "null");
+  fprintf(fp, ", \"rebalances\": %ld, \"balance_seconds\": %.6g},\n", st->rebalances,
+          st->balance_seconds);
+}
+
 int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *prof, FILE *out,
                       const char *json_path) {
   const run_flux_t *flux = st->flux && st->flux->on ? st->flux : NULL;
@@ -216,6 +245,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
         st->penetration_bad_samples, st->penetration_samples, st->penetration_max,
         st->penetration_depth, st->penetration_bad_samples ? "  <-- NOT ZERO" : "");
   if (flux) flux_text(out, flux);
+  if (st->nranks > 1) balance_text(out, st, s);
   fprintf(out, "performance: %.2f M particle-steps/s (%.2f s in the step loop, %.2f s total)\n",
           pss / 1e6, st->loop_seconds, st->total_seconds);
   fflush(out);
@@ -268,6 +298,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
             st->penetration_samples, st->penetration_bad_samples, st->penetration_max,
             st->penetration_depth);
   if (flux) flux_json(fp, flux, s);
+  if (st->nranks > 1) balance_json(fp, st, s);
   fprintf(fp,
           "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "
           "\"particles\": %ld, "

@@ -131,6 +131,16 @@ typedef struct {
   double density_fraction;      /* stop when a watched bin < fraction x the mean fluid density  */
 } scene_guard_t;
 
+/* Where the cuts between the ranks' subdomains go (`balance:`, docs/scene-format.md "Load
+ * balancing"; meso/domain/balance.c). */
+enum scene_cuts { SCENE_CUTS_UNIFORM = 0, SCENE_CUTS_COST = 1 };
+typedef struct {
+  int cuts;             /* enum scene_cuts                                                      */
+  double frozen_weight; /* cost of a frozen (wall) particle relative to a mobile one            */
+  long every;           /* steps between checks of the measured imbalance (0: cuts fixed)      */
+  double threshold;     /* move the cuts when max / mean busy time over the ranks exceeds it    */
+} scene_balance_t;
+
 /* Engine backends (meso/backend/<name>). */
 enum scene_backend { SCENE_BACKEND_CPU = 0, SCENE_BACKEND_CUDA = 1 };
 
@@ -168,6 +178,7 @@ typedef struct {
   double target_error;               /* run.target_error (0: none; needs output.flux)    */
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
   scene_guard_t guard;               /* guardrails (scene/scene_guard.h)                 */
+  scene_balance_t balance;           /* cuts between ranks (scene/scene_balance.h)       */
   int progress;                      /* progress + ETA on stderr (default 1)             */
   char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */
   int backend; /* enum scene_backend: where the engine runs; set by mdpore run/forces --backend,

@@ -1,0 +1,50 @@
+/* Load balancing in the run driver (run_balance.h). */
+#include "run/run_balance.h"
+#include "engine/sim_balance.h"
+
+#include <stdio.h>
+#include <string.h>
+
+int run_balance_start(run_balance_t *rb, sim_t *sim, int restart, int rank) {
+  memset(rb, 0, sizeof *rb);
+  const scene_t *s = sim_scene(sim);
+  double busy;
+  sim_imbalance(sim, &busy, &rb->weight_uniform);
+  if (restart) rb->weight_uniform = -1;
+  if (s->balance.cuts != SCENE_CUTS_COST || restart) return 0;
+  sim_balance_report_t rep;
+  if (sim_balance(sim, 0, &rep)) return -1;
+  rb->seconds += rep.seconds;
+  if (rank == 0)
+    printf("mdpore: load balancing: cuts placed by cost (frozen particle weight %g): particle "
+           "weight imbalance %.3f with uniform cuts -> %.3f (%.3g s)\n",
+           s->balance.frozen_weight, rep.weight_before, rep.weight_after, rep.seconds);
+  return 0;
+}
+
+int run_balance_step(run_balance_t *rb, sim_t *sim, long step, int rank) {
+  const scene_t *s = sim_scene(sim);
+  if (s->balance.every <= 0 || step % s->balance.every != 0 || !sim_busy_measured(sim)) return 0;
+  double busy, weight;
+  sim_imbalance(sim, &busy, &weight);
+  if (!(busy > s->balance.threshold)) return 0;
+  sim_balance_report_t rep;
+  if (sim_balance(sim, 1, &rep)) {
+    if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld (load balancing)\n", step);
+    return -1;
+  }
+  rb->rebalances++;
+  rb->seconds += rep.seconds;
+  if (rank == 0)
+    printf("mdpore: step %ld: busy-time imbalance %.3f > balance.threshold %.3g: cuts moved by "
+           "measured cost (%.3g s)\n",
+           step, busy, s->balance.threshold, rep.seconds);
+  return 0;
+}
+
+void run_balance_finish(const run_balance_t *rb, sim_t *sim, run_stats_t *st) {
+  sim_imbalance(sim, &st->imbalance_busy, &st->imbalance_weight);
+  st->imbalance_weight_uniform = rb->weight_uniform;
+  st->balance_seconds = rb->seconds;
+  st->rebalances = rb->rebalances;
+}
