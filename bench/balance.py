@@ -11,8 +11,13 @@ about 0.3, with a straight 2-voxel channel along x so that the flow percolates),
 (porosity about 0.85). mDPD water (A = -40, B = 25, rd = 0.75), frozen wall, bounce_back, body
 force 0.02 along x.
 
+With --gpu-compare LAYOUTS (e.g. 16x1,4x4,2x8: MPI ranks x OpenMP threads), the same scene with cost
+cuts on all those CPU layouts and once on the GPU (CUDA backend, one rank), in the same call; prints
+the GPU / fastest-CPU throughput ratio (issue 14, item 4: users compare with a CPU cluster).
+
 usage: /usr/bin/python3 bench/balance.py [--np 2] [--nx 96] [--ny 32] [--nz 32] [--steps 400]
            [--threads 1] [--dynamic] [--check] [--workdir DIR] [--frozen-weight W]
+           [--gpu-compare LAYOUTS]
 --check (the ctest variant): fails unless cost cuts bring the weight imbalance to <= 1.05 and below
 the uniform cuts', the particle count is conserved, and with --dynamic a deliberately wrong
 frozen weight is corrected by at least one rebalancing that lowers the busy-time imbalance.
@@ -24,21 +29,23 @@ import subprocess
 import sys
 
 import numpy as np
-import yaml
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-sys.path.insert(0, os.path.join(ROOT, "validation", "walls"))
-import common  # noqa: E402  (write_raw_image)
 
 
 def spheres(shape, porosity, radius, rng):
     """Random overlapping spheres (label 1) in a periodic block until the pore fraction <= porosity."""
     lab = np.zeros(shape, dtype=np.uint8)
-    grid = np.indices(shape).astype(float)
-    while (lab == 0).mean() > porosity:
-        c = rng.uniform(0, 1, 3) * np.array(shape)
-        d2 = sum(np.minimum(abs(grid[a] - c[a]), shape[a] - abs(grid[a] - c[a])) ** 2 for a in range(3))
-        lab[d2 <= radius * radius] = 1
+    r = int(np.ceil(radius))
+    off = np.arange(-r, r + 1)
+    d2 = off[:, None, None] ** 2 + off[None, :, None] ** 2 + off[None, None, :] ** 2
+    ball = d2 <= radius * radius
+    pore = lab.size
+    while pore > porosity * lab.size:
+        c = (rng.uniform(0, 1, 3) * np.array(shape)).astype(int)
+        idx = np.ix_(*[(c[a] + off) % shape[a] for a in range(3)])  # periodic stamp
+        pore -= int(np.count_nonzero(ball & (lab[idx] == 0)))
+        lab[idx] |= ball.astype(np.uint8)
     return lab
 
 
@@ -49,7 +56,11 @@ def make_image(path, nx, ny, nz, seed):
     dense[:, ny // 2 - 1:ny // 2 + 1, nz // 2 - 1:nz // 2 + 1] = 0  # a channel: the flow percolates
     open_ = spheres((nx - half, ny, nz), 0.85, 3.0, rng)
     lab = np.concatenate([dense, open_], axis=0)
-    common.write_raw_image(path, lab)
+    # raw + sidecar (docs/images.md); numpy only, so that it also runs on the GPU machine
+    with open(path, "wb") as f:
+        f.write(np.ascontiguousarray(lab.transpose(2, 1, 0)).tobytes())
+    with open(path + ".hdr", "w") as f:
+        f.write(f"dims: {nx} {ny} {nz}\ntype: uint8\naxis_order: xyz\nlabels: pore=0;inorganic=1\n")
     return float((lab[:half] == 0).mean()), float((lab[half:] == 0).mean())
 
 
@@ -73,14 +84,14 @@ def scene(image, box, steps, np_ranks, balance):
     return s
 
 
-def run(mdpore, wd, sc, np_ranks, threads):
+def run(mdpore, wd, sc, np_ranks, threads, backend="cpu"):
     os.makedirs(wd, exist_ok=True)
     with open(os.path.join(wd, "scene.yaml"), "w") as f:
-        yaml.safe_dump(sc, f, sort_keys=False)
+        json.dump(sc, f, indent=1)  # JSON is YAML: no PyYAML needed
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
     cmd = ["mpiexec", "-n", str(np_ranks), "--oversubscribe", "--bind-to", "none", mdpore, "run",
-           "--backend", "cpu", "scene.yaml"]
+           "--backend", backend, "scene.yaml"]
     p = subprocess.run(cmd, cwd=wd, env=env, capture_output=True, text=True)
     log = p.stdout + p.stderr
     open(os.path.join(wd, "run.log"), "w").write(log)
@@ -88,6 +99,26 @@ def run(mdpore, wd, sc, np_ranks, threads):
         sys.exit(f"balance bench: mdpore run failed in {wd}:\n{log[-3000:]}")
     summ = json.load(open(os.path.join(wd, "summary.json")))
     return summ, log
+
+
+def gpu_compare(a, mdpore, wd, img, box, cost):
+    """The scene on each CPU layout (cost cuts) and on one GPU; the ratio GPU / fastest CPU."""
+    best = None
+    for lay in a.gpu_compare.split(","):
+        nr, nt = (int(v) for v in lay.split("x"))
+        summ, _ = run(mdpore, os.path.join(wd, f"cpu_{nr}x{nt}"), scene(img, box, a.steps, nr, cost), nr, nt)
+        t, lb = summ["timing"], summ.get("load_balance", {})
+        mps = t["particle_steps_per_second"]
+        print(f"CPU {nr:2d} ranks x {nt:2d} threads: {mps / 1e6:8.3f} M particle-steps/s "
+              f"({t['particles']} particles, loop {t['loop_seconds']:.2f} s; busy imbalance "
+              f"{lb.get('imbalance_busy')})")
+        if best is None or mps > best[1]:
+            best = (lay, mps)
+    summ, _ = run(mdpore, os.path.join(wd, "gpu"), scene(img, box, a.steps, 1, None), 1, 1, "cuda")
+    g = summ["timing"]["particle_steps_per_second"]
+    print(f"GPU (cuda, 1 rank):          {g / 1e6:8.3f} M particle-steps/s")
+    print(f"GPU / fastest CPU layout ({best[0]}): {g / best[1]:.1f}x (same call)")
+    return 0
 
 
 def main():
@@ -102,6 +133,7 @@ def main():
     ap.add_argument("--dynamic", action="store_true")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--workdir", default="balance-bench")
+    ap.add_argument("--gpu-compare", default=None)
     a = ap.parse_args()
     mdpore = os.environ.get("MDPORE") or os.path.join(ROOT, "build", "bin", "mdpore")
     os.makedirs(a.workdir, exist_ok=True)
@@ -115,6 +147,8 @@ def main():
     cost = {"cuts": "cost"}
     if a.frozen_weight is not None:
         cost["frozen_weight"] = a.frozen_weight
+    if a.gpu_compare:
+        return gpu_compare(a, mdpore, wd, img, box, cost)
     runs = [("uniform", None), ("cost", cost)]
     if a.dynamic:
         runs.append(("cost+moving", {"cuts": "cost", "frozen_weight": 2.0,
@@ -124,17 +158,12 @@ def main():
         summ, log = run(mdpore, os.path.join(wd, name.replace("+", "_")), scene(img, box, a.steps, a.np, bal),
                         a.np, a.threads)
         lb, t = summ["load_balance"], summ["timing"]
-        fluid = sum(1 for _ in [0])  # placeholder replaced below
-        n_fluid = None
-        for line in log.splitlines():
-            if line.strip().startswith("particles:") and "fluid" in line:
-                n_fluid = line
         res[name] = (lb, t)
         busy = lb["imbalance_busy"]
         print(f"{name:12s} {t['particle_steps_per_second'] / 1e6:8.3f} M particle-steps/s "
               f"(all {t['particles']} particles), loop {t['loop_seconds']:.2f} s; imbalance busy "
-              f"{busy if busy is None else f'{busy:.3f}'}, weight {lb['imbalance_weight']:.3f}"
-              f"{'' if lb['imbalance_weight_uniform_cuts'] is None else ''}; rebalances {lb['rebalances']}")
+              f"{busy if busy is None else f'{busy:.3f}'}, weight {lb['imbalance_weight']:.3f}; "
+              f"rebalances {lb['rebalances']}")
         for line in log.splitlines():
             if "load balancing" in line or "cuts moved" in line:
                 print("    " + line.strip())
