@@ -36,7 +36,9 @@ typedef struct sim_state {
   void *impl;        /* the backend's own state */
   /* steps that passed the drift check (the dt advice of a stop) */
   step_history_t hist;
-  double busy_seconds; /* time in the phases that do not communicate (engine/sim_balance.h) */
+  double busy_seconds;  /* time in the phases that do not communicate (engine/sim_balance.h) */
+  double busy_total;    /* the same since the first set-up                                */
+  double frozen_weight; /* load-balance weight of a frozen particle (balance.frozen_weight) */
 } sim_state_t;
 
 typedef struct backend_ops {

@@ -25,6 +25,7 @@ sim_t *sim_create(const scene_t *scene, MPI_Comm comm) {
   st->scene = *scene;
   st->dc.cart = MPI_COMM_NULL;
   st->hist.dt = scene->dt;
+  st->frozen_weight = scene->balance.frozen_weight;
   if (plan_build(&st->plan, scene, st->err, sizeof st->err) ||
       decomp_create(&st->dc, scene, comm, st->plan.rcut, st->err, sizeof st->err)) {
     report(comm, st->err);
@@ -130,8 +131,9 @@ int sim_setup(sim_t *sim) {
   const int rc = sim_run_phases(sim, st->plan.setup, st->plan.n_setup);
   st->in_setup = 0;
   if (rc) return rc;
+  if (!sim->is_setup) st->busy_total = 0; /* the load-balance measures count steps only */
   sim->is_setup = 1;
-  st->busy_seconds = 0; /* the load-balance measure counts steps only */
+  st->busy_seconds = 0;
   return 0;
 }
 

@@ -11,12 +11,55 @@ static void report(const sim_state_t *st, const char *msg) {
   if (st->dc.rank == 0) fprintf(stderr, "mdpore: load balancing: %s\n", msg);
 }
 
-/* This rank's particle weight (balance.frozen_weight for frozen species, 1 otherwise). */
+/* This rank's mobile and frozen particle counts. */
+static void local_counts(const sim_state_t *st, double *mobile, double *frozen) {
+  long m = 0;
+  for (int i = 0; i < st->p.n_local; i++) m += st->plan.mobile[st->p.species[i]] != 0;
+  *mobile = (double)m;
+  *frozen = (double)(st->p.n_local - m);
+}
+
+/* This rank's particle weight (1 per mobile particle, st->frozen_weight per frozen one). */
 static double local_weight(const sim_state_t *st) {
-  double w = 0;
-  for (int i = 0; i < st->p.n_local; i++)
-    w += st->plan.mobile[st->p.species[i]] ? 1.0 : st->scene.balance.frozen_weight;
-  return w;
+  double m, f;
+  local_counts(st, &m, &f);
+  return m + st->frozen_weight * f;
+}
+
+/* The cost model busy_r = a mobile_r + b frozen_r fitted over the ranks by least squares; the
+ * frozen weight b / a (clamped to [0, 10], b < 0 taken as 0). 0, or -1 when the ranks' compositions
+ * do not tell a from b (all alike) or a <= 0. */
+static int fit_frozen_weight(const sim_state_t *st, double *weight) {
+  double mine[3], *all = malloc((size_t)st->dc.nranks * 3 * sizeof(double));
+  local_counts(st, &mine[0], &mine[1]);
+  mine[2] = st->busy_seconds;
+  int ok = all != NULL;
+  MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, st->dc.cart);
+  if (!ok) {
+    free(all);
+    return -1;
+  }
+  MPI_Allgather(mine, 3, MPI_DOUBLE, all, 3, MPI_DOUBLE, st->dc.cart);
+  double smm = 0, smf = 0, sff = 0, smb = 0, sfb = 0;
+  for (int r = 0; r < st->dc.nranks; r++) {
+    const double m = all[3 * r], f = all[3 * r + 1], b = all[3 * r + 2];
+    smm += m * m;
+    smf += m * f;
+    sff += f * f;
+    smb += m * b;
+    sfb += f * b;
+  }
+  free(all);
+  const double det = smm * sff - smf * smf;
+  if (!(det > 1e-6 * smm * sff)) return -1; /* compositions proportional: no fit */
+  double a = (sff * smb - smf * sfb) / det, b = (smm * sfb - smf * smb) / det;
+  if (b < 0) { /* frozen particles cost nothing measurable: the mobile-only fit */
+    b = 0;
+    a = smb / smm;
+  }
+  if (!(a > 0)) return -1;
+  *weight = b / a > 10 ? 10 : b / a;
+  return 0;
 }
 
 /* max / mean of v over the ranks. */
@@ -63,19 +106,25 @@ int sim_balance(sim_t *sim, int measured, sim_balance_report_t *rep) {
   const double t0 = MPI_Wtime();
   memset(rep, 0, sizeof *rep);
   if (sim->is_setup && sim->ops->sync_host) sim->ops->sync_host(st);
-  const double w = local_weight(st);
-  double scale = 1.0; /* seconds per unit weight on this rank */
+  /* Measured: the frozen weight from the fitted cost model; when the ranks cannot tell it, each
+   * particle's weight scaled by its rank's seconds per unit weight. */
+  double scale = 1.0;
   if (measured && sim_busy_measured(sim)) {
-    double busy = st->busy_seconds, wsum = w, bsum = busy;
-    MPI_Allreduce(MPI_IN_PLACE, &wsum, 1, MPI_DOUBLE, MPI_SUM, st->dc.cart);
-    MPI_Allreduce(MPI_IN_PLACE, &bsum, 1, MPI_DOUBLE, MPI_SUM, st->dc.cart);
-    const double mean_rate = wsum > 0 ? bsum / wsum : 0;
-    scale = w > 0 && busy > 0 ? busy / w : mean_rate;
-    if (mean_rate > 0)
-      scale /= mean_rate; /* about 1: keeps the histogram's numbers readable */
-    else
-      scale = 1.0;
+    double fitted;
+    if (fit_frozen_weight(st, &fitted) == 0) {
+      st->frozen_weight = fitted;
+      rep->fitted = 1;
+    } else {
+      const double w = local_weight(st), busy = st->busy_seconds;
+      double wsum = w, bsum = busy;
+      MPI_Allreduce(MPI_IN_PLACE, &wsum, 1, MPI_DOUBLE, MPI_SUM, st->dc.cart);
+      MPI_Allreduce(MPI_IN_PLACE, &bsum, 1, MPI_DOUBLE, MPI_SUM, st->dc.cart);
+      const double mean_rate = wsum > 0 ? bsum / wsum : 0;
+      scale = mean_rate > 0 ? (w > 0 && busy > 0 ? busy / w : mean_rate) / mean_rate : 1.0;
+    }
   }
+  rep->frozen_weight = st->frozen_weight;
+  const double w = local_weight(st);
   rep->weight_before = max_over_mean(st->dc.cart, st->dc.nranks, w);
   rep->cost_before = max_over_mean(st->dc.cart, st->dc.nranks, w * scale);
   int frozen[SCENE_MAX_SPECIES];
@@ -93,7 +142,7 @@ int sim_balance(sim_t *sim, int measured, sim_balance_report_t *rep) {
     report(st, "out of memory for the cost histograms");
     goto out;
   }
-  balance_histogram_add(&st->dc, &st->p, frozen, st->scene.balance.frozen_weight, scale, hist);
+  balance_histogram_add(&st->dc, &st->p, frozen, st->frozen_weight, scale, hist);
   for (int d = 0; d < 3; d++) {
     const int nb = balance_nbins(&st->dc, d), m = st->dc.dims[d];
     MPI_Allreduce(MPI_IN_PLACE, hist[d], nb, MPI_DOUBLE, MPI_SUM, st->dc.cart);
@@ -160,6 +209,9 @@ void sim_cuts(const sim_t *sim, const double *cuts[3], int dims[3]) {
 double sim_busy_seconds(const sim_t *sim) {
   return sim->st.busy_seconds;
 }
+double sim_frozen_weight(const sim_t *sim) {
+  return sim->st.frozen_weight;
+}
 void sim_busy_reset(sim_t *sim) {
   sim->st.busy_seconds = 0;
 }
@@ -167,8 +219,10 @@ int sim_busy_measured(const sim_t *sim) {
   return sim->ops->sync_host == NULL; /* a host backend: its phases end when their work does */
 }
 
-void sim_imbalance(sim_t *sim, double *busy, double *weight) {
+void sim_imbalance(sim_t *sim, double *busy, double *busy_run, double *weight) {
   sim_state_t *st = &sim->st;
   *weight = max_over_mean(st->dc.cart, st->dc.nranks, local_weight(st));
-  *busy = sim_busy_measured(sim) ? max_over_mean(st->dc.cart, st->dc.nranks, st->busy_seconds) : 0;
+  const int on = sim_busy_measured(sim);
+  *busy = on ? max_over_mean(st->dc.cart, st->dc.nranks, st->busy_seconds) : 0;
+  *busy_run = on ? max_over_mean(st->dc.cart, st->dc.nranks, st->busy_total) : 0;
 }

@@ -10,13 +10,17 @@ typedef struct {
   double weight_before, weight_after; /* max / mean particle weight over the ranks             */
   double cost_before, cost_after;     /* the same for the cost (weight x measured s per weight) */
   double seconds;                     /* wall time of the rebalancing (all ranks' max)          */
+  double frozen_weight;               /* the frozen particle weight the cuts used               */
+  int fitted;                         /* 1: that weight was fitted to the measured busy times   */
   int moved;                          /* 1 when the cuts moved                                  */
 } sim_balance_report_t;
 
 /* Place the cuts by cost and move the particles (collective). measured = 0: cost = particle weight
- * (balance.frozen_weight for frozen species); measured = 1: weight x each rank's busy seconds per
- * unit weight since the last sim_busy_reset (CPU backend; the CUDA backend runs asynchronously and
- * balances on weight only). Before sim_setup, or after it: then the backend is rebuilt on the new
+ * (1 per mobile particle, the frozen weight per frozen one: balance.frozen_weight until a fit
+ * replaces it); measured = 1 (CPU backend; the CUDA backend runs asynchronously and balances on
+ * weight only): the busy seconds since the last sim_busy_reset fitted over the ranks as
+ * a mobile + b frozen, the frozen weight becomes b / a; when the ranks' compositions cannot tell
+ * them apart, each particle's weight is scaled by its rank's busy seconds per unit weight. Before sim_setup, or after it: then the backend is rebuilt on the new
  * subdomains and set up again with the particles' forces as they are (like a restart from a
  * checkpoint). 0, or -1 with a message on rank 0. */
 int sim_balance(sim_t *sim, int measured, sim_balance_report_t *rep);
@@ -31,11 +35,13 @@ void sim_cuts(const sim_t *sim, const double *cuts[3], int dims[3]);
  * lists, the integration), summed since the last reset. Meaningful on the CPU backend only
  * (sim_busy_measured). */
 double sim_busy_seconds(const sim_t *sim);
+/* The frozen particle weight in use (balance.frozen_weight, or the last fit). */
+double sim_frozen_weight(const sim_t *sim);
 void sim_busy_reset(sim_t *sim);
 int sim_busy_measured(const sim_t *sim);
 
-/* Collective: max / mean over the ranks of the busy seconds (0 when not measured) and of the
- * particle weight. */
-void sim_imbalance(sim_t *sim, double *busy, double *weight);
+/* Collective: max / mean over the ranks of the busy seconds since the last reset (busy), of those
+ * since the first set-up (busy_run; 0 when not measured) and of the particle weight. */
+void sim_imbalance(sim_t *sim, double *busy, double *busy_run, double *weight);
 
 #endif

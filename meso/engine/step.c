@@ -24,7 +24,11 @@ int sim_run_phases(sim_t *sim, const unsigned char *list, int n) {
     const int timed = op && !communicates(phase);
     const double t0 = timed ? MPI_Wtime() : 0;
     const int rc = op ? op(st) : 0;
-    if (timed) st->busy_seconds += MPI_Wtime() - t0;
+    if (timed) {
+      const double dt = MPI_Wtime() - t0;
+      st->busy_seconds += dt;
+      st->busy_total += dt;
+    }
     if (is_check) {
       if (rc) return rc;
       if (phase == PHASE_CHECK_DRIFT && !st->in_setup) step_history_pass(&st->hist, &st->pr);

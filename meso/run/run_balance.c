@@ -8,8 +8,8 @@
 int run_balance_start(run_balance_t *rb, sim_t *sim, int restart, int rank) {
   memset(rb, 0, sizeof *rb);
   const scene_t *s = sim_scene(sim);
-  double busy;
-  sim_imbalance(sim, &busy, &rb->weight_uniform);
+  double busy, busy_run;
+  sim_imbalance(sim, &busy, &busy_run, &rb->weight_uniform);
   if (restart) rb->weight_uniform = -1;
   if (s->balance.cuts != SCENE_CUTS_COST || restart) return 0;
   sim_balance_report_t rep;
@@ -22,11 +22,13 @@ int run_balance_start(run_balance_t *rb, sim_t *sim, int restart, int rank) {
   return 0;
 }
 
-int run_balance_step(run_balance_t *rb, sim_t *sim, long step, int rank) {
+int run_balance_step(run_balance_t *rb, sim_t *sim, long step, long last, int rank) {
   const scene_t *s = sim_scene(sim);
-  if (s->balance.every <= 0 || step % s->balance.every != 0 || !sim_busy_measured(sim)) return 0;
-  double busy, weight;
-  sim_imbalance(sim, &busy, &weight);
+  if (s->balance.every <= 0 || step % s->balance.every != 0 || step >= last ||
+      !sim_busy_measured(sim))
+    return 0;
+  double busy, busy_run, weight;
+  sim_imbalance(sim, &busy, &busy_run, &weight);
   if (!(busy > s->balance.threshold)) return 0;
   sim_balance_report_t rep;
   if (sim_balance(sim, 1, &rep)) {
@@ -37,13 +39,16 @@ int run_balance_step(run_balance_t *rb, sim_t *sim, long step, int rank) {
   rb->seconds += rep.seconds;
   if (rank == 0)
     printf("mdpore: step %ld: busy-time imbalance %.3f > balance.threshold %.3g: cuts moved by "
-           "measured cost (%.3g s)\n",
-           step, busy, s->balance.threshold, rep.seconds);
+           "measured cost (frozen particle weight %.3g%s; %.3g s)\n",
+           step, busy, s->balance.threshold, rep.frozen_weight,
+           rep.fitted ? " fitted to the ranks' busy times" : ", each rank's time per weight",
+           rep.seconds);
   return 0;
 }
 
 void run_balance_finish(const run_balance_t *rb, sim_t *sim, run_stats_t *st) {
-  sim_imbalance(sim, &st->imbalance_busy, &st->imbalance_weight);
+  sim_imbalance(sim, &st->imbalance_busy, &st->imbalance_busy_run, &st->imbalance_weight);
+  st->frozen_weight = sim_frozen_weight(sim);
   st->imbalance_weight_uniform = rb->weight_uniform;
   st->balance_seconds = rb->seconds;
   st->rebalances = rb->rebalances;

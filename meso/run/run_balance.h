@@ -17,9 +17,10 @@ typedef struct {
 /* Before sim_setup (collective): with balance.cuts: cost and a fresh start, place the cuts and
  * move the particles (a restart keeps its checkpoint's cuts). 0, or -1 (message printed). */
 int run_balance_start(run_balance_t *rb, sim_t *sim, int restart, int rank);
-/* After sim_step (collective, every rank at the same step): every balance.every steps, move the
- * cuts when the busy-time imbalance exceeds balance.threshold. 0, or -1 (message printed). */
-int run_balance_step(run_balance_t *rb, sim_t *sim, long step, int rank);
+/* After sim_step (collective, every rank at the same step): every balance.every steps before the
+ * last, move the cuts when the busy-time imbalance exceeds balance.threshold. 0, or -1 (message
+ * printed). */
+int run_balance_step(run_balance_t *rb, sim_t *sim, long step, long last, int rank);
 /* The imbalance of the last period into the summary statistics (collective). */
 void run_balance_finish(const run_balance_t *rb, sim_t *sim, run_stats_t *st);
 

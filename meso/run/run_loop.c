@@ -194,7 +194,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       break;
     }
     loop += MPI_Wtime() - t0;
-    if (run_balance_step(&rbal, sim, step, rank)) {
+    if (run_balance_step(&rbal, sim, step, last, rank)) {
       err = 1;
       break;
     }

@@ -38,9 +38,11 @@ typedef struct {
   long penetration_samples, penetration_bad_samples, penetration_max;
   double penetration_depth;
   /* Load balance (engine/sim_balance.h): max / mean over the ranks of the busy time in the step
-   * loop since the last rebalancing (0: not measured, a GPU backend) and of the particle weight;
+   * loop since the last rebalancing and over the whole run (0: not measured, a GPU backend) and of
+   * the particle weight;
    * the weight imbalance before the first cut placement by cost; rebalancings and their time. */
-  double imbalance_busy, imbalance_weight, imbalance_weight_uniform, balance_seconds;
+  double imbalance_busy, imbalance_busy_run, imbalance_weight, imbalance_weight_uniform;
+  double balance_seconds, frozen_weight; /* the frozen weight in use at the end (fitted or set) */
   long rebalances;
   /* output.flux: its series and final analysis (run/run_flux.h; NULL or off: none). */
   const struct run_flux *flux;

@@ -155,9 +155,13 @@ static void balance_text(FILE *out, const run_stats_t *st, const scene_t *s) {
   fprintf(out, "load balance: cuts %s", s->balance.cuts == SCENE_CUTS_COST ? "by cost" : "uniform");
   if (s->balance.cuts == SCENE_CUTS_COST)
     fprintf(out, " (weight imbalance %.3f with uniform cuts)", st->imbalance_weight_uniform);
-  fprintf(out, "; imbalance (max / mean over %d ranks): particle weight %.3f, ", st->nranks,
-          st->imbalance_weight);
-  if (st->imbalance_busy > 0)
+  fprintf(out,
+          "; imbalance (max / mean over %d ranks): particle weight %.3f (frozen weight %.3g), ",
+          st->nranks, st->imbalance_weight, st->frozen_weight);
+  if (st->imbalance_busy > 0 && st->rebalances > 0)
+    fprintf(out, "busy time %.3f since the last move, %.3f over the run", st->imbalance_busy,
+            st->imbalance_busy_run);
+  else if (st->imbalance_busy > 0)
     fprintf(out, "busy time %.3f", st->imbalance_busy);
   else
     fprintf(out, "busy time not measured (GPU backend)");
@@ -172,11 +176,11 @@ static void balance_json(FILE *fp, const run_stats_t *st, const scene_t *s) {
   fprintf(fp, "\"imbalance_weight_uniform_cuts\": %.6g, \"imbalance_busy\": ",
           st->imbalance_weight_uniform);
   if (st->imbalance_busy > 0)
-    fprintf(fp, "%.6g", st->imbalance_busy);
+    fprintf(fp, "%.6g, \"imbalance_busy_run\": %.6g", st->imbalance_busy, st->imbalance_busy_run);
   else
-    fprintf(fp, "null");
-  fprintf(fp, ", \"rebalances\": %ld, \"balance_seconds\": %.6g},\n", st->rebalances,
-          st->balance_seconds);
+    fprintf(fp, "null, \"imbalance_busy_run\": null");
+  fprintf(fp, ", \"frozen_weight\": %.6g, \"rebalances\": %ld, \"balance_seconds\": %.6g},\n",
+          st->frozen_weight, st->rebalances, st->balance_seconds);
 }
 
 int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *prof, FILE *out,
