@@ -30,6 +30,7 @@ import sys
 
 import numpy as np
 
+BIND = "none"
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 
 
@@ -49,10 +50,10 @@ def spheres(shape, porosity, radius, rng):
     return lab
 
 
-def make_image(path, nx, ny, nz, seed):
+def make_image(path, nx, ny, nz, seed, homogeneous=False):
     rng = np.random.default_rng(seed)
     half = nx // 2
-    dense = spheres((half, ny, nz), 0.30, 4.0, rng)
+    dense = spheres((half, ny, nz), 0.85 if homogeneous else 0.30, 3.0 if homogeneous else 4.0, rng)
     dense[:, ny // 2 - 1:ny // 2 + 1, nz // 2 - 1:nz // 2 + 1] = 0  # a channel: the flow percolates
     open_ = spheres((nx - half, ny, nz), 0.85, 3.0, rng)
     lab = np.concatenate([dense, open_], axis=0)
@@ -90,7 +91,7 @@ def run(mdpore, wd, sc, np_ranks, threads, backend="cpu"):
         json.dump(sc, f, indent=1)  # JSON is YAML: no PyYAML needed
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
-    cmd = ["mpiexec", "-n", str(np_ranks), "--oversubscribe", "--bind-to", "none", mdpore, "run",
+    cmd = ["mpiexec", "-n", str(np_ranks), "--oversubscribe", "--bind-to", BIND, mdpore, "run",
            "--backend", backend, "scene.yaml"]
     p = subprocess.run(cmd, cwd=wd, env=env, capture_output=True, text=True)
     log = p.stdout + p.stderr
@@ -134,12 +135,18 @@ def main():
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--workdir", default="balance-bench")
     ap.add_argument("--gpu-compare", default=None)
+    ap.add_argument("--homogeneous", action="store_true",
+                    help="both halves open (porosity 0.85): the busy-time imbalance of uniform cuts is then "
+                         "the machine's timing noise floor")
+    ap.add_argument("--bind", default="none", help="mpiexec --bind-to (none, core)")
     a = ap.parse_args()
     mdpore = os.environ.get("MDPORE") or os.path.join(ROOT, "build", "bin", "mdpore")
     os.makedirs(a.workdir, exist_ok=True)
     wd = os.path.abspath(a.workdir)
     img = os.path.join(wd, "hetero.raw")
-    p_dense, p_open = make_image(img, a.nx, a.ny, a.nz, 11)
+    p_dense, p_open = make_image(img, a.nx, a.ny, a.nz, 11, a.homogeneous)
+    global BIND
+    BIND = a.bind
     box = [a.nx * 0.5, a.ny * 0.5, a.nz * 0.5]
     print(f"image {a.nx}x{a.ny}x{a.nz} voxels (box {box[0]} x {box[1]} x {box[2]} rc): porosity "
           f"{p_dense:.3f} (x < half) | {p_open:.3f} (x >= half); {a.np} CPU ranks along x, "

@@ -38,6 +38,8 @@ typedef struct sim_state {
   step_history_t hist;
   double busy_seconds;  /* time in the phases that do not communicate (engine/sim_balance.h) */
   double busy_total;    /* the same since the first set-up                                */
+  long busy_since;      /* the step busy_seconds counts from                              */
+  double cost_fit[5];   /* load-balance cost fit: its normal equations' sums over the run */
   double frozen_weight; /* load-balance weight of a frozen particle (balance.frozen_weight) */
 } sim_state_t;
 

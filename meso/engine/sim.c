@@ -134,6 +134,7 @@ int sim_setup(sim_t *sim) {
   if (!sim->is_setup) st->busy_total = 0; /* the load-balance measures count steps only */
   sim->is_setup = 1;
   st->busy_seconds = 0;
+  st->busy_since = st->step;
   return 0;
 }
 

@@ -29,7 +29,7 @@ static double local_weight(const sim_state_t *st) {
 /* The cost model busy_r = a mobile_r + b frozen_r fitted over the ranks by least squares; the
  * frozen weight b / a (clamped to [0, 10], b < 0 taken as 0). 0, or -1 when the ranks' compositions
  * do not tell a from b (all alike) or a <= 0. */
-static int fit_frozen_weight(const sim_state_t *st, double *weight) {
+static int fit_frozen_weight(sim_state_t *st, double *weight) {
   double mine[3], *all = malloc((size_t)st->dc.nranks * 3 * sizeof(double));
   local_counts(st, &mine[0], &mine[1]);
   mine[2] = st->busy_seconds;
@@ -40,16 +40,20 @@ static int fit_frozen_weight(const sim_state_t *st, double *weight) {
     return -1;
   }
   MPI_Allgather(mine, 3, MPI_DOUBLE, all, 3, MPI_DOUBLE, st->dc.cart);
-  double smm = 0, smf = 0, sff = 0, smb = 0, sfb = 0;
+  /* The normal equations' sums accumulate over every measured period of the run (one point per
+   * rank and period, busy seconds per step): the timing noise of single periods averages out. */
+  double *sum = st->cost_fit; /* smm, smf, sff, smb, sfb */
+  const double steps = st->step - st->busy_since > 0 ? (double)(st->step - st->busy_since) : 1.0;
   for (int r = 0; r < st->dc.nranks; r++) {
-    const double m = all[3 * r], f = all[3 * r + 1], b = all[3 * r + 2];
-    smm += m * m;
-    smf += m * f;
-    sff += f * f;
-    smb += m * b;
-    sfb += f * b;
+    const double m = all[3 * r], f = all[3 * r + 1], b = all[3 * r + 2] / steps;
+    sum[0] += m * m;
+    sum[1] += m * f;
+    sum[2] += f * f;
+    sum[3] += m * b;
+    sum[4] += f * b;
   }
   free(all);
+  const double smm = sum[0], smf = sum[1], sff = sum[2], smb = sum[3], sfb = sum[4];
   const double det = smm * sff - smf * smf;
   if (!(det > 1e-6 * smm * sff)) return -1; /* compositions proportional: no fit */
   double a = (sff * smb - smf * sfb) / det, b = (smm * sfb - smf * smb) / det;
@@ -214,6 +218,7 @@ double sim_frozen_weight(const sim_t *sim) {
 }
 void sim_busy_reset(sim_t *sim) {
   sim->st.busy_seconds = 0;
+  sim->st.busy_since = sim->st.step;
 }
 int sim_busy_measured(const sim_t *sim) {
   return sim->ops->sync_host == NULL; /* a host backend: its phases end when their work does */
