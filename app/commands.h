@@ -12,5 +12,6 @@ int cmd_fit(int argc, char **argv);    /* mdpore fit TABLE                    (u
 int cmd_darcy(int argc, char **argv);  /* mdpore darcy CONFIG                 (upscale/darcy)    */
 int cmd_permeability(int argc, char **argv); /* mdpore permeability IMAGE|SCENE (campaign/) */
 int cmd_couple(int argc, char **argv);       /* mdpore couple CONFIG (coupling/) */
+int cmd_slip(int argc, char **argv);         /* mdpore slip INPUT... (upscale/fit, no PETSc) */
 
 #endif

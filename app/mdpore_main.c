@@ -23,6 +23,8 @@ static const command_t commands[] = {
      "permeability campaign: forcing ladder of mdpore runs, flow table, fit, k in nD"},
     {"couple", cmd_couple,
      "pore-scale <-> continuum loop: campaigns per block, fitted laws, feedback of gradients"},
+    {"slip", cmd_slip,
+     "slip length and apparent permeability from k at several pore sizes (also: fit slip)"},
 };
 static const int n_commands = (int)(sizeof commands / sizeof commands[0]);
 
@@ -46,6 +48,12 @@ int main(int argc, char **argv) {
     const command_t *cmd = NULL;
     for (int i = 0; i < n_commands; i++)
       if (!strcmp(argv[1], commands[i].name)) cmd = &commands[i];
+    if (argc > 2 && !strcmp(argv[1], "fit") && !strcmp(argv[2], "slip")) { /* = mdpore slip */
+      argv++;
+      argc--;
+      for (int i = 0; i < n_commands; i++)
+        if (!strcmp("slip", commands[i].name)) cmd = &commands[i];
+    }
     if (!cmd) {
       if (rank == 0) {
         fprintf(stderr, "mdpore: unknown command '%s'\n", argv[1]);
