@@ -8,7 +8,7 @@
 
 void scene_balance_defaults(scene_t *s) {
   s->balance.cuts = SCENE_CUTS_UNIFORM;
-  s->balance.frozen_weight = 0.1;
+  s->balance.frozen_weight = 0.4; /* fitted on the H100 host: 0.41 (16 ranks, bench/balance.py) */
   s->balance.every = 0;
   s->balance.threshold = 1.05;
 }
