@@ -46,15 +46,70 @@ long mser_truncation(const double *x, long n, int batch, int *steady) {
   return best_d * batch;
 }
 
+/* Sokal's automatic window on the batch means z[0..k) of x[0..n) (batches of b samples, k <= 4096):
+ * tau_int of z in batches (tau_b), and the variance of z. */
+static double batch_tau(const double *x, long n, long *batch, long *k_out, double *var_z) {
+  const long b = n > 4096 ? (n + 4095) / 4096 : 1, k = n / b;
+  *batch = b;
+  *k_out = k;
+  *var_z = 0;
+  if (k < 4) return 0.5;
+  double *z = malloc((size_t)k * sizeof *z);
+  if (!z) return INFINITY;
+  double mean = 0;
+  for (long j = 0; j < k; j++) {
+    double m = 0;
+    for (long i = 0; i < b; i++) m += x[j * b + i];
+    z[j] = m / b;
+    mean += z[j];
+  }
+  mean /= (double)k;
+  double c0 = 0;
+  for (long j = 0; j < k; j++) c0 += (z[j] - mean) * (z[j] - mean);
+  double tau = 0.5; /* tau_int = 1/2 + sum_{t=1..M} rho(t), window M >= 6 tau (Sokal) */
+  if (c0 > 0) {
+    for (long t = 1; t < k / 2; t++) {
+      double c = 0;
+      for (long j = 0; j + t < k; j++) c += (z[j] - mean) * (z[j + t] - mean);
+      tau += c / c0;
+      if ((double)t >= 6.0 * tau) break;
+    }
+  }
+  free(z);
+  *var_z = c0 / (double)(k - 1);
+  return tau < 0.5 ? 0.5 : tau;
+}
+
+double integrated_autocorrelation_time(const double *x, long n) {
+  long b, k;
+  double var_z;
+  const double tau_b = batch_tau(x, n, &b, &k, &var_z);
+  return b == 1 ? tau_b : tau_b * b; /* batched: an upper bound in samples */
+}
+
 void steady_state_analyse(const double *x, long n, steady_state_t *out) {
   out->n = n;
   out->start = mser_truncation(x, n, STEADY_MSER_BATCH, &out->steady);
-  out->avg = block_average_plateau(x + out->start, n - out->start);
+  const long m = n - out->start;
+  out->avg = block_average_plateau(x + out->start, m);
+  /* The autocorrelation estimate on (batch means of) the window: error sqrt(var_z 2 tau_b / k),
+   * n_eff = k / (2 tau_b); the reported error is the larger of it and the block error. */
+  long b = 1, k = 0;
+  double var_z = 0;
+  const double tau_b = m > 0 ? batch_tau(x + out->start, m, &b, &k, &var_z) : 0.5;
+  out->n_eff = k > 0 ? (double)k / (2.0 * tau_b) : 0;
+  out->tau_int = out->n_eff > 0 ? (double)m / (2.0 * out->n_eff) : INFINITY;
+  if (k >= 4 && isfinite(out->avg.err)) {
+    const double acf_err = sqrt(var_z * 2.0 * tau_b / (double)k);
+    if (acf_err > out->avg.err) out->avg.err = acf_err;
+  }
   out->rel_err =
       out->avg.mean != 0 && isfinite(out->avg.err) ? out->avg.err / fabs(out->avg.mean) : INFINITY;
 }
 
 int steady_state_converged(const steady_state_t *s, double target) {
-  return s->steady && s->avg.plateau && s->n - s->start >= STEADY_MIN_SAMPLES &&
+  const long window = s->n - s->start;
+  return s->steady && s->avg.plateau && window >= STEADY_MIN_SAMPLES &&
+         window >= STEADY_WINDOW_OVER_TRANSIENT * s->start && s->n_eff >= STEADY_MIN_EFFECTIVE &&
          s->rel_err <= target;
 }

@@ -7,22 +7,38 @@
  *     d <= k / 2. A minimum found in the second half of the range is MSER's sign that the series
  *     has not reached a steady state within its length (steady = 0);
  *  2. the mean after the truncation and its standard error by block averaging, the block length
- *     chosen from the data (the plateau of the blocked error, analysis/block_average.h). */
+ *     chosen from the data (the plateau of the blocked error, analysis/block_average.h);
+ *  3. the integrated autocorrelation time tau_int of that window (Sokal's automatic window,
+ *     M >= 6 tau_int; Madras & Sokal, J. Stat. Phys. 50, 109 (1988)), its error
+ *     s sqrt(2 tau_int / m) and the effective sample count m / (2 tau_int). The reported error is
+ *     the larger of the two estimates.
+ * A converged verdict (the early stop of run.target_error) also asks for a window at least
+ * STEADY_WINDOW_OVER_TRANSIENT times the transient it follows and STEADY_MIN_EFFECTIVE effective
+ * samples: a slowly fluctuating flux (a channel's momentum relaxes over h^2 / (pi^2 nu)) can show a
+ * short, quiet stretch whose block error is far too small; seen in a slit campaign that stopped
+ * 18% low with a 0.9% error bar (docs/permeability.md). */
 #ifndef MESO_ANALYSIS_STEADY_STATE_H
 #define MESO_ANALYSIS_STEADY_STATE_H
 
 #include "analysis/block_average.h"
 
 #define STEADY_MSER_BATCH 5
-/* A converged verdict needs at least this many samples after the truncation. */
+/* A converged verdict needs at least this many samples after the truncation, ... */
 #define STEADY_MIN_SAMPLES 100
+/* ... a window at least this many times the truncated transient, ... */
+#define STEADY_WINDOW_OVER_TRANSIENT 3
+/* ... and at least this many effective (independent) samples. */
+#define STEADY_MIN_EFFECTIVE 30
 
 typedef struct {
   long n;              /* samples analysed */
   long start;          /* first sample of the steady part (the MSER-5 truncation) */
   int steady;          /* 1: MSER's minimum lies in the first half of the series */
   block_average_t avg; /* mean and error of x[start..n) (block_average_plateau) */
-  double rel_err;      /* avg.err / |avg.mean| (inf when the mean is 0) */
+  double tau_int;      /* integrated autocorrelation time of x[start..n), in samples */
+  double n_eff;        /* effective samples: (n - start) / (2 tau_int) */
+  double rel_err;      /* avg.err / |avg.mean| (inf when the mean is 0); avg.err is the larger of
+                          the block error and the autocorrelation error */
 } steady_state_t;
 
 /* MSER truncation with batches of `batch` samples: the number of samples to drop (a multiple of
@@ -32,8 +48,14 @@ long mser_truncation(const double *x, long n, int batch, int *steady);
 /* MSER-5, then the block average of what follows. */
 void steady_state_analyse(const double *x, long n, steady_state_t *out);
 
+/* Integrated autocorrelation time (samples) of x[0..n) by Sokal's automatic window; a series
+ * longer than 4096 samples is first reduced to 4096 batch means (then tau_batch x batch, an upper
+ * bound in samples). */
+double integrated_autocorrelation_time(const double *x, long n);
+
 /* Whether the analysed series meets a relative error target: steady, a plateau of the blocked
- * error, at least STEADY_MIN_SAMPLES samples used and rel_err <= target. */
+ * error, at least STEADY_MIN_SAMPLES samples used, a window >= STEADY_WINDOW_OVER_TRANSIENT x the
+ * transient, >= STEADY_MIN_EFFECTIVE effective samples and rel_err <= target. */
 int steady_state_converged(const steady_state_t *s, double target);
 
 #endif

@@ -79,9 +79,9 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
     if (rank == 0)
       fprintf(stderr,
               "mdpore: flux: relative error of q %.3g <= run.target_error %g at step %ld (steady "
-              "from step %.0f, %ld samples used): stopping\n",
+              "from step %.0f, %ld samples used, %.0f independent): stopping\n",
               rf->result.rel_err, rf->target, step, rf->steps.x[rf->result.start],
-              rf->result.n - rf->result.start);
+              rf->result.n - rf->result.start, rf->result.n_eff);
   }
   return stop;
 }
@@ -113,11 +113,16 @@ void run_flux_finish(run_flux_t *rf, int rank) {
                         ? "the blocked error has no plateau yet (the series is short for its "
                           "correlation time)"
                     : r->n - r->start < STEADY_MIN_SAMPLES ? "too few steady samples"
-                                                           : "the error is still above it";
+                    : r->n - r->start < STEADY_WINDOW_OVER_TRANSIENT * r->start
+                        ? "the steady window is shorter than 3x the transient before it"
+                    : r->n_eff < STEADY_MIN_EFFECTIVE
+                        ? "fewer than 30 independent samples (the flux is correlated over long "
+                          "times)"
+                        : "the error is still above it";
   fprintf(stderr,
           "mdpore: flux: run.target_error %g NOT reached within the step budget: relative error "
-          "of q %.3g after %ld samples (%s). Run longer (--steps) or sample more often.\n",
-          rf->target, r->rel_err, r->n, why);
+          "of q %.3g after %ld samples, %.0f independent (%s). Run longer (--steps).\n",
+          rf->target, r->rel_err, r->n, r->n_eff, why);
 }
 
 void run_flux_close(run_flux_t *rf) {

@@ -15,7 +15,12 @@
  *    at most and leaves a bias below 2 errors;
  *  - a series that drifts over its whole length: MSER says "not steady";
  *  - steady_state_converged: met for a long steady series at a loose target, not at a target
- *    below its error, not for too few samples. */
+ *    below its error, not for too few samples;
+ *  - the lucky window (a slit campaign stopped 18% low with a 0.9% error bar): tau_int of AR(1)
+ *    phi = 0.9 within 25% of 9.5 (mean over 20 seeds); AR(1) phi = 0.98 (tau_int 49.5) over 1500
+ *    samples, 15 independent ones (estimated 20-25: Sokal's window reads short series low): not converged at any target, its reported error not below the
+ *    exact one by more than 30%; a steady window shorter than 3x the transient before it: not
+ *    converged, the same series continued to 4x: converged. */
 #include "analysis/steady_state.h"
 
 #include "test_engine_common.h"
@@ -154,8 +159,44 @@ static int convergence(void) {
   return 0;
 }
 
+static int lucky_window(void) {
+  const long n = 16000;
+  double *x = malloc(n * sizeof *x), tau_sum = 0;
+  for (int seed = 0; seed < 20; seed++) {
+    ar1(x, 4000, 0.0, 0.9, 1.0, 100 + seed);
+    tau_sum += integrated_autocorrelation_time(x, 4000);
+  }
+  printf("lucky window: tau_int of AR(1) phi 0.9: %.2f (exact 9.5)\n", tau_sum / 20);
+  CHECK(fabs(tau_sum / 20 / 9.5 - 1) < 0.25, "tau_int %g, expected 9.5", tau_sum / 20);
+  /* 1500 samples with tau_int 49.5: 15 independent samples */
+  ar1(x, 1500, 1.0, 0.98, 0.02, 7);
+  steady_state_t r;
+  steady_state_analyse(x, 1500, &r);
+  const double exact = 0.02 / (1 - 0.98) / sqrt((double)(1500 - r.start));
+  printf("lucky window: phi 0.98, 1500 samples: tau_int %.1f, n_eff %.1f, err %.3g (exact %.3g)\n",
+         r.tau_int, r.n_eff, r.avg.err, exact);
+  CHECK(!steady_state_converged(&r, 1.0), "15 independent samples: converged");
+  CHECK(r.avg.err > 0.7 * exact, "error %g below 0.7 x the exact %g", r.avg.err, exact);
+  /* a ramp over the first 2000 samples, then white noise: converged only once the steady part
+   * is 3x the transient */
+  for (long i = 0; i < n; i++) x[i] = 0;
+  uint64_t seed = 11;
+  for (long i = 0; i < n; i++)
+    x[i] = (i < 2000 ? 5.0 * (2000 - i) / 2000.0 : 0.0) + 1.0 + 0.05 * gauss(&seed);
+  steady_state_analyse(x, 6000, &r);
+  printf("lucky window: ramp 2000 + 4000 steady: start %ld, window %ld\n", r.start, r.n - r.start);
+  CHECK(r.start >= 1000 && !steady_state_converged(&r, 0.5),
+        "window %ld after a transient of %ld: converged", r.n - r.start, r.start);
+  steady_state_analyse(x, n, &r);
+  CHECK(steady_state_converged(&r, 0.01),
+        "window %ld after a transient of %ld: not converged (rel %g)", r.n - r.start, r.start,
+        r.rel_err);
+  free(x);
+  return 0;
+}
+
 int main(void) {
-  int fails = white_noise() + correlated_noise() + transient() + convergence();
+  int fails = white_noise() + correlated_noise() + transient() + convergence() + lucky_window();
   printf(fails ? "FAILED\n" : "ok\n");
   return fails ? 1 : 0;
 }
