@@ -13,6 +13,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "common/units.h"
+
 #define CAMP_MAX_GRADIENTS 64
 #define CAMP_MAX_RUNS (3 * CAMP_MAX_GRADIENTS)
 #define CAMP_PATH 4096
@@ -43,7 +45,8 @@ typedef struct {
   double voxel_size_m;         /* --voxel-size (m per voxel; 0 = from the image or the mapping) */
   double viscosity;            /* mu of the fluid in reduced units */
   int viscosity_given;
-  double temperature_K; /* units: kT of the reduced units */
+  double temperature_K;  /* units: kT of the reduced units */
+  int temperature_given; /* --temperature was given (it wins over a scene's units block) */
   long long seed;
   int flux_every;
   char mpiexec[512];        /* the launcher and its flags, split on spaces */
@@ -85,6 +88,8 @@ typedef struct {
   double length_unit_m; /* metres per rc */
   char length_source[256];
   double temperature_K;
+  double energy_J;         /* J per reduced energy unit (NAN: kB temperature_K; a scene's units) */
+  double particle_mass_kg; /* kg per reduced mass (NAN: rho_water / n; a scene's units block) */
   double target_error;
   int np;
   int drive;        /* CAMP_DRIVE_* */
@@ -156,13 +161,12 @@ double camp_now(void);
 void camp_progress_start(camp_progress *p, int total);
 void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds);
 
-/* campaign_units.c: the reduced -> SI mapping. */
-typedef struct {
-  double rc_m, kT_J, mass_kg, tau_s;
-  double G_Pa_per_m, q_m_per_s, mu_Pa_s, k_m2;
-  double n_molecules; /* water molecules per particle (coarse-graining level) */
-} camp_units;
+/* campaign_units.c: the reduced -> SI mapping (the factors: common/units.h). camp_units_make: the
+ * campaign's default mapping (kT = kB T, m = rho_water / n); camp_units_of: a campaign's own,
+ * with a scene's units block (energy_J, particle_mass_kg) where it set them. */
+typedef units_si_t camp_units;
 void camp_units_make(double rc_m, double n, double temperature_K, camp_units *u);
+void camp_units_of(const campaign *c, camp_units *u);
 
 /* campaign_collect.c: tables, fits, report. 0 or -1. */
 int camp_collect(const camp_opts *o, campaign *c, const char *workdir);

@@ -188,6 +188,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       o->viscosity_given = 1;
     } else if (!strcmp(s, "--temperature")) {
       if (parse_double(s, v, 0, HUGE_VAL, "a temperature in K > 0", &o->temperature_K)) return -1;
+      o->temperature_given = 1;
     } else if (!strcmp(s, "--seed")) {
       if (parse_ll(s, v, 0, "a seed >= 0", &o->seed)) return -1;
     } else if (!strcmp(s, "--flux-every")) {

@@ -18,7 +18,7 @@
 #define MDPORE_PYTHON_EXE "python3"
 #endif
 
-#define NANODARCY_PER_M2 (1e9 / 9.869233e-13)
+#define NANODARCY_PER_M2 UNITS_NANODARCY_PER_M2
 
 typedef struct {
   int fitted; /* the fit JSON was read */
@@ -305,8 +305,11 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
   json_number(&j, "q_m_per_s", u->q_m_per_s);
   json_number(&j, "viscosity_Pa_s", u->mu_Pa_s);
   json_string(&j, "mapping",
-              "dimensional: kT = kB T, m = rho_water / n, tau = rc sqrt(m / kT); "
-              "not viscosity-matched");
+              c->particle_mass_kg > 0 || c->energy_J > 0
+                  ? "dimensional, from the scene's units block: tau = rc sqrt(m / kT); "
+                    "not viscosity-matched"
+                  : "dimensional: kT = kB T, m = rho_water / n, tau = rc sqrt(m / kT); "
+                    "not viscosity-matched");
   json_object_end(&j);
   json_object(&j, "axes");
   for (int a = 0; a < n_axes; a++) {
@@ -338,11 +341,15 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
 
 int camp_collect(const camp_opts *o, campaign *c, const char *workdir) {
   camp_units u;
-  camp_units_make(c->length_unit_m, c->fluid_density, c->temperature_K, &u);
+  camp_units_of(c, &u);
   printf("units: rc = %.4g m (%s)\n", u.rc_m, c->length_source);
-  printf("  kT = kB x %.2f K; particle mass m = rho_water / n = %.4g kg (%.3g water molecules); "
-         "tau = rc sqrt(m/kT) = %.4g s\n",
-         c->temperature_K, u.mass_kg, u.n_molecules, u.tau_s);
+  if (c->energy_J > 0)
+    printf("  energy unit %.4g J (the scene's units block); ", u.kT_J);
+  else
+    printf("  kT = kB x %.2f K; ", c->temperature_K);
+  printf("particle mass m = %s = %.4g kg (%.3g water molecules); tau = rc sqrt(m/kT) = %.4g s\n",
+         c->particle_mass_kg > 0 ? "the scene's units block" : "rho_water / n", u.mass_kg,
+         u.n_molecules, u.tau_s);
   printf("  G: 1 = %.4g Pa/m; q: 1 = %.4g m/s; k: 1 rc^2 = %.4g m^2 = %.4g nD; mu = %g -> %.3g "
          "Pa s (real water 8.9e-4 Pa s: the dimensional mapping, not viscosity-matched; k needs "
          "only rc)\n",

@@ -112,6 +112,8 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   fprintf(f, "length_unit_m: %.17g\nlength_source: %s\n", c->length_unit_m, c->length_source);
   fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
           c->target_error, c->np);
+  if (c->energy_J > 0) fprintf(f, "energy_J: %.17g\n", c->energy_J);
+  if (c->particle_mass_kg > 0) fprintf(f, "particle_mass_kg: %.17g\n", c->particle_mass_kg);
   fprintf(f, "drive: %s\nreservoir: %.17g\n", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body",
           c->reservoir);
   for (int i = 0; i < c->n_runs; i++)
@@ -197,11 +199,17 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       struct {
         const char *key;
         double *to;
-      } nums[] = {{"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
-                  {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
-                  {"viscosity", &c->viscosity},         {"length_unit_m", &c->length_unit_m},
-                  {"temperature_K", &c->temperature_K}, {"target_error", &c->target_error},
-                  {"reservoir", &c->reservoir}};
+      } nums[] = {{"porosity", &c->porosity},
+                  {"rc_per_voxel", &c->rc_per_voxel},
+                  {"h_hydraulic", &c->h_hydraulic},
+                  {"fluid_density", &c->fluid_density},
+                  {"viscosity", &c->viscosity},
+                  {"length_unit_m", &c->length_unit_m},
+                  {"temperature_K", &c->temperature_K},
+                  {"target_error", &c->target_error},
+                  {"reservoir", &c->reservoir},
+                  {"energy_J", &c->energy_J},
+                  {"particle_mass_kg", &c->particle_mass_kg}};
       for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
         if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
       if (!strcmp(k, "np")) {

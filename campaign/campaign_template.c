@@ -10,6 +10,7 @@
 
 #include "campaign.h"
 #include "common/atomic_file.h"
+#include "common/units_block.h"
 #include "common/yaml_tree.h"
 #include "mdpore_image.h"
 
@@ -115,7 +116,87 @@ static int write_image_template(const camp_opts *o, const mdp_image_t *img, cons
   return atomic_commit(f, tmp, path);
 }
 
-/* A scene template: its geometry (image, rc_per_voxel, fluid density, labels), if any. */
+/* The scene's fluid density as mdpore run's units block finds it (meso/scene/scene_units.c):
+ * geometry.fluid_density, else output.flux.density, else the first fill of a species that is not
+ * frozen. NAN when none. */
+static double scene_fluid_density(ytree_t *t, yaml_node_t *root, char *source, int len) {
+  yaml_node_t *g = yt_get(t, root, "geometry"), *n, *out, *flux, *init, *fill, *species;
+  double v;
+  if (g && g->type == YAML_MAPPING_NODE) {
+    snprintf(source, len, "geometry.fluid_density");
+    n = yt_get(t, g, "fluid_density");
+    return n && !yt_double(t, n, "geometry.fluid_density", &v) ? v : DEFAULT_FLUID_DENSITY;
+  }
+  if ((out = yt_get(t, root, "output")) && out->type == YAML_MAPPING_NODE &&
+      (flux = yt_get(t, out, "flux")) && flux->type == YAML_MAPPING_NODE &&
+      (n = yt_get(t, flux, "density")) && !yt_double(t, n, "output.flux.density", &v)) {
+    snprintf(source, len, "output.flux.density");
+    return v;
+  }
+  if (!(init = yt_get(t, root, "initial")) || init->type != YAML_MAPPING_NODE ||
+      !(fill = yt_get(t, init, "fill")) || fill->type != YAML_SEQUENCE_NODE)
+    return NAN;
+  species = yt_get(t, root, "species");
+  for (int k = 0; k < yt_seq_size(fill); k++) {
+    yaml_node_t *f = yt_seq_item(t, fill, k), *sp, *d;
+    char name[128];
+    if (!f || f->type != YAML_MAPPING_NODE || !(sp = yt_get(t, f, "species")) ||
+        yt_string(t, sp, "initial.fill.species", name, sizeof name))
+      continue;
+    int frozen = 0; /* the species' frozen flag */
+    for (int i = 0; species && species->type == YAML_SEQUENCE_NODE && i < yt_seq_size(species);
+         i++) {
+      yaml_node_t *e = yt_seq_item(t, species, i), *nm, *fr;
+      char other[128];
+      if (e && e->type == YAML_MAPPING_NODE && (nm = yt_get(t, e, "name")) &&
+          !yt_string(t, nm, "species.name", other, sizeof other) && !strcmp(other, name) &&
+          (fr = yt_get(t, e, "frozen")))
+        yt_bool(t, fr, "species.frozen", &frozen);
+    }
+    if (!frozen && (d = yt_get(t, f, "density")) && !yt_double(t, d, "initial.fill.density", &v)) {
+      snprintf(source, len, "initial.fill[%d].density", k);
+      return v;
+    }
+  }
+  return NAN;
+}
+
+/* A scene's `units:` block (common/units_block.h, as mdpore run reads it): the length, energy and
+ * mass units of the campaign, except those the command line gives (--voxel-size, --temperature
+ * win). 0 (also without a block) or -1 after the block's error message. */
+static int scene_units(const camp_opts *o, ytree_t *t, yaml_node_t *root, campaign *c) {
+  yaml_node_t *b = yt_get(t, root, "units"), *n;
+  if (!b) return 0;
+  units_context_t ctx;
+  units_context_init(&ctx);
+  if ((n = yt_get(t, root, "kT")) && yt_double(t, n, "kT", &ctx.kT)) return -1;
+  ctx.rc_per_voxel = c->rc_per_voxel;
+  ctx.density = scene_fluid_density(t, root, ctx.density_source, sizeof ctx.density_source);
+  units_mapping_t m;
+  if (units_block_read(t, b, "units", &ctx, &m)) return -1;
+  if (!(o->voxel_size_m > 0)) {
+    c->length_unit_m = m.si.rc_m;
+    snprintf(c->length_source, sizeof c->length_source, "the scene's units block: %.200s",
+             m.length_source);
+  }
+  if (!o->temperature_given) { /* kB T, or the block's energy unit (also kB T / kT at kT != 1) */
+    c->temperature_K = m.temperature_K;
+    if (m.energy_given || ctx.kT != 1.0) c->energy_J = m.si.kT_J;
+  }
+  /* The block's mass (its own, from tau, N_m m_water or the water of a particle's volume at the
+   * block's density); for a length the command line changed, only a mass or tau the block gave. */
+  if (!(o->voxel_size_m > 0) || m.mass_given || m.tau_given) c->particle_mass_kg = m.si.mass_kg;
+  if (o->voxel_size_m > 0 || o->temperature_given)
+    fprintf(stderr, "mdpore permeability: note: %s%s%s %s over the scene's units block (%s)\n",
+            o->voxel_size_m > 0 ? "--voxel-size" : "",
+            o->voxel_size_m > 0 && o->temperature_given ? " and " : "",
+            o->temperature_given ? "--temperature" : "",
+            o->voxel_size_m > 0 && o->temperature_given ? "win" : "wins", o->input);
+  return 0;
+}
+
+/* A scene template: its geometry (image, rc_per_voxel, fluid density, labels), if any, and its
+ * units block. */
 static int scene_meta(const camp_opts *o, campaign *c) {
   ytree_t t;
   if (yt_load(&t, o->input, 0)) return -1;
@@ -123,7 +204,7 @@ static int scene_meta(const camp_opts *o, campaign *c) {
   yaml_node_t *root = yt_root(&t), *g, *n;
   if (!root || yt_expect_map(&t, root, "")) goto out;
   if (!(g = yt_get(&t, root, "geometry"))) {
-    rc = 0;
+    rc = scene_units(o, &t, root, c);
     goto out;
   }
   if (yt_expect_map(&t, g, "geometry")) goto out;
@@ -159,7 +240,7 @@ static int scene_meta(const camp_opts *o, campaign *c) {
   mdp_image_t img;
   if (image_meta(path, labels, a, o, c, &img)) goto out;
   mdp_image_free(&img);
-  rc = 0;
+  rc = scene_units(o, &t, root, c);
 out:
   yt_free(&t);
   return rc;
@@ -215,6 +296,7 @@ int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int
                               : "mDPD A=-40 B=25 gamma=4.5 rd=0.75 at n=6.07 "
                                 "(validation/engine/viscosity.py, reverse Poiseuille)");
   c->temperature_K = o->temperature_K;
+  c->energy_J = c->particle_mass_kg = NAN;
   c->target_error = o->target_error;
   c->np = o->np;
   c->drive = o->drive;

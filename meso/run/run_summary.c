@@ -66,8 +66,8 @@ static void pressure_drop_json(FILE *fp, const run_flux_t *f) {
               "flux's steady-state start, block errors\"},\n");
 }
 
-/* The flux lines of the human summary. */
-static void flux_text(FILE *out, const run_flux_t *f) {
+/* The flux lines of the human summary; with a `units:` block also q and G in SI. */
+static void flux_text(FILE *out, const run_flux_t *f, const scene_t *s) {
   const steady_state_t *r = &f->result;
   const char ax = "xyz"[f->def.axis];
   fprintf(out,
@@ -75,6 +75,14 @@ static void flux_text(FILE *out, const run_flux_t *f) {
           "%.6g = whole cross-section), G = %.6g (%s)\n",
           ax, r->avg.mean, r->avg.err, f->def.area, flux_G(f),
           flux_gradient_source_name(f->def.gradient_source));
+  if (s->units.on) {
+    const units_si_t *u = &s->units.si;
+    fprintf(
+        out,
+        "  in SI: q = %.6g +- %.2g m/s, G = %.6g Pa/m (q x %.4g m/s, G x %.4g Pa/m; units below)\n",
+        r->avg.mean * u->q_m_per_s, r->avg.err * u->q_m_per_s, flux_G(f) * u->G_Pa_per_m,
+        u->q_m_per_s, u->G_Pa_per_m);
+  }
   if (f->pd.on) {
     const pressure_drop_result_t *p = &f->pd_result;
     fprintf(out,
@@ -116,6 +124,20 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
     json_num(fp, f->pd_result.G_err);
   }
   fprintf(fp, ", \"G_source\": \"%s\",\n", flux_gradient_source_name(f->def.gradient_source));
+  if (s->units.on) { /* the same numbers in SI (the top-level "units" object: the factors) */
+    const units_si_t *u = &s->units.si;
+    fprintf(fp, "    \"q_m_per_s\": ");
+    json_num(fp, r->avg.mean * u->q_m_per_s);
+    fprintf(fp, ", \"q_err_m_per_s\": ");
+    json_num(fp, r->avg.err * u->q_m_per_s);
+    fprintf(fp, ", \"G_Pa_per_m\": ");
+    json_num(fp, flux_G(f) * u->G_Pa_per_m);
+    if (f->pd.on) {
+      fprintf(fp, ", \"G_err_Pa_per_m\": ");
+      json_num(fp, f->pd_result.G_err * u->G_Pa_per_m);
+    }
+    fprintf(fp, ",\n");
+  }
   if (f->pd.on) pressure_drop_json(fp, f);
   fprintf(fp, "    \"area_total\": %.10g, \"length\": %.10g, \"fluid_fraction\": %.10g, ",
           f->def.area, f->def.length, f->def.fluid_fraction);
@@ -148,6 +170,42 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
           "cross-section normal to the axis (solid included); Q = (1/L) sum_s sum_i v_i / n_s; G "
           "= -dp/dx\"},\n",
           flux_method);
+}
+
+/* The `units:` block: the mapping stated, one line. */
+static void units_text(FILE *out, const scene_t *s) {
+  char text[1536];
+  units_mapping_describe(&s->units, text, sizeof text);
+  const units_si_t *u = &s->units.si;
+  fprintf(out,
+          "units: %s. 1 reduced unit: q %.4g m/s, G %.4g Pa/m, p %.4g Pa, k %.4g m^2 = %.4g nD\n",
+          text, u->q_m_per_s, u->G_Pa_per_m, u->p_Pa, u->k_m2, u->k_nD);
+}
+
+/* The summary's "units" object: the mapping and the SI value of one reduced unit of each
+ * quantity (common/units.h). */
+static void units_json(FILE *fp, const scene_t *s) {
+  const units_mapping_t *m = &s->units;
+  const units_si_t *u = &m->si;
+  char text[1536];
+  units_mapping_describe(m, text, sizeof text);
+  fprintf(fp, "  \"units\": {\"mapping\": \"%s\", \"rc_m\": %.10g, \"tau_s\": %.10g, ",
+          m->mapping == UNITS_MAPPING_WATER ? "water" : "own", u->rc_m, u->tau_s);
+  fprintf(fp, "\"mass_kg\": %.10g, \"energy_J\": %.10g, \"temperature_K\": ", u->mass_kg, u->kT_J);
+  json_num(fp, m->temperature_K);
+  fprintf(fp, ", \"coarse_graining\": ");
+  json_num(fp, m->coarse_graining);
+  fprintf(fp, ", \"water_molecules_per_particle\": %.10g, \"density\": ", u->n_molecules);
+  json_num(fp, m->density);
+  fprintf(fp, ", \"density_source\": \"%s\",\n    \"length_source\": \"%s\",\n", m->density_source,
+          m->length_source);
+  fprintf(fp,
+          "    \"factors\": {\"length_m\": %.10g, \"time_s\": %.10g, \"velocity_m_per_s\": "
+          "%.10g, \"pressure_Pa\": %.10g, \"pressure_gradient_Pa_per_m\": %.10g, "
+          "\"viscosity_Pa_s\": %.10g, \"permeability_m2\": %.10g, \"permeability_nD\": "
+          "%.10g},\n",
+          u->rc_m, u->tau_s, u->q_m_per_s, u->p_Pa, u->G_Pa_per_m, u->mu_Pa_s, u->k_m2, u->k_nD);
+  fprintf(fp, "    \"viscosity_matched\": false, \"statement\": \"%s\"},\n", text);
 }
 
 /* The load balance of a several-rank run (engine/sim_balance.h). */
@@ -248,7 +306,8 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
         "once, deepest %.3g rc)%s\n",
         st->penetration_bad_samples, st->penetration_samples, st->penetration_max,
         st->penetration_depth, st->penetration_bad_samples ? "  <-- NOT ZERO" : "");
-  if (flux) flux_text(out, flux);
+  if (flux) flux_text(out, flux, s);
+  if (s->units.on) units_text(out, s);
   if (st->nranks > 1) balance_text(out, st, s);
   fprintf(out, "performance: %.2f M particle-steps/s (%.2f s in the step loop, %.2f s total)\n",
           pss / 1e6, st->loop_seconds, st->total_seconds);
@@ -302,6 +361,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
             st->penetration_samples, st->penetration_bad_samples, st->penetration_max,
             st->penetration_depth);
   if (flux) flux_json(fp, flux, s);
+  if (s->units.on) units_json(fp, s);
   if (st->nranks > 1) balance_json(fp, st, s);
   fprintf(fp,
           "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "

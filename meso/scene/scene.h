@@ -4,6 +4,7 @@
 #ifndef MESO_SCENE_SCENE_H
 #define MESO_SCENE_SCENE_H
 
+#include "common/units.h"
 #include "physics/hd.h"
 
 #include <stddef.h>
@@ -179,6 +180,7 @@ typedef struct {
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
   scene_guard_t guard;               /* guardrails (scene/scene_guard.h)                 */
   scene_balance_t balance;           /* cuts between ranks (scene/scene_balance.h)       */
+  units_mapping_t units;             /* reduced -> SI, outputs only (scene/scene_units.h) */
   int progress;                      /* progress + ETA on stderr (default 1)             */
   char summary_path[SCENE_PATH_LEN]; /* final summary JSON (default "summary.json")   */
   int backend; /* enum scene_backend: where the engine runs; set by mdpore run/forces --backend,

@@ -8,6 +8,7 @@
 #include "scene/scene_geometry.h"
 #include "scene/scene_balance.h"
 #include "scene/scene_guard.h"
+#include "scene/scene_units.h"
 
 #include <stdarg.h>
 
@@ -669,9 +670,9 @@ static void set_defaults(scene_t *s) {
 
 static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   yaml_node_t *root = yt_root(t), *v;
-  static const char *const keys[] = {"name",   "box",     "species",  "pairs",   "density_kernel",
-                                     "kT",     "effects", "geometry", "initial", "run",
-                                     "output", "restart", "guard",    "balance", NULL};
+  static const char *const keys[] = {
+      "name",    "box", "species", "pairs",   "density_kernel", "kT",      "effects", "geometry",
+      "initial", "run", "output",  "restart", "guard",          "balance", "units",   NULL};
   TRY(yt_check_keys(t, root, "", keys));
   if ((v = yt_get(t, root, "name")))
     TRY(yt_string(t, v, "name", s->name, SCENE_NAME_LEN));
@@ -732,6 +733,7 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));
   if ((v = yt_get(t, root, "guard"))) TRY(scene_parse_guard(t, v, s));
   if ((v = yt_get(t, root, "balance"))) TRY(scene_parse_balance(t, v, s));
+  if ((v = yt_get(t, root, "units"))) TRY(scene_parse_units(t, v, s));
   if (s->target_error > 0 && s->flux.every == 0)
     return yt_error(t, node_at(t, "run.target_error"), "run.target_error",
                     "expected output.flux as well: the target is the relative error of the flux q "
