@@ -170,7 +170,7 @@ def main():
         print(f"{name:12s} {t['particle_steps_per_second'] / 1e6:8.3f} M particle-steps/s "
               f"(all {t['particles']} particles), loop {t['loop_seconds']:.2f} s; imbalance busy "
               f"{busy if busy is None else f'{busy:.3f}'}, weight {lb['imbalance_weight']:.3f}; "
-              f"rebalances {lb['rebalances']}")
+              f"rebalances {lb['rebalances']}; busy fraction {lb.get('busy_fraction', 0):.2f}")
         for line in log.splitlines():
             if "load balancing" in line or "cuts moved" in line:
                 print("    " + line.strip())

@@ -231,3 +231,10 @@ void sim_imbalance(sim_t *sim, double *busy, double *busy_run, double *weight) {
   *busy = on ? max_over_mean(st->dc.cart, st->dc.nranks, st->busy_seconds) : 0;
   *busy_run = on ? max_over_mean(st->dc.cart, st->dc.nranks, st->busy_total) : 0;
 }
+
+double sim_busy_mean(sim_t *sim) {
+  sim_state_t *st = &sim->st;
+  double sum = sim_busy_measured(sim) ? st->busy_total : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, st->dc.cart);
+  return sum / st->dc.nranks;
+}

@@ -43,5 +43,8 @@ int sim_busy_measured(const sim_t *sim);
 /* Collective: max / mean over the ranks of the busy seconds since the last reset (busy), of those
  * since the first set-up (busy_run; 0 when not measured) and of the particle weight. */
 void sim_imbalance(sim_t *sim, double *busy, double *busy_run, double *weight);
+/* Collective: the mean over the ranks of the busy seconds since the first set-up (0 when not
+ * measured). */
+double sim_busy_mean(sim_t *sim);
 
 #endif

@@ -49,6 +49,7 @@ int run_balance_step(run_balance_t *rb, sim_t *sim, long step, long last, int ra
 void run_balance_finish(const run_balance_t *rb, sim_t *sim, run_stats_t *st) {
   sim_imbalance(sim, &st->imbalance_busy, &st->imbalance_busy_run, &st->imbalance_weight);
   st->frozen_weight = sim_frozen_weight(sim);
+  st->busy_mean_seconds = sim_busy_mean(sim);
   st->imbalance_weight_uniform = rb->weight_uniform;
   st->balance_seconds = rb->seconds;
   st->rebalances = rb->rebalances;

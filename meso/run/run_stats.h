@@ -43,6 +43,7 @@ typedef struct {
    * the weight imbalance before the first cut placement by cost; rebalancings and their time. */
   double imbalance_busy, imbalance_busy_run, imbalance_weight, imbalance_weight_uniform;
   double balance_seconds, frozen_weight; /* the frozen weight in use at the end (fitted or set) */
+  double busy_mean_seconds;              /* mean over the ranks of the busy seconds of the run */
   long rebalances;
   /* output.flux: its series and final analysis (run/run_flux.h; NULL or off: none). */
   const struct run_flux *flux;

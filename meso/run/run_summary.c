@@ -221,6 +221,9 @@ static void balance_text(FILE *out, const run_stats_t *st, const scene_t *s) {
             st->imbalance_busy_run);
   else if (st->imbalance_busy > 0)
     fprintf(out, "busy time %.3f", st->imbalance_busy);
+  if (st->imbalance_busy > 0 && st->loop_seconds > 0)
+    fprintf(out, " (busy: %.0f%% of the step loop on the mean rank)",
+            100.0 * st->busy_mean_seconds / st->loop_seconds);
   else
     fprintf(out, "busy time not measured (GPU backend)");
   if (s->balance.every > 0)
@@ -237,6 +240,9 @@ static void balance_json(FILE *fp, const run_stats_t *st, const scene_t *s) {
     fprintf(fp, "%.6g, \"imbalance_busy_run\": %.6g", st->imbalance_busy, st->imbalance_busy_run);
   else
     fprintf(fp, "null, \"imbalance_busy_run\": null");
+  fprintf(fp, ", \"busy_fraction\": %.6g",
+          st->loop_seconds > 0 && st->imbalance_busy > 0 ? st->busy_mean_seconds / st->loop_seconds
+                                                         : 0.0);
   fprintf(fp, ", \"frozen_weight\": %.6g, \"rebalances\": %ld, \"balance_seconds\": %.6g},\n",
           st->frozen_weight, st->rebalances, st->balance_seconds);
 }
