@@ -3,6 +3,7 @@
 #include "flowdata/flow_table.h"
 
 #include "flowdata/flow_table_format.h"
+#include "common/text.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -25,13 +26,6 @@ int flow_table_fail(char *err, int errlen, const char *fmt, ...) {
   return -1;
 }
 
-static char *trim(char *s) {
-  while (isspace((unsigned char)*s)) s++;
-  char *e = s + strlen(s);
-  while (e > s && isspace((unsigned char)e[-1])) *--e = 0;
-  return s;
-}
-
 /* Parses a whole field as a finite double. */
 static int parse_number(const char *s, double *v) {
   if (!*s) return -1;
@@ -49,7 +43,7 @@ static int split(char *line, char **fields, int max) {
   for (;;) {
     char *c = strchr(p, ',');
     if (c) *c = 0;
-    if (n < max) fields[n] = trim(p);
+    if (n < max) fields[n] = text_trim(p);
     n++;
     if (!c) break;
     p = c + 1;
@@ -84,7 +78,7 @@ static int metadata_key(const char *text) {
  * which is kept in t->comments), -1 on a bad value, a repeated metadata key, or when out of memory.
  * seen[0..3] (text keys) and seen[4..7] (numeric keys) hold the line of each key, 0 if not seen. */
 static int header_line(flow_table *t, char *text, int lineno, int *seen, char *err, int errlen) {
-  text = trim(text);
+  text = text_trim(text);
   if (!strcmp(text, FLOW_TABLE_FORMAT_LINE)) return 0;
   char whole[FLOW_TABLE_MAX_LINE]; /* the comment as written, kept if it is not metadata */
   snprintf(whole, sizeof whole, "%s", text);
@@ -92,7 +86,7 @@ static int header_line(flow_table *t, char *text, int lineno, int *seen, char *e
   char *key = text, *val = NULL;
   if (colon) {
     *colon = 0;
-    key = trim(text), val = trim(colon + 1);
+    key = text_trim(text), val = text_trim(colon + 1);
   }
   for (int i = 0; i < 4 && colon; i++) {
     if (strcmp(key, flow_table_text_keys[i])) continue;
@@ -210,7 +204,7 @@ int flow_table_read(const char *path, flow_table *t, char *err, int errlen) {
                            (int)sizeof buf);
       break;
     }
-    char *line = trim(buf);
+    char *line = text_trim(buf);
     if (!*line) continue;
     if (*line == '#') {
       if (have_header) { /* comments between rows are allowed, metadata is not */

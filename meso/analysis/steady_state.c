@@ -5,6 +5,21 @@
 #include <math.h>
 #include <stdlib.h>
 
+/* The means of k batches of b samples of x (malloc'd; NULL without memory) and their mean. */
+static double *batch_means(const double *x, long k, long b, double *mean) {
+  double *z = malloc((size_t)k * sizeof *z);
+  if (!z) return NULL;
+  double sum = 0;
+  for (long j = 0; j < k; j++) {
+    double m = 0;
+    for (long i = 0; i < b; i++) m += x[j * b + i];
+    z[j] = m / b;
+    sum += z[j];
+  }
+  *mean = sum / (double)k;
+  return z;
+}
+
 long mser_truncation(const double *x, long n, int batch, int *steady) {
   *steady = 0;
   if (batch < 1) batch = 1;
@@ -12,16 +27,9 @@ long mser_truncation(const double *x, long n, int batch, int *steady) {
   if (k < 2) return 0;
   /* Batch means, centred on their overall mean (keeps the running sums well conditioned). Samples
    * past the last full batch are left out of the statistic, as MSER-m does. */
-  double *z = malloc((size_t)k * sizeof *z);
+  double c;
+  double *z = batch_means(x, k, batch, &c);
   if (!z) return 0;
-  double c = 0;
-  for (long j = 0; j < k; j++) {
-    double m = 0;
-    for (long i = 0; i < batch; i++) m += x[j * batch + i];
-    z[j] = m / batch;
-    c += z[j];
-  }
-  c /= (double)k;
   /* Suffix sums from the end: s1 = sum z, s2 = sum z^2 over batches d..k-1. */
   double s1 = 0, s2 = 0, best = INFINITY;
   long best_d = 0;
@@ -54,16 +62,9 @@ static double batch_tau(const double *x, long n, long *batch, long *k_out, doubl
   *k_out = k;
   *var_z = 0;
   if (k < 4) return 0.5;
-  double *z = malloc((size_t)k * sizeof *z);
+  double mean;
+  double *z = batch_means(x, k, b, &mean);
   if (!z) return INFINITY;
-  double mean = 0;
-  for (long j = 0; j < k; j++) {
-    double m = 0;
-    for (long i = 0; i < b; i++) m += x[j * b + i];
-    z[j] = m / b;
-    mean += z[j];
-  }
-  mean /= (double)k;
   double c0 = 0;
   for (long j = 0; j < k; j++) c0 += (z[j] - mean) * (z[j] - mean);
   double tau = 0.5; /* tau_int = 1/2 + sum_{t=1..M} rho(t), window M >= 6 tau (Sokal) */

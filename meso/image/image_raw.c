@@ -1,6 +1,7 @@
 /* Raw binary images: user-given layout or a sidecar header (PATH.hdr, "key: value" lines). */
 #include "image_internal.h"
 #include "mdpore_image.h"
+#include "common/text.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -8,13 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-
-static char *trim(char *s) {
-  while (isspace((unsigned char)*s)) s++;
-  char *e = s + strlen(s);
-  while (e > s && isspace((unsigned char)e[-1])) *--e = 0;
-  return s;
-}
 
 int mdp_image_read_sidecar(const char *path, mdp_image_read_opts_t *o, char *err) {
   FILE *f = fopen(path, "r");
@@ -28,7 +22,7 @@ int mdp_image_read_sidecar(const char *path, mdp_image_read_opts_t *o, char *err
     lineno++;
     char *hash = strchr(line, '#');
     if (hash) *hash = 0;
-    char *s = trim(line);
+    char *s = text_trim(line);
     if (!*s) continue;
     char *sep = strpbrk(s, ":=");
     if (!sep) {
@@ -37,7 +31,7 @@ int mdp_image_read_sidecar(const char *path, mdp_image_read_opts_t *o, char *err
       break;
     }
     *sep = 0;
-    char *key = trim(s), *val = trim(sep + 1);
+    char *key = text_trim(s), *val = text_trim(sep + 1);
     int bad = 0;
     if (!strcmp(key, "dims")) {
       int d[3];

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "common/yaml_tree.h"
+#include "common/text.h"
 
 void slip_points_init(slip_points *ps, int shape) {
   memset(ps, 0, sizeof *ps);
@@ -52,19 +53,12 @@ static int use_shape(slip_points *ps, const char *name, const char *where, char 
   return 0;
 }
 
-static char *trim(char *s) {
-  while (isspace((unsigned char)*s)) s++;
-  char *e = s + strlen(s);
-  while (e > s && isspace((unsigned char)e[-1])) *--e = 0;
-  return s;
-}
-
 /* A whole field as a double (nan and inf parse, and are refused later as non-finite). */
 static int parse_number(const char *s, double *v) {
   char *end;
   if (!*s) return -1;
   *v = strtod(s, &end);
-  return *trim(end) ? -1 : 0;
+  return *text_trim(end) ? -1 : 0;
 }
 
 enum { COL_H, COL_K, COL_KERR, COL_SHAPE, COL_POROSITY, NCOL };
@@ -77,7 +71,7 @@ static int split(char *line, char **f) {
   for (char *tok = line;; n++) {
     char *c = strchr(tok, ',');
     if (c) *c = 0;
-    if (n < MAX_FIELDS) f[n] = trim(tok);
+    if (n < MAX_FIELDS) f[n] = text_trim(tok);
     if (!c) return n + 1;
     tok = c + 1;
   }
@@ -89,7 +83,7 @@ static int read_csv(slip_points *ps, FILE *fp, const char *path, char *err, int 
   for (int c = 0; c < NCOL; c++) col[c] = -1;
   while (fgets(line, sizeof line, fp)) {
     lineno++;
-    char *s = trim(line);
+    char *s = text_trim(line);
     if (!*s || *s == '#') continue;
     const int nf = split(s, f);
     if (nf > MAX_FIELDS) {

@@ -1,0 +1,9 @@
+/* Small text helpers shared by the line-oriented readers (raw-image sidecars, flow tables, the slip
+ * fit's CSV). */
+#ifndef MDPORE_COMMON_TEXT_H
+#define MDPORE_COMMON_TEXT_H
+
+/* s without its leading and trailing white space (trailing space cut in place). */
+char *text_trim(char *s);
+
+#endif
