@@ -48,15 +48,26 @@ def main():
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--case", action="append", choices=list(CASES))
     ap.add_argument("--gscale", type=float, default=1.0, help="scale the body force (shear-rate check)")
+    ap.add_argument("--rho", type=float, help="mdpd only: measure at this density instead of 6.07 (the fluid of "
+                                              "image campaigns fills pores at 6.2); no reference there, so the "
+                                              "value is reported, not checked")
     args = ap.parse_args()
     production, tol, Ly, gscale = (3000, 0.08, 10.0, 4.0) if args.quick else (15000, 0.02, 20.0, 1.0)
     Lx, Lz, dt = 10.0, 10.0, 0.01
     out = mdval.out_dir("viscosity" + ("_quick" if args.quick else "") +
-                        (f"_g{args.gscale:g}" if args.gscale != 1.0 else ""))
+                        (f"_g{args.gscale:g}" if args.gscale != 1.0 else "") +
+                        (f"_rho{args.rho:g}" if args.rho else ""))
+    if args.rho and (args.case or ["mdpd"]) != ["mdpd"]:
+        sys.exit("viscosity.py: --rho applies to --case mdpd only")
+    if args.rho:
+        args.case = ["mdpd"]
     rows, ok, curves = [], True, {}
     for name in (args.case or list(CASES)):
         c = dict(CASES[name])
         c["g"] *= gscale * args.gscale
+        checked = not args.rho
+        if args.rho:
+            c["rho"] = args.rho
         tau = (Ly / (2 * np.pi)) ** 2 / (c["eta"] / c["rho"])
         equil = int(np.ceil(6 * tau / dt / 100.0)) * 100
         steps = equil + production
@@ -73,12 +84,12 @@ def main():
         n = float(np.mean(mdval.column(prof, "density", "density_liquid", "n_liquid", "rho")))
         mu, dmu, chi2, model = fit_viscosity(y, u, du, n, c["g"], Ly)
         curves[name] = (y, u, du, model)
-        passed = abs(mu - c["eta"]) <= tol * c["eta"]
+        passed = abs(mu - c["eta"]) <= tol * c["eta"] or not checked
         ok &= passed
         N = int(round(c["rho"] * Lx * Ly * Lz))
         rows.append([name, c["rho"], N, steps, c["g"], round(n, 4), round(mu, 4), round(dmu, 4), c["eta"],
                      f"{100 * (mu - c['eta']) / c['eta']:+.2f}%", round(chi2, 2), round(float(np.max(np.abs(u))), 3),
-                     round(wall, 1), "pass" if passed else "FAIL"])
+                     round(wall, 1), ("pass" if passed else "FAIL") if checked else "measured (no reference)"])
     mdval.write_report(out, "viscosity",
                        ["case", "rho", "N", "steps", "g", "n_measured", "eta", "err", "eta_ref", "dev", "chi2/dof", "u_max",
                         "wall_s", "verdict"], rows,

@@ -73,10 +73,10 @@ def boundary_effect(boundary):
 
 
 def image_scene(name, box, image, patches, *, steps, seed, patch_seed, flow_axis="x", a_wall=-40.0,
-                g=None, boundary="bounce_back", fluid_region=None, thermo_every=100, profile=None,
+                gamma_wall=None, wall_density=None, g=None, boundary="bounce_back", fluid_region=None, thermo_every=100, profile=None,
                 snapshot=None, rc_per_voxel=RC_PER_VOXEL, temperature=1.0):
     """A scene with `geometry:` (docs/scene-format.md): liquid mDPD A = -40, B = 25, rd = 0.75,
-    gamma = 4.5, kT = 1, dt = 0.01, fluid-wall A = a_wall, one frozen wall species `wall` for the
+    gamma = 4.5, kT = 1, dt = 0.01, fluid-wall A = a_wall (and gamma = gamma_wall when given), one frozen wall species `wall` for the
     inorganic voxels; body force g (a 3-vector, or None) on the liquid; the boundary effect."""
     eff = {"mdpd_attraction": {}, "mdpd_repulsion": {}, "dpd_thermostat": {}}
     if g is not None:
@@ -85,6 +85,8 @@ def image_scene(name, box, image, patches, *, steps, seed, patch_seed, flow_axis
     geo = {"image": image, "rc_per_voxel": rc_per_voxel, "flow_axis": flow_axis,
            "species": {"fluid": "liquid", "inorganic": "wall"},
            "patches": {"file": patches, "seed": int(patch_seed)}}
+    if wall_density is not None:
+        geo["wall_density"] = float(wall_density)
     if fluid_region:
         geo["fluid_region"] = {"lo": [float(v) for v in fluid_region[0]],
                                "hi": [float(v) for v in fluid_region[1]]}
@@ -93,7 +95,8 @@ def image_scene(name, box, image, patches, *, steps, seed, patch_seed, flow_axis
         "box": {"lo": [0.0, 0.0, 0.0], "hi": [float(v) for v in box], "periodic": [True, True, True]},
         "species": [{"name": "liquid", "mass": 1.0}, {"name": "wall", "mass": 1.0, "frozen": True}],
         "pairs": {"default": {"A": -40.0, "B": 25.0, "gamma": 4.5, "rc": 1.0, "rd": 0.75},
-                  "liquid-wall": {"A": float(a_wall)}},
+                  "liquid-wall": dict({"A": float(a_wall)},
+                                      **({} if gamma_wall is None else {"gamma": float(gamma_wall)}))},
         "density_kernel": "warren",
         "kT": 1.0,
         "effects": eff,

@@ -82,10 +82,10 @@ def make_image(workdir, width_vox, wall_vox, length_vox, depth_vox):
 
 
 def scene_for(name, box, image, patches, g, a_wall, steps, start, every, bins, seed, patch_seed,
-              boundary="bounce_back"):
+              boundary="bounce_back", gamma_wall=None, wall_density=None):
     """The slit scene: common.image_scene with the body force along x and a y profile."""
     return image_scene(name, box, image, patches, steps=steps, seed=seed, patch_seed=patch_seed,
-                       a_wall=a_wall, g=[g, 0.0, 0.0], boundary=boundary,
+                       a_wall=a_wall, gamma_wall=gamma_wall, wall_density=wall_density, g=[g, 0.0, 0.0], boundary=boundary,
                        profile={"axis": "y", "bins": int(bins), "every": int(every), "start": int(start)})
 
 
@@ -211,6 +211,8 @@ def main():
     ap.add_argument("--depth", type=float, default=4.0, help="box depth along z, rc (default 4)")
     ap.add_argument("--wall-voxels", type=int, default=4, help="solid voxels of each wall (default 4 = 2 rc)")
     ap.add_argument("--a-wall", type=float, default=-40.0, help="fluid-wall A (default -40, as fluid-fluid)")
+    ap.add_argument("--gamma-wall", type=float, help="fluid-wall gamma (default: gamma 4.5, as fluid-fluid)")
+    ap.add_argument("--wall-density", type=float, default=8.0, help="wall patch density (geometry.wall_density, default 8)")
     ap.add_argument("--bins-per-rc", type=int, default=4)
     ap.add_argument("--every", type=int, default=10, help="profile sampling interval (steps)")
     ap.add_argument("--core-skip", type=float, default=0.5, help="fit D leaves out the bins this close to a face (rc)")
@@ -233,7 +235,9 @@ def main():
     bulk = not (q or args.no_bulk)
     r2_min = 0.9 if q else 0.99
     tag = "slit_poiseuille" + ("_quick" if q else "") + \
-        ("" if args.boundary == "bounce_back" else "_" + args.boundary.replace("+", "_"))
+        ("" if args.boundary == "bounce_back" else "_" + args.boundary.replace("+", "_")) + \
+        ("" if args.gamma_wall is None else f"_gw{args.gamma_wall:g}") + \
+        ("" if args.wall_density == 8.0 else f"_wd{args.wall_density:g}")
     outdir = args.outdir or mdval.out_dir("walls")
     os.makedirs(outdir, exist_ok=True)
     base = os.environ.get("MDPORE_VALIDATION_OUT") or tempfile.gettempdir()
@@ -249,7 +253,7 @@ def main():
         return int(round(k))
 
     length_vox, depth_vox = voxels(args.length, "--length"), voxels(args.depth, "--depth")
-    patches = os.path.join(workdir, f"patches-e{RC_PER_VOXEL:g}-d8-s{args.patch_seed}.h5")
+    patches = os.path.join(workdir, f"patches-e{RC_PER_VOXEL:g}-d{args.wall_density:g}-s{args.patch_seed}.h5")
     img_dir = os.path.join(workdir, "images")
     os.makedirs(img_dir, exist_ok=True)
     results, bulk_rows, t_all = [], [], time.time()
@@ -272,7 +276,8 @@ def main():
         y_lo, y_hi = wall * RC_PER_VOXEL, (wall + width_vox) * RC_PER_VOXEL
         bins = int(round(box[1] * args.bins_per_rc))
         scene = scene_for(name, box, image, patches, g, args.a_wall, equil + steps, equil, args.every, bins,
-                          args.seed, args.patch_seed, boundary=args.boundary)
+                          args.seed, args.patch_seed, boundary=args.boundary, gamma_wall=args.gamma_wall,
+                          wall_density=None if args.wall_density == 8.0 else args.wall_density)
         print(f"h = {h:g}: image {info['dims']}, box {box}, g = {g}, {equil} + {steps} steps ...", flush=True)
         wall_s = run_or_reuse(scene, wd, args.np, args.reuse)
         mu_bulk = None
@@ -337,7 +342,7 @@ def write_tables(outdir, tag, results, bulk_rows, mu, mu_err, mu_src, args):
          f"Slit from `mdpore image make slit` at rc_per_voxel {RC_PER_VOXEL}, walls of {args.wall_voxels} voxels "
          f"(the builder's default thickness keeps 3 voxel layers of patches at density 8 per face), box {args.length:g} x "
          f"(h + {2 * args.wall_voxels * RC_PER_VOXEL:g}) x {args.depth:g} rc, periodic. mDPD A = -40, B = 25, rd = 0.75, "
-         f"gamma = 4.5, kT = 1, dt = 0.01; fluid-wall A = {args.a_wall:g}; fluid 6.2 per rc^3 of pore; body force g "
+         f"gamma = 4.5, kT = 1, dt = 0.01; fluid-wall A = {args.a_wall:g}, gamma = {4.5 if args.gamma_wall is None else args.gamma_wall:g}; fluid 6.2 per rc^3 of pore; body force g "
          f"along x; effects mdpd_attraction, mdpd_repulsion, dpd_thermostat, body_force, {args.boundary.replace('+', ', ')}; "
          f"{args.np} ranks. Profile along y, {args.bins_per_rc} bins per rc, every {args.every} steps after the "
          f"transient.\n",
