@@ -106,8 +106,10 @@ int camp_parse_args(int argc, char **argv, camp_opts *o);
 extern const char *camp_usage;
 
 /* campaign_template.c: the scene template (written to WORKDIR/template.yaml for an image) and the
- * campaign metadata from the image. 0 or -1 with a message naming the file/key. */
-int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int len);
+ * campaign metadata from the image; pressure drive: the padded images (an IMAGE input's, or a
+ * SCENE's geometry image; a scene without one is refused). A SCENE's geometry sets
+ * o->rc_per_voxel. 0 or -1 with a message naming the file/key. */
+int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len);
 
 /* campaign_accuracy.c: --accuracy fast|balanced|precise (docs/accuracy.md); explicit options
  * win. 0, or -1 with a message. */

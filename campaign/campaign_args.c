@@ -47,8 +47,8 @@ const char *camp_usage =
     "  --sample NAME       sample name in the tables (default: the input's file name)\n"
     "  --drive body|pressure  body: a body force on every fluid particle (default); pressure:\n"
     "                      the image padded along the axis with an open reservoir, an inlet force\n"
-    "                      in it, G measured from the pressure drop across the sample (IMAGE "
-    "only)\n"
+    "                      in it, G measured from the pressure drop across the sample (an IMAGE,\n"
+    "                      or a SCENE whose particles come from geometry.image)\n"
     "  --reservoir R       pressure drive: reservoir length along the axis in rc (default 4, >= "
     "3)\n";
 
@@ -246,14 +246,6 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   }
   absolute(input, o->input, sizeof o->input);
   o->input_is_scene = ends_with(input, ".yaml") || ends_with(input, ".yml");
-  if (o->input_is_scene && o->drive == CAMP_DRIVE_PRESSURE) {
-    fprintf(stderr,
-            "mdpore permeability: --drive pressure: expected an IMAGE input (got the scene %s; "
-            "for a scene, name effects.inlet_force with its sample yourself, "
-            "docs/scene-format.md)\n",
-            input);
-    return -1;
-  }
   if (!o->sample[0]) {
     const char *b = strrchr(o->input, '/');
     snprintf(o->sample, sizeof o->sample, "%.255s", b ? b + 1 : o->input);

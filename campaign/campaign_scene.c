@@ -10,7 +10,8 @@
  *                        of g (independent noise per gradient)
  *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute.
  * --drive pressure: box and image grow by the reservoir, effects.inlet_force replaces body_force
- * (pressure_drive below). */
+ * (pressure_drive below); the same rewrite for an IMAGE's template and a SCENE with a geometry
+ * image (campaign_template.c pads either image). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -164,7 +165,9 @@ static int pressure_drive(doc_t *d, int root, int effects, const camp_opts *o, i
   set(d, box, "hi", hi_new);
   char image[CAMP_PATH];
   camp_padded_image_path(o, axis, image, sizeof image);
-  set(d, get(d, root, "geometry"), "image", scalar(d, image));
+  int geo = get(d, root, "geometry");
+  set(d, geo, "image", scalar(d, image));
+  unset(d, geo, "axis_map"); /* the padded image was written in the box frame */
   unset(d, effects, "body_force");
   const double f = g * ls / (slab_hi - slab_lo);
   int inlet = yaml_document_add_mapping(d, NULL, YAML_FLOW_MAPPING_STYLE);

@@ -41,9 +41,10 @@ static double hydraulic_size(const mdp_image_t *img, double a) {
   return 2.0 * (double)pore * a * a * a / ((double)faces * a * a);
 }
 
-/* Reads the image, fills porosity, percolation, h and the length unit. */
-static int image_meta(const char *path, const char *labels, double rc_per_voxel, const camp_opts *o,
-                      campaign *c, mdp_image_t *img) {
+/* Reads the image in the box frame (axis_map as a scene's geometry.axis_map, NULL: the image's
+ * own axes), fills porosity, percolation, h and the length unit. */
+static int image_meta(const char *path, const char *labels, const int *axis_map,
+                      double rc_per_voxel, const camp_opts *o, campaign *c, mdp_image_t *img) {
   char err[MDP_IMAGE_ERR_LEN];
   mdp_image_read_opts_t ro;
   mdp_image_read_opts_init(&ro);
@@ -51,6 +52,17 @@ static int image_meta(const char *path, const char *labels, double rc_per_voxel,
   if (mdp_image_read(path, &ro, img, err)) {
     fprintf(stderr, "mdpore permeability: %s: %s\n", path, err);
     return -1;
+  }
+  if (axis_map && (axis_map[0] != 0 || axis_map[1] != 1 || axis_map[2] != 2)) {
+    /* Percolation, h and the reservoir's padding are along box axes: permute as the run will. */
+    mdp_image_t boxed;
+    int rc = mdp_image_permute_axes(img, axis_map, &boxed, err);
+    mdp_image_free(img);
+    if (rc) {
+      fprintf(stderr, "mdpore permeability: %s: key 'geometry.axis_map': %s\n", o->input, err);
+      return -1;
+    }
+    *img = boxed;
   }
   mdp_image_stats_t st;
   if (mdp_image_stats(img, &st, err)) {
@@ -195,15 +207,39 @@ static int scene_units(const camp_opts *o, ytree_t *t, yaml_node_t *root, campai
   return 0;
 }
 
-/* A scene template: its geometry (image, rc_per_voxel, fluid density, labels), if any, and its
- * units block. */
-static int scene_meta(const camp_opts *o, campaign *c) {
+/* Where a scene without geometry gets its particles (for the pressure drive's refusal). */
+static const char *particle_source(ytree_t *t, yaml_node_t *root) {
+  static const char *const keys[] = {"fill", "lammps_data", "snapshot"};
+  static const char *const names[] = {"initial.fill", "initial.lammps_data", "initial.snapshot"};
+  yaml_node_t *init = yt_get(t, root, "initial");
+  if (yt_get(t, root, "restart")) return "restart";
+  for (int k = 0; init && init->type == YAML_MAPPING_NODE && k < 3; k++)
+    if (yt_get(t, init, keys[k])) return names[k];
+  return "neither geometry.image nor initial";
+}
+
+/* A scene template: its geometry (image, rc_per_voxel, fluid density, labels, axis_map), if any,
+ * and its units block. With geometry, the image (in the box frame) is left in *img and *have_img
+ * set, for the pressure drive's padding (the caller frees it). */
+static int scene_meta(const camp_opts *o, campaign *c, mdp_image_t *img, int *have_img) {
   ytree_t t;
+  *have_img = 0;
   if (yt_load(&t, o->input, 0)) return -1;
   int rc = -1;
   yaml_node_t *root = yt_root(&t), *g, *n;
   if (!root || yt_expect_map(&t, root, "")) goto out;
   if (!(g = yt_get(&t, root, "geometry"))) {
+    if (o->drive == CAMP_DRIVE_PRESSURE) {
+      /* The reservoir is pore voxels added to an image; particles from elsewhere have none. */
+      fprintf(stderr,
+              "mdpore permeability: %s: key 'geometry.image': --drive pressure pads the sample's "
+              "image with an open fluid reservoir along the flow axis, but this scene's particles "
+              "come from %s, not from an image: there is no image to pad. Give the IMAGE, or a "
+              "scene with geometry: {image: ...}; or name effects.inlet_force with its sample in "
+              "the scene and run it with mdpore run (docs/scene-format.md)\n",
+              o->input, particle_source(&t, root));
+      goto out;
+    }
     rc = scene_units(o, &t, root, c);
     goto out;
   }
@@ -237,10 +273,22 @@ static int scene_meta(const camp_opts *o, campaign *c) {
     goto out;
   if ((n = yt_get(&t, g, "labels")) && yt_string(&t, n, "geometry.labels", labels, sizeof labels))
     goto out;
-  mdp_image_t img;
-  if (image_meta(path, labels, a, o, c, &img)) goto out;
-  mdp_image_free(&img);
+  int axis_map[3] = {0, 1, 2};
+  if ((n = yt_get(&t, g, "axis_map"))) { /* checked in full by mdpore run */
+    char word[8];
+    if (yt_expect_seq(&t, n, "geometry.axis_map")) goto out;
+    for (int d = 0; d < 3 && d < yt_seq_size(n); d++)
+      if (!yt_string(&t, yt_seq_item(&t, n, d), "geometry.axis_map", word, sizeof word) &&
+          word[0] >= 'x' && word[0] <= 'z' && !word[1])
+        axis_map[d] = word[0] - 'x';
+  }
+  if (image_meta(path, labels, axis_map, a, o, c, img)) goto out;
+  *have_img = 1;
   rc = scene_units(o, &t, root, c);
+  if (rc) {
+    mdp_image_free(img);
+    *have_img = 0;
+  }
 out:
   yt_free(&t);
   return rc;
@@ -254,8 +302,9 @@ void camp_padded_image_path(const camp_opts *o, int axis, char *out, int len) {
   snprintf(out, len, "%.4000s/reservoir_%c.raw", o->workdir, 'x' + axis);
 }
 
-/* Pressure drive: per axis, the image with the reservoir's pore voxels added after its high face
- * along the axis (the sample keeps [0, L_sample); periodic, so the reservoir touches both faces). */
+/* Pressure drive: per axis, the image (in the box frame) with the reservoir's pore voxels added
+ * after its high face along the axis (the sample keeps [0, L_sample); periodic, so the reservoir
+ * touches both faces). The same for an IMAGE input and a SCENE's geometry image. */
 static int write_padded_images(const camp_opts *o, const mdp_image_t *img) {
   int pore = -1;
   for (int v = 0; v < 256 && pore < 0; v++)
@@ -281,7 +330,7 @@ static int write_padded_images(const camp_opts *o, const mdp_image_t *img) {
   return 0;
 }
 
-int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int len) {
+int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) {
   snprintf(c->sample, sizeof c->sample, "%s", o->sample);
   snprintf(c->input, sizeof c->input, "%s", o->input);
   c->image[0] = 0;
@@ -300,7 +349,6 @@ int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int
   c->target_error = o->target_error;
   c->np = o->np;
   c->drive = o->drive;
-  c->reservoir = o->drive == CAMP_DRIVE_PRESSURE ? camp_reservoir_voxels(o) * o->rc_per_voxel : 0;
   if (make_dirs(o->workdir)) return -1;
   if (o->input_is_scene) {
     if (!o->viscosity_given)
@@ -308,17 +356,27 @@ int camp_make_template(const camp_opts *o, campaign *c, char *template_path, int
               "mdpore permeability: note: k = mu q / G uses mu = %g, the standard mDPD "
               "water's; give --viscosity for the fluid of %s\n",
               o->viscosity, o->input);
-    if (scene_meta(o, c)) return -1;
+    mdp_image_t img;
+    int have_img, rc = 0;
+    if (scene_meta(o, c, &img, &have_img)) return -1;
+    if (have_img) {
+      /* The scene's voxel edge sets the reservoir's whole voxels and the run scenes' box. */
+      o->rc_per_voxel = c->rc_per_voxel;
+      if (o->drive == CAMP_DRIVE_PRESSURE) rc = write_padded_images(o, &img);
+      mdp_image_free(&img);
+    }
+    if (rc) return -1;
     snprintf(template_path, len, "%s", o->input);
   } else {
     mdp_image_t img;
-    if (image_meta(o->input, NULL, o->rc_per_voxel, o, c, &img)) return -1;
+    if (image_meta(o->input, NULL, NULL, o->rc_per_voxel, o, c, &img)) return -1;
     snprintf(template_path, len, "%s/template.yaml", o->workdir);
     int rc = write_image_template(o, &img, template_path);
     if (!rc && o->drive == CAMP_DRIVE_PRESSURE) rc = write_padded_images(o, &img);
     mdp_image_free(&img);
     if (rc) return -1;
   }
+  c->reservoir = o->drive == CAMP_DRIVE_PRESSURE ? camp_reservoir_voxels(o) * o->rc_per_voxel : 0;
   if (!(c->length_unit_m > 0)) {
     c->length_unit_m = MDPD_WATER_RC_M;
     snprintf(c->length_source, sizeof c->length_source,

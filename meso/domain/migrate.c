@@ -70,6 +70,14 @@ void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t 
     for (int i = 0; i < p->n_local; i++) {
       const double xi = p->x[d][i];
       const int dir = xi < lo ? 0 : (xi >= hi ? 1 : -1);
+      if (!isfinite(xi)) { /* fails both cut tests: it would stay here, in no cell (as the
+                              single-subdomain path, a loss; the drift check names it first) */
+        double pos[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
+        note_lost(rep, p->id[i], pos);
+        if (keep != i) pstore_copy(p, keep, i);
+        keep++;
+        continue;
+      }
       if (dir >= 0 && dc->nbr[d][dir] == MPI_PROC_NULL) {
         double pos[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
         note_lost(rep, p->id[i],

@@ -13,6 +13,7 @@
 #include "io/stale_tmp.h"
 #include "run/progress.h"
 #include "run/run_balance.h"
+#include "run/run_fault.h"
 #include "run/run_flux.h"
 #include "run/run_stats.h"
 
@@ -107,6 +108,11 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   }
   const long first = sim_step_index(sim), last = first + s->steps;
   comm = sim_comm(sim);
+  run_fault_t fault; /* MDPORE_TEST_FAULT (tests only; the same on every rank) */
+  if (run_fault_init(&fault, sim, rank)) {
+    sim_destroy(sim);
+    return 1;
+  }
 
   thermo_log_t log;
   profile_t prof;
@@ -185,6 +191,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     if (s->checkpoint.every > 0 &&
         (due(&s->checkpoint, step) || step == last || run_flux_check_at(&rf, step)))
       sim_rebuild_lists(sim);
+    if (fault.kind && step == fault.step) run_fault_apply(&fault, sim);
     MPI_Barrier(comm);
     const double t0 = MPI_Wtime();
     if (sim_step(sim)) {

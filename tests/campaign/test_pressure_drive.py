@@ -8,7 +8,8 @@ the fluid with inlet_force in the reservoir's middle; G = (P_in - P_out) / L_sam
 between probe slabs just outside the sample faces (docs/permeability.md, "Pressure-driven runs").
 
 Asserted:
- 1. bad input refused: --drive other, --drive pressure on a scene, --reservoir < 3;
+ 1. bad input refused: --drive other, --drive pressure on a scene without a geometry image (the
+    scene case: campaign_scene_pressure), --reservoir < 3;
  2. --emit-scenes: the scene names inlet_force (no body_force), the box and the image grow by the
     reservoir, the folders differ from the body-force ones (the hash sees the drive);
  3. every pressure run: the momentum balance, |dp / (inlet force / A_total) - 1| within 3 dp errors
@@ -73,8 +74,8 @@ def main():
 
     # 1. bad input
     expect_error(["permeability", "slit.h5", "--axis", "x", "--drive", "piston"], "--drive", "unknown drive")
-    expect_error(["permeability", "scene.yaml", "--axis", "x", "--drive", "pressure"], "expected an IMAGE",
-                 "pressure drive of a scene")
+    expect_error(["permeability", "scene.yaml", "--axis", "x", "--drive", "pressure"], "no image to pad",
+                 "pressure drive of a scene without a geometry image")
     expect_error(["permeability", "slit.h5", "--axis", "x", "--drive", "pressure", "--reservoir", "2"],
                  "--reservoir", "reservoir too short")
 

@@ -101,6 +101,14 @@ static int kick_drift(sim_state_t *st) {
         memcpy(lost_x, x, sizeof lost_x);
       }
     }
+    /* d2 is the displacement, blind to a position that was already non-finite before the drift
+     * or that a wall effect made non-finite after it; such a particle would otherwise stay on a
+     * rank with several subdomains along the axis (NaN fails every cut comparison) and out of
+     * every pair, silently. */
+    if (!isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2])) {
+      step_problem_note(&st->pr, STEP_NONFINITE, p->id[i], x, 0);
+      st->pr.field = "velocity or position";
+    }
     for (int d = 0; d < 3; d++) {
       p->x[d][i] = x[d];
       p->v[d][i] = v[d];
