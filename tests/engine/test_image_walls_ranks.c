@@ -17,6 +17,7 @@
 #include "io/gather.h"
 #include "mdpore_image.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,7 +28,7 @@
 #define SCENE "image_walls_ranks.yaml"
 #define PATCHES "image_walls_ranks_patches.h5"
 
-enum { NX = 48, NY = 15, NZ = 8, HALO = 5 /* ceil(0.25 / 0.5) + ceil(1.75 / 0.5) */ };
+enum { NX = 48, NY = 15, NZ = 8 };
 
 static const char *scene_text =
     "box: {lo: [0, 0, 0], hi: [24, 7.5, 4]}\n"
@@ -91,6 +92,49 @@ typedef struct {
 
 /* Build on comm: the particles (gathered, sorted, hashed) and the builder's counts; every rank's
  * voxels read against its share plus the halo. */
+/* Rank 0: the results on 1..4 ranks agree; the image's counts by brute force (var 0). */
+static void check_results(const result_t *res, int size, int var, const char *what) {
+  const image_walls_counts_t *c = &res[1].count;
+  /* the image by brute force: the pore voxels of each kind */
+  const long long tube = 30, partner = 3, iso = 8, sheet = 28, pocket = 8;
+  const long long slit = (long long)NX * 6 * NZ;
+  CHECK(c->pore == slit + tube + partner + iso + sheet + pocket);
+  CHECK(c->clusters == 6 && c->spanning == 1 && c->joined == 1 && c->isolated == 1 &&
+        c->dead_end == 3);
+  CHECK(c->spanning_voxels == slit + partner && c->joined_voxels == tube &&
+        c->isolated_voxels == iso && c->dead_end_voxels == sheet + pocket);
+  if (var == 0) CHECK(c->fluid_voxels == slit + partner + tube);
+  if (var == 1) CHECK(c->fluid_voxels == c->pore && c->fluid_dropped > 0);
+  if (var == 2) CHECK(c->region_partial > 0 && c->region_outside > 0);
+  for (int np = 1; np <= size && np <= 4; np++) {
+    const result_t *r = &res[np];
+    printf("image walls ranks: %s: %d rank%s: %ld particles, hash %016llx, clusters %d (spanning "
+           "%d, joined %d, isolated %d, dead-end %d), fluid %ld (%ld dropped), walls %ld; voxels "
+           "read at most %lld of %d (within share + halo: %s)\n",
+           what, np, np > 1 ? "s" : "", r->n, (unsigned long long)r->hash, r->count.clusters,
+           r->count.spanning, r->count.joined, r->count.isolated, r->count.dead_end,
+           r->count.fluid_particles, r->count.fluid_dropped,
+           r->count.wall_particles[0] + r->count.wall_particles[1], r->read_max, NX * NY * NZ,
+           r->own_bound_ok ? "yes" : "no");
+    CHECK(r->n == res[1].n && r->n > 0 && r->hash == res[1].hash);
+    CHECK(r->count.clusters == c->clusters && r->count.spanning == c->spanning &&
+          r->count.joined == c->joined && r->count.isolated == c->isolated &&
+          r->count.dead_end == c->dead_end && r->count.joined_voxels == c->joined_voxels &&
+          r->count.dead_end_voxels == c->dead_end_voxels &&
+          r->count.fluid_voxels == c->fluid_voxels &&
+          r->count.fluid_particles == c->fluid_particles &&
+          r->count.fluid_target == c->fluid_target && r->count.fluid_dropped == c->fluid_dropped &&
+          r->count.fluid_redrawn == c->fluid_redrawn &&
+          r->count.region_partial == c->region_partial &&
+          r->count.wall_voxels[0] == c->wall_voxels[0] &&
+          r->count.wall_voxels[1] == c->wall_voxels[1] &&
+          r->count.wall_particles[0] == c->wall_particles[0] &&
+          r->count.wall_particles[1] == c->wall_particles[1]);
+    CHECK(r->own_bound_ok);
+    if (np > 1) CHECK(r->read_max < (long long)NX * NY * NZ);
+  }
+}
+
 static int run(const scene_t *s, MPI_Comm comm, result_t *out) {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -101,9 +145,12 @@ static int run(const scene_t *s, MPI_Comm comm, result_t *out) {
   sim_subdomain(sim, lo, hi);
   image_walls_t g;
   if (image_walls_build_local(s, comm, lo, hi, &g)) return -1;
+  /* the window: own voxels, 2 more each side (gen), the halo: the min_wall_distance scan and the
+   * wall thickness 1.75 rc, in voxels of 0.5 rc */
+  const int halo = (int)ceil(s->geometry.min_wall_distance / 0.5) + (int)ceil(1.75 / 0.5);
   long long bound = 1;
   for (int d = 0; d < 3; d++) {
-    const int n[3] = {NX, NY, NZ}, w = g.own_n[d] + 2 * (2 + HALO);
+    const int n[3] = {NX, NY, NZ}, w = g.own_n[d] + 2 * (2 + halo);
     bound *= w < n[d] ? w : n[d];
   }
   long long ok = g.voxels_read <= bound, rmax = g.voxels_read;
@@ -111,7 +158,6 @@ static int run(const scene_t *s, MPI_Comm comm, result_t *out) {
   MPI_Allreduce(MPI_IN_PLACE, &rmax, 1, MPI_LONG_LONG, MPI_MAX, comm);
   out->own_bound_ok = ok, out->read_max = rmax;
   out->count = g.count;
-  if (rank == 0) image_walls_report(&g, stdout);
   image_walls_free(&g);
   particle_set_t ps;
   int rc = gather_particles(sim, 0, 0, &ps, NULL);
@@ -149,51 +195,30 @@ int main(int argc, char **argv) {
   if (!ok) return 1;
   scene_t s;
   if (scene_load(SCENE, &s)) return 1;
-  result_t res[5];
-  for (int np = 1; np <= size && np <= 4; np++) {
-    MPI_Comm comm;
-    MPI_Comm_split(MPI_COMM_WORLD, rank < np ? 0 : MPI_UNDEFINED, rank, &comm);
-    if (comm != MPI_COMM_NULL) {
-      if (rank == 0) printf("--- %d rank%s\n", np, np > 1 ? "s" : "");
-      CHECK(run(&s, comm, &res[np]) == 0);
-      MPI_Comm_free(&comm);
+  /* the scene, then isolated_pores: fill with a min_wall_distance over a voxel (a wider halo,
+   * particles dropped), then a fluid_region across the ranks' cuts (partial voxels) */
+  const char *variant[3] = {"scene", "isolated_pores fill, min_wall_distance 0.6",
+                            "fluid_region [3.3, 2.1, 0.7]..[17.7, 4.9, 3.3]"};
+  for (int var = 0; var < 3; var++) {
+    scene_t sv = s;
+    if (var == 1) sv.geometry.isolated_pores = ISOLATED_FILL, sv.geometry.min_wall_distance = 0.6;
+    if (var == 2) {
+      const double lo[3] = {3.3, 2.1, 0.7}, hi[3] = {17.7, 4.9, 3.3};
+      sv.geometry.fluid_region = 1;
+      memcpy(sv.geometry.fluid_lo, lo, sizeof lo), memcpy(sv.geometry.fluid_hi, hi, sizeof hi);
     }
-    MPI_Barrier(MPI_COMM_WORLD);
-  }
-  if (rank == 0) {
-    const image_walls_counts_t *c = &res[1].count;
-    /* the image by brute force: the pore voxels of each kind */
-    const long long tube = 30, partner = 3, iso = 8, sheet = 28, pocket = 8;
-    const long long slit = (long long)NX * 6 * NZ;
-    CHECK(c->pore == slit + tube + partner + iso + sheet + pocket);
-    CHECK(c->clusters == 6 && c->spanning == 1 && c->joined == 1 && c->isolated == 1 &&
-          c->dead_end == 3);
-    CHECK(c->spanning_voxels == slit + partner && c->joined_voxels == tube &&
-          c->isolated_voxels == iso && c->dead_end_voxels == sheet + pocket);
-    CHECK(c->fluid_voxels == slit + partner + tube);
+    result_t res[5];
     for (int np = 1; np <= size && np <= 4; np++) {
-      const result_t *r = &res[np];
-      printf("image walls ranks: %d rank%s: %ld particles, hash %016llx, clusters %d (spanning %d, "
-             "joined %d, isolated %d, dead-end %d), fluid %ld, walls %ld; voxels read at most "
-             "%lld of %d (within share + halo: %s)\n",
-             np, np > 1 ? "s" : "", r->n, (unsigned long long)r->hash, r->count.clusters,
-             r->count.spanning, r->count.joined, r->count.isolated, r->count.dead_end,
-             r->count.fluid_particles, r->count.wall_particles[0] + r->count.wall_particles[1],
-             r->read_max, NX * NY * NZ, r->own_bound_ok ? "yes" : "no");
-      CHECK(r->n == res[1].n && r->n > 0 && r->hash == res[1].hash);
-      CHECK(r->count.clusters == c->clusters && r->count.spanning == c->spanning &&
-            r->count.joined == c->joined && r->count.isolated == c->isolated &&
-            r->count.dead_end == c->dead_end && r->count.joined_voxels == c->joined_voxels &&
-            r->count.dead_end_voxels == c->dead_end_voxels &&
-            r->count.fluid_particles == c->fluid_particles &&
-            r->count.fluid_dropped == c->fluid_dropped &&
-            r->count.wall_voxels[0] == c->wall_voxels[0] &&
-            r->count.wall_voxels[1] == c->wall_voxels[1] &&
-            r->count.wall_particles[0] == c->wall_particles[0] &&
-            r->count.wall_particles[1] == c->wall_particles[1]);
-      CHECK(r->own_bound_ok);
-      if (np > 1) CHECK(r->read_max < (long long)NX * NY * NZ);
+      MPI_Comm comm;
+      MPI_Comm_split(MPI_COMM_WORLD, rank < np ? 0 : MPI_UNDEFINED, rank, &comm);
+      if (comm != MPI_COMM_NULL) {
+        if (rank == 0) printf("--- %s: %d rank%s\n", variant[var], np, np > 1 ? "s" : "");
+        CHECK(run(&sv, comm, &res[np]) == 0);
+        MPI_Comm_free(&comm);
+      }
+      MPI_Barrier(MPI_COMM_WORLD);
     }
+    if (rank == 0) check_results(res, size, var, variant[var]);
   }
   MPI_Bcast(&failures, 1, MPI_INT, 0, MPI_COMM_WORLD);
   MPI_Finalize();
