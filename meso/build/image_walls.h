@@ -5,21 +5,24 @@
  *
  * Everything is a pure function of the image, the scene and its seeds. The global list is walls
  * first in voxel order, then fluid in voxel order, ids 1, 2, ... Each rank builds only its part of
- * it (image_walls_build_local): it reads the voxels of its subdomain plus a halo (image_window.c:
- * the wall thickness, the min_wall_distance scan and one voxel for the clusters), classifies them,
- * and generates the particles of the voxels that overlap its subdomain, with the ids the whole list
+ * it (image_walls_build_local): it reads the voxels that overlap its subdomain, one more each side,
+ * plus a halo of ceil(min_wall_distance / voxel) + ceil(thickness / voxel) voxels (image_window.c;
+ * partial reads of the file), classifies them, and generates the particles of the voxels that
+ * overlap its subdomain (and the one more each side), with the ids the whole list
  * would give them (image_ids.c: per-line particle counts summed over the ranks). What needs the
  * whole image is reduced without any rank holding it: phase and particle counts by MPI_Allreduce,
  * the pore clusters by labelling each rank's voxels and merging the labels that meet across rank
  * faces and periodic faces on rank 0 (image_clusters_mpi.c), the voxels that take one extra fluid
  * particle by a distributed selection of the smallest Philox keys (image_fluid.c). So the
- * configuration does not depend on the number of ranks (test build_image_walls_ranks_np4: 1, 2, 3
- * and 4 ranks, bitwise).
+ * configuration does not depend on the number of ranks and is bitwise that of the whole-list build
+ * this replaced (test build_image_walls_ranks_np4: 1, 2, 3 and 4 ranks). image_walls_build keeps
+ * the whole image and list on every rank (tests, scene checks).
  *
- * Limits: the halo is read by every rank that needs it (the window of a rank is its share plus
- * about thickness / voxel + 3 voxels on each side); the id offsets use a table of 16 bytes per image
- * line (x row) and x-cut of the decomposition on every rank; the centre-of-mass velocity that is
- * removed is summed over all fluid ids on every rank (O(fluid) time, no memory). */
+ * Limits: the halo is read by every rank that needs it (a rank reads its share plus thickness /
+ * voxel + 3 or so voxels on each side of each cut); the id offsets use a table of 16 bytes per
+ * image line (x row) and x segment of the decomposition on every rank; the centre-of-mass velocity
+ * that is removed is summed over all fluid ids on every rank (O(fluid) time, no memory); bounce_back
+ * and the penetration count still hold the whole solid map on every rank (1 byte per voxel). */
 #ifndef MESO_BUILD_IMAGE_WALLS_H
 #define MESO_BUILD_IMAGE_WALLS_H
 

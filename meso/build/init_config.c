@@ -147,8 +147,8 @@ static int offer_geometry(sim_t *sim, const scene_t *s) {
   if (stored != total) {
     if (rank == 0)
       fprintf(stderr,
-              "%s: geometry: %ld particles in the list but %ld stored (a particle offered by "
-              "no rank or by two: a bug of the rank-local build)\n",
+              "%s: geometry: %ld particles in the list but %ld stored (a particle kept by no "
+              "rank or by two: a bug of the rank-local build)\n",
               s->file, total, stored);
     return -1;
   }
