@@ -18,6 +18,7 @@
 
 #include <Random123/philox.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,31 +37,9 @@ static uint64_t remainder_key(uint64_t seed, int64_t voxel) {
   return (uint64_t)r.v[0] | (uint64_t)r.v[1] << 32;
 }
 
-/* The k-th smallest (0-based) of a[0..n-1] (reorders a): Hoare quickselect, median of three. */
-static uint64_t select_kth(uint64_t *a, long n, long k) {
-  long lo = 0, hi = n - 1;
-  while (lo < hi) {
-    uint64_t x = a[lo], y = a[lo + (hi - lo) / 2], z = a[hi], t;
-    if (x > y) t = x, x = y, y = t;
-    if (y > z) y = z;
-    const uint64_t pivot = x > y ? x : y; /* median of the three */
-    long i = lo, j = hi;
-    while (i <= j) {
-      while (a[i] < pivot) i++;
-      while (a[j] > pivot) j--;
-      if (i <= j) {
-        t = a[i], a[i] = a[j], a[j] = t;
-        i++, j--;
-      }
-    }
-    if (k <= j)
-      hi = j;
-    else if (k >= i)
-      lo = i;
-    else
-      return a[k];
-  }
-  return a[k];
+static int by_voxel(const void *p, const void *q) {
+  const int64_t a = *(const int64_t *)p, b = *(const int64_t *)q;
+  return (a > b) - (a < b);
 }
 
 /* 1 when x is at least min_wall_distance from every wall particle (voxel (i, j, k) holds x; the
@@ -86,8 +65,7 @@ static int clear_of_walls(const image_walls_t *g, const int ijk[3], const double
           if (gap > 0) gap2 += gap * gap;
         }
         if (!inside || gap2 >= md2) continue;
-        const int64_t v =
-            (int64_t)w[0] + (int64_t)g->n[0] * ((int64_t)w[1] + (int64_t)g->n[1] * w[2]);
+        const int64_t v = image_walls_voxel(g, w);
         const long n = image_walls_voxel_count(g, v);
         for (long j = 0; j < n; j++) {
           double y[3], r2 = 0;
@@ -127,11 +105,18 @@ static int voxel_ijk_base(const image_walls_t *g, int64_t v, int ijk[3], double 
   return (int)floor(mean * w);
 }
 
+/* The class byte of global voxel v (its window entry). */
+static uint8_t cls_of(const image_walls_t *g, int64_t v) {
+  const int q[3] = {(int)(v % g->n[0]), (int)(v / g->n[0] % g->n[1]),
+                    (int)(v / ((int64_t)g->n[0] * g->n[1]))};
+  return g->cls[image_walls_win(g, q)];
+}
+
 int image_fluid_voxel(const image_walls_t *g, int64_t v, double *x, long *dropped, long *redrawn) {
   int ijk[3], full[3];
   double a[3], b[3];
   const int target =
-      voxel_ijk_base(g, v, ijk, a, b, full) + ((g->cls[v] & IMAGE_VOXEL_EXTRA) ? 1 : 0);
+      voxel_ijk_base(g, v, ijk, a, b, full) + ((cls_of(g, v) & IMAGE_VOXEL_EXTRA) ? 1 : 0);
   const uint64_t seed = g->scene->seed;
   int n = 0;
   long tries = 0;
@@ -161,44 +146,150 @@ struct image_walls_cache {
   double x[]; /* [3 * (fluid_base + 1)] */
 };
 
-typedef struct {
-  double key;
-  long f;
-} weighted_key_t;
-
-static int by_key(const void *p, const void *q) {
-  const weighted_key_t *a = p, *b = q;
-  return a->key < b->key ? -1 : a->key > b->key ? 1 : (a->f > b->f) - (a->f < b->f);
+/* The smallest k of the (key, voxel) pairs of all ranks (voxels distinct): a pair is among them iff
+ * key < *cut, or key == *cut and voxel <= *tie_last. The cut is found by bisection over the 64-bit
+ * keys (one MPI_Allreduce of a count per step, at most 64), the ties at it in voxel order from the
+ * short list of tied voxels gathered everywhere: the same choice as sorting all pairs, without
+ * holding them. Collective. 0, or -1 (memory, on every rank). */
+static int select_smallest(const uint64_t *key, const int64_t *vox, long n, long long k,
+                           MPI_Comm comm, uint64_t *cut, int64_t *tie_last) {
+  long long total = n;
+  MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  if (k <= 0) {
+    *cut = 0, *tie_last = -1;
+    return 0;
+  }
+  if (k >= total) {
+    *cut = UINT64_MAX, *tie_last = INT64_MAX;
+    return 0;
+  }
+  uint64_t lo = 0, hi = UINT64_MAX; /* the smallest c with count(key <= c) >= k */
+  while (lo < hi) {
+    const uint64_t mid = lo + (hi - lo) / 2;
+    long long c = 0;
+    for (long i = 0; i < n; i++) c += key[i] <= mid;
+    MPI_Allreduce(MPI_IN_PLACE, &c, 1, MPI_LONG_LONG, MPI_SUM, comm);
+    if (c >= k)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  long long below = 0;
+  int ties = 0;
+  for (long i = 0; i < n; i++) below += key[i] < lo, ties += key[i] == lo;
+  MPI_Allreduce(MPI_IN_PLACE, &below, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  int size;
+  MPI_Comm_size(comm, &size);
+  int *counts = malloc((size_t)size * sizeof *counts),
+      *displ = malloc((size_t)size * sizeof *displ);
+  int64_t *mine = malloc(((size_t)ties + 1) * sizeof *mine);
+  int fail = !counts || !displ || !mine;
+  MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, comm);
+  if (fail) {
+    free(counts), free(displ), free(mine);
+    return -1;
+  }
+  MPI_Allgather(&ties, 1, MPI_INT, counts, 1, MPI_INT, comm);
+  long long all = 0;
+  for (int r = 0; r < size; r++) displ[r] = (int)all, all += counts[r];
+  int64_t *tied = malloc(((size_t)all + 1) * sizeof *tied);
+  fail = !tied;
+  MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, comm);
+  if (!fail) {
+    ties = 0;
+    for (long i = 0; i < n; i++)
+      if (key[i] == lo) mine[ties++] = vox[i];
+    MPI_Allgatherv(mine, ties, MPI_INT64_T, tied, counts, displ, MPI_INT64_T, comm);
+    qsort(tied, (size_t)all, sizeof *tied, by_voxel);
+    *cut = lo;
+    *tie_last = tied[k - below - 1];
+  }
+  free(counts), free(displ), free(mine), free(tied);
+  return fail ? -1 : 0;
 }
 
-/* geometry.fluid_region: the filled pore voxels wholly outside it become empty, the others get
- * floor(m w_v) particles and the IMAGE_VOXEL_EXTRA bit as described at the top; fills the fluid
- * target, the volume and the region counts. 0 or -1 + message. */
-static int region_counts(image_walls_t *g, char *err, size_t errlen) {
+/* Orders as the doubles it comes from (keys >= 0, -0 made +0). */
+static uint64_t key_bits(double key) {
+  key += 0.0;
+  uint64_t b;
+  memcpy(&b, &key, sizeof b);
+  return b;
+}
+
+/* The key of a fluid voxel of gen in the selection of the extra particles, 0 when it takes no
+ * part (a region voxel whose mean is a whole number). */
+static int extra_key(const image_walls_t *g, int64_t v, uint64_t *key) {
+  const scene_geometry_t *geo = &g->scene->geometry;
+  if (!geo->fluid_region) {
+    *key = remainder_key(g->scene->seed, v);
+    return 1;
+  }
+  int ijk[3], full[3];
+  double a[3], b[3];
+  const double mean = geo->fluid_density * g->h * g->h * g->h;
+  const int base = voxel_ijk_base(g, v, ijk, a, b, full);
+  const double frac = mean * region_part(g, ijk, a, b, full) - base;
+  if (!(frac > 0)) return 0;
+  const double u =
+      ((double)(remainder_key(g->scene->seed, v) >> 11) + 1) * (1.0 / 9007199254740992.0);
+  *key = key_bits(-log(u) / frac);
+  return 1;
+}
+
+/* Calls f on every gen voxel of class FLUID: its global index, gen index and whether it is own. */
+#define FOR_GEN_FLUID(g, ...)                                                                      \
+  for (int c2_ = 0; c2_ < (g)->gen_n[2]; c2_++)                                                    \
+    for (int c1_ = 0; c1_ < (g)->gen_n[1]; c1_++)                                                  \
+      for (int c0_ = 0; c0_ < (g)->gen_n[0]; c0_++) {                                              \
+        const int lc_[3] = {c0_, c1_, c2_};                                                        \
+        int q_[3];                                                                                 \
+        image_walls_global((g), (g)->gen_lo, lc_, q_);                                             \
+        const long long w_ = image_walls_win((g), q_);                                             \
+        if (((g)->cls[w_] & IMAGE_VOXEL_CLASS) != IMAGE_VOXEL_FLUID) continue;                     \
+        const int64_t v = image_walls_voxel((g), q_);                                              \
+        const long long gi =                                                                       \
+            c0_ + (long long)(g)->gen_n[0] * (c1_ + (long long)(g)->gen_n[1] * c2_);               \
+        const int own = image_walls_in_range((g), (g)->own_lo, (g)->own_n, q_);                    \
+        uint8_t *cls = &(g)->cls[w_];                                                              \
+        (void)v, (void)gi, (void)own, (void)cls;                                                   \
+        __VA_ARGS__                                                                                \
+      }
+
+/* geometry.fluid_region: the filled pore voxels wholly outside it become empty; the fluid target,
+ * the volume and the region counts, summed over the ranks' own voxels. The volume's partial voxels
+ * are summed in fixed point (2^-32 of a voxel) so that the sum, and the target rounded from it, do
+ * not depend on the order of the ranks. 0 or -1 + message (the same on every rank). *extra: the
+ * voxels that take one more; *candidates: the own voxels with a fractional mean. */
+static int region_counts(image_walls_t *g, long long *extra, char *err, size_t errlen) {
   const scene_t *s = g->scene;
   const scene_geometry_t *geo = &s->geometry;
   image_walls_counts_t *ct = &g->count;
   const double mean = geo->fluid_density * g->h * g->h * g->h;
   const long long before = ct->fluid_voxels;
-  double volume = 0;
-  long base_sum = 0, n_frac = 0;
-  ct->region_outside = ct->region_partial = 0;
-  for (int64_t v = 0; v < (int64_t)ct->voxels; v++) {
-    if ((g->cls[v] & IMAGE_VOXEL_CLASS) != IMAGE_VOXEL_FLUID) continue;
+  long long sum[6] = {0, 0, 0,
+                      0, 0, 0}; /* full, partial (2^-32), base, n_frac, outside, partial n */
+  FOR_GEN_FLUID(g, {
     int ijk[3], full[3];
     double a[3], b[3];
     const int base = voxel_ijk_base(g, v, ijk, a, b, full);
     const double w = region_part(g, ijk, a, b, full);
     if (w <= 0) {
-      g->cls[v] = IMAGE_VOXEL_EMPTY;
-      ct->fluid_voxels--, ct->region_outside++;
+      *cls = IMAGE_VOXEL_EMPTY;
+      sum[4] += own;
       continue;
     }
-    ct->region_partial += w < 1;
-    volume += w * g->h * g->h * g->h;
-    base_sum += base;
-    n_frac += mean * w - base > 0;
-  }
+    if (!own) continue;
+    if (w >= 1)
+      sum[0]++;
+    else
+      sum[1] += llround(w * 4294967296.0), sum[5]++;
+    sum[2] += base;
+    sum[3] += mean * w - base > 0;
+  })
+  MPI_Allreduce(MPI_IN_PLACE, sum, 6, MPI_LONG_LONG, MPI_SUM, g->work);
+  ct->region_outside = sum[4], ct->region_partial = sum[5];
+  ct->fluid_voxels -= sum[4];
+  const double volume = ((double)sum[0] + (double)sum[1] / 4294967296.0) * g->h * g->h * g->h;
   ct->fluid_volume = volume;
   if (ct->fluid_voxels == 0) {
     snprintf(err, errlen,
@@ -209,84 +300,81 @@ static int region_counts(image_walls_t *g, char *err, size_t errlen) {
     return -1;
   }
   ct->fluid_target = lround(geo->fluid_density * volume);
-  long extra = ct->fluid_target - base_sum;
-  extra = extra < 0 ? 0 : extra > n_frac ? n_frac : extra;
-  weighted_key_t *key = n_frac ? malloc((size_t)n_frac * sizeof *key) : NULL;
-  if (n_frac && !key) {
-    snprintf(err, errlen, "%s: geometry: out of memory for %ld fluid voxels", s->file, n_frac);
-    return -1;
-  }
-  long k = 0;
-  for (int64_t v = 0; v < (int64_t)ct->voxels; v++) {
-    if ((g->cls[v] & IMAGE_VOXEL_CLASS) != IMAGE_VOXEL_FLUID) continue;
-    int ijk[3], full[3];
-    double a[3], b[3];
-    const int base = voxel_ijk_base(g, v, ijk, a, b, full);
-    const double frac = mean * region_part(g, ijk, a, b, full) - base;
-    if (!(frac > 0)) continue;
-    const double u = ((double)(remainder_key(s->seed, v) >> 11) + 1) * (1.0 / 9007199254740992.0);
-    key[k].key = -log(u) / frac;
-    key[k++].f = (long)v;
-  }
-  qsort(key, (size_t)n_frac, sizeof *key, by_key);
-  for (k = 0; k < extra; k++) g->cls[key[k].f] |= IMAGE_VOXEL_EXTRA;
-  free(key);
+  long long e = ct->fluid_target - sum[2];
+  *extra = e < 0 ? 0 : e > sum[3] ? sum[3] : e;
   return 0;
 }
 
-int image_fluid_count(image_walls_t *g, char *err, size_t errlen) {
+int image_fluid_count(image_walls_t *g, uint16_t **kept_out, char *err, size_t errlen) {
   const scene_t *s = g->scene;
   const scene_geometry_t *geo = &s->geometry;
   image_walls_counts_t *ct = &g->count;
   const double mean = geo->fluid_density * g->h * g->h * g->h;
+  *kept_out = NULL;
   g->fluid_base = (int)floor(mean);
-  if (geo->fluid_region && region_counts(g, err, errlen)) return -1;
-  const long nf = (long)ct->fluid_voxels;
-  if (!geo->fluid_region) {
-    ct->fluid_target = lround(mean * (double)nf);
-    ct->fluid_volume = (double)nf * g->h * g->h * g->h;
-  }
-  long extra = geo->fluid_region ? 0 : ct->fluid_target - (long)g->fluid_base * nf;
-  extra = extra < 0 ? 0 : extra > nf ? nf : extra;
-  g->n_fluid_vox = nf;
-  g->fluid_vox = malloc(((size_t)nf + 1) * sizeof *g->fluid_vox);
-  g->fluid_start = malloc(((size_t)nf + 1) * sizeof *g->fluid_start);
-  g->cache = malloc(sizeof *g->cache + 3 * ((size_t)g->fluid_base + 1) * sizeof(double));
-  uint64_t *key = extra > 0 && extra < nf ? malloc(2 * (size_t)nf * sizeof *key) : NULL;
-  if (!g->fluid_vox || !g->fluid_start || !g->cache || (extra > 0 && extra < nf && !key)) {
-    free(key);
-    snprintf(err, errlen, "%s: geometry: out of memory for %ld fluid voxels", s->file, nf);
+  if (g->fluid_base + 1 > UINT16_MAX) {
+    snprintf(err, errlen,
+             "%s: key 'geometry.fluid_density': expected at most %d fluid particles per voxel "
+             "(got a mean of %g)",
+             s->file, UINT16_MAX - 1, mean);
     return -1;
   }
+  long long extra;
+  if (geo->fluid_region) {
+    if (region_counts(g, &extra, err, errlen)) return -1;
+  } else {
+    const long long nf = ct->fluid_voxels;
+    ct->fluid_target = lround(mean * (double)nf);
+    ct->fluid_volume = (double)nf * g->h * g->h * g->h;
+    extra = ct->fluid_target - (long long)g->fluid_base * nf;
+    extra = extra < 0 ? 0 : extra > nf ? nf : extra;
+  }
+  /* the keys of the own candidates, the global selection, then the bit on every gen voxel */
+  long n_own = 0;
+  FOR_GEN_FLUID(g, { n_own += own; })
+  uint64_t *key = malloc(((size_t)n_own + 1) * sizeof *key);
+  int64_t *vox = malloc(((size_t)n_own + 1) * sizeof *vox);
+  const long long G = (long long)g->gen_n[0] * g->gen_n[1] * g->gen_n[2];
+  uint16_t *kept = calloc(G ? (size_t)G : 1, sizeof *kept);
+  g->cache = malloc(sizeof *g->cache + 3 * ((size_t)g->fluid_base + 1) * sizeof(double));
+  int fail = !key || !vox || !kept || !g->cache;
+  MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, g->work);
+  uint64_t cut = 0;
+  int64_t tie_last = -1;
+  if (!fail) {
+    image_walls_mem(g, (long long)n_own * 16 + G * 2);
+    long m = 0;
+    FOR_GEN_FLUID(g, {
+      if (own && extra_key(g, v, &key[m])) vox[m++] = v;
+    })
+    fail = select_smallest(key, vox, m, extra, g->work, &cut, &tie_last);
+    image_walls_mem(g, -(long long)n_own * 16);
+  }
+  free(key), free(vox);
+  if (fail) {
+    free(kept);
+    snprintf(err, errlen, "%s: geometry: out of memory for %lld fluid voxels", s->file,
+             ct->fluid_voxels);
+    return -1;
+  }
+  FOR_GEN_FLUID(g, {
+    uint64_t k;
+    if (extra_key(g, v, &k) && (k < cut || (k == cut && v <= tie_last))) *cls |= IMAGE_VOXEL_EXTRA;
+  })
+  /* every gen voxel once, to know how many of its particles keep their distance from the walls */
   g->cache->voxel = -1;
-  long f = 0;
-  for (int64_t v = 0; v < (int64_t)ct->voxels; v++)
-    if ((g->cls[v] & IMAGE_VOXEL_CLASS) == IMAGE_VOXEL_FLUID) g->fluid_vox[f++] = v;
-  /* the `extra` voxels with the smallest keys take one particle more (ties: voxel order) */
-  if (key) {
-    for (f = 0; f < nf; f++) key[f] = key[nf + f] = remainder_key(s->seed, g->fluid_vox[f]);
-    const uint64_t cut = select_kth(key + nf, nf, extra - 1);
-    long below = 0;
-    for (f = 0; f < nf; f++) below += key[f] < cut;
-    long at = extra - below;
-    for (f = 0; f < nf; f++)
-      if (key[f] < cut || (key[f] == cut && at-- > 0)) g->cls[g->fluid_vox[f]] |= IMAGE_VOXEL_EXTRA;
-    free(key);
-  } else if (extra == nf) {
-    for (f = 0; f < nf; f++) g->cls[g->fluid_vox[f]] |= IMAGE_VOXEL_EXTRA;
-  }
-  /* every voxel once, to know how many of its particles keep their distance from the walls */
-  g->n_fluid = 0;
-  ct->fluid_dropped = ct->fluid_redrawn = 0;
-  for (f = 0; f < nf; f++) {
+  long long sums[3] = {0, 0, 0}; /* kept, dropped, redrawn of the own voxels */
+  FOR_GEN_FLUID(g, {
     long dropped, redrawn;
-    g->fluid_start[f] = g->n_fluid;
-    g->n_fluid += image_fluid_voxel(g, g->fluid_vox[f], g->cache->x, &dropped, &redrawn);
-    ct->fluid_dropped += dropped;
-    ct->fluid_redrawn += redrawn;
-  }
-  g->fluid_start[nf] = g->n_fluid;
+    const int k = image_fluid_voxel(g, v, g->cache->x, &dropped, &redrawn);
+    kept[gi] = (uint16_t)k;
+    if (own) sums[0] += k, sums[1] += dropped, sums[2] += redrawn;
+  })
+  MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_LONG_LONG, MPI_SUM, g->work);
+  g->n_fluid = (long)sums[0];
   ct->fluid_particles = g->n_fluid;
+  ct->fluid_dropped = (long)sums[1], ct->fluid_redrawn = (long)sums[2];
+  *kept_out = kept;
   return 0;
 }
 

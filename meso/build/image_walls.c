@@ -55,15 +55,17 @@ static void edt_1d(const double *f, int n, double *d, int *v, double *z) {
   }
 }
 
-/* d2[voxel] = squared distance (voxel units) from its centre to the nearest pore voxel centre,
- * periodic along the periodic axes (a line is transformed three times over and its middle kept:
- * every periodic image within half a period is then inside); EDT_INF without any pore voxel.
- * Three separable passes, O(voxels) each (x3 along periodic axes). 0, or -1 (memory). */
-static int edt_pore(const mdp_image_t *img, const int periodic[3], uint32_t *d2) {
-  const int n[3] = {img->nx, img->ny, img->nz};
+/* d2[voxel] = squared distance (voxel units) from its centre to the nearest pore voxel centre of
+ * the n[0] x n[1] x n[2] window, periodic along the axes where periodic[a] (the window is the whole
+ * periodic axis: a line is transformed three times over and its middle kept: every periodic image
+ * within half a period is then inside); EDT_INF without any pore voxel. Three separable passes,
+ * O(voxels) each (x3 along periodic axes). A voxel at least the thickness inside the window (or at
+ * the image's own faces) gets the image's exact distance wherever that is within the thickness:
+ * its nearest pore voxel is then in the window. 0, or -1 (memory). */
+static int edt_pore(const uint8_t *phase, const int n[3], const int periodic[3], uint32_t *d2) {
   const size_t stride[3] = {1, (size_t)n[0], (size_t)n[0] * (size_t)n[1]};
-  const size_t total = mdp_image_count(img);
-  for (size_t i = 0; i < total; i++) d2[i] = mdp_image_is_pore(img, i) ? 0 : EDT_INF;
+  const size_t total = (size_t)n[0] * (size_t)n[1] * (size_t)n[2];
+  for (size_t i = 0; i < total; i++) d2[i] = phase[i] == MDP_PHASE_PORE ? 0 : EDT_INF;
   int nmax = n[0] > n[1] ? n[0] : n[1];
   if (n[2] > nmax) nmax = n[2];
   const size_t len = 3 * (size_t)nmax;
@@ -95,99 +97,6 @@ static int edt_pore(const mdp_image_t *img, const int periodic[3], uint32_t *d2)
   return 0;
 }
 
-/* ---- pore clusters: which get fluid ------------------------------------------------------------ */
-
-static int32_t uf_find(int32_t *parent, int32_t a) {
-  while (parent[a] != a) {
-    parent[a] = parent[parent[a]];
-    a = parent[a];
-  }
-  return a;
-}
-
-/* cls of every pore voxel: FLUID or EMPTY. A cluster (6-connected, image_stats.c) carries flow when
- * it touches both faces normal to the flow axis (the image module's spanning rule, shared with
- * mdp_image_drop_nonspanning); a cluster joined to such one through a periodic face of the box is
- * the same pore space seen across the boundary (a dead-end branch of the flow path) and gets fluid
- * too, so no fluid ever faces an empty pore across a periodic face. The others (isolated: touching
- * no face; dead-end: touching a face) get fluid only with isolated_pores: fill. Also fills the
- * percolation statistics mdp_image_require_percolation reads. 0, or -1 + err. */
-static int classify_pores(const scene_t *s, const mdp_image_t *img, const int32_t *cl, int nc,
-                          image_walls_t *g, mdp_image_stats_t *st, char *err, size_t errlen) {
-  const int n[3] = {img->nx, img->ny, img->nz}, fa = s->geometry.flow_axis;
-  const size_t stride[3] = {1, (size_t)n[0], (size_t)n[0] * (size_t)n[1]};
-  unsigned char *faces = calloc((size_t)nc + 1, 1); /* bit 0, 1: flow faces; bit 2: any face */
-  long long *size = calloc((size_t)nc + 1, sizeof *size);
-  int32_t *parent = malloc(((size_t)nc + 1) * sizeof *parent);
-  unsigned char *fill = calloc((size_t)nc + 1, 1);
-  if (!faces || !size || !parent || !fill) {
-    free(faces), free(size), free(parent), free(fill);
-    snprintf(err, errlen, "%s: geometry: out of memory for %d pore clusters", s->file, nc);
-    return -1;
-  }
-  for (int c = 0; c < nc; c++) parent[c] = c;
-  for (int k = 0; k < n[2]; k++)
-    for (int j = 0; j < n[1]; j++)
-      for (int i = 0; i < n[0]; i++) {
-        const int32_t c = cl[mdp_image_index(img, i, j, k)];
-        if (c < 0) continue;
-        size[c]++;
-        const int ijk[3] = {i, j, k};
-        for (int a = 0; a < 3; a++)
-          if (ijk[a] == 0 || ijk[a] == n[a] - 1) faces[c] |= 4;
-        if (ijk[fa] == 0) faces[c] |= 1;
-        if (ijk[fa] == n[fa] - 1) faces[c] |= 2;
-      }
-  /* join clusters across the periodic faces */
-  for (int a = 0; a < 3; a++) {
-    if (!g->periodic[a]) continue;
-    const int b = (a + 1) % 3, c2 = (a + 2) % 3;
-    for (int kc = 0; kc < n[c2]; kc++)
-      for (int kb = 0; kb < n[b]; kb++) {
-        const size_t i0 = (size_t)kb * stride[b] + (size_t)kc * stride[c2];
-        const size_t i1 = i0 + (size_t)(n[a] - 1) * stride[a];
-        if (cl[i0] < 0 || cl[i1] < 0) continue;
-        const int32_t r0 = uf_find(parent, cl[i0]), r1 = uf_find(parent, cl[i1]);
-        if (r0 < r1)
-          parent[r1] = r0;
-        else if (r1 < r0)
-          parent[r0] = r1;
-      }
-  }
-  image_walls_counts_t *ct = &g->count;
-  for (int c = 0; c < nc; c++)
-    if ((faces[c] & 3) == 3) fill[uf_find(parent, c)] = 1;
-  long long largest = 0;
-  for (int c = 0; c < nc; c++) {
-    if (size[c] > largest) largest = size[c];
-    if ((faces[c] & 3) == 3) {
-      ct->spanning++, ct->spanning_voxels += size[c];
-    } else if (fill[uf_find(parent, c)]) {
-      ct->joined++, ct->joined_voxels += size[c];
-    } else if (!(faces[c] & 4)) {
-      ct->isolated++, ct->isolated_voxels += size[c];
-    } else {
-      ct->dead_end++, ct->dead_end_voxels += size[c];
-    }
-  }
-  const int fill_others = s->geometry.isolated_pores == ISOLATED_FILL;
-  const size_t total = mdp_image_count(img);
-  for (size_t i = 0; i < total; i++) {
-    if (cl[i] < 0) continue;
-    const int f = fill[uf_find(parent, cl[i])] || fill_others;
-    g->cls[i] = f ? IMAGE_VOXEL_FLUID : IMAGE_VOXEL_EMPTY;
-    ct->fluid_voxels += f;
-  }
-  memset(st, 0, sizeof *st);
-  st->n_voxels = (long long)total;
-  st->n_pore = ct->pore;
-  st->n_clusters = nc;
-  st->spans[fa] = ct->spanning > 0;
-  st->largest_cluster = largest;
-  free(faces), free(size), free(parent), free(fill);
-  return 0;
-}
-
 /* ---- the build ------------------------------------------------------------------------------------ */
 
 /* Wall thickness (rc): geometry.wall_thickness, or when <= 0 the largest rc + rd of the fluid-wall
@@ -216,40 +125,50 @@ static int wall_species_of_phase(const scene_geometry_t *geo, int phase) {
  * the same after any shift along that axis (e.g. a slit wall, not a sphere): every voxel of the
  * species has a voxel of the same species as its neighbour along the axis (periodic). Otherwise
  * the frozen particles would leave their voxels and bounce_back's solid map would be wrong. */
-static int check_moving_walls(const scene_t *s, const mdp_image_t *img, char *err, size_t errlen) {
+static int check_moving_walls(const scene_t *s, const image_walls_t *g, const uint8_t *phase,
+                              char *err, size_t errlen) {
   const scene_geometry_t *geo = &s->geometry;
-  const int n[3] = {img->nx, img->ny, img->nz};
   for (int k = 0; k < 2; k++) {
     const int sp = k ? geo->inorganic_species : geo->organic_species;
     if (sp < 0 || !s->species[sp].moving) continue;
     const int ax = s->species[sp].move_axis;
-    for (int z = 0; z < n[2]; z++)
-      for (int y = 0; y < n[1]; y++)
-        for (int x = 0; x < n[0]; x++) {
-          int c[3] = {x, y, z};
-          const size_t i = mdp_image_index(img, c[0], c[1], c[2]);
-          if (wall_species_of_phase(geo, mdp_image_phase(img, i)) != sp) continue;
-          c[ax] = (c[ax] + 1) % n[ax];
-          const size_t j = mdp_image_index(img, c[0], c[1], c[2]);
-          if (wall_species_of_phase(geo, mdp_image_phase(img, j)) == sp) continue;
+    for (int z = 0; z < g->own_n[2]; z++)
+      for (int y = 0; y < g->own_n[1]; y++)
+        for (int x = 0; x < g->own_n[0]; x++) {
+          const int lc[3] = {x, y, z};
+          int c[3], q[3];
+          image_walls_global(g, g->own_lo, lc, q);
+          memcpy(c, q, sizeof c);
+          if (wall_species_of_phase(geo, phase[image_walls_win(g, q)]) != sp) continue;
+          c[ax] = (c[ax] + 1) % g->n[ax];
+          if (wall_species_of_phase(geo, phase[image_walls_win(g, c)]) == sp) continue;
           snprintf(err, errlen,
                    "%s: key 'species[%d].velocity': expected the solid voxels of the moving "
                    "species '%s' (geometry.species.%s) to be translation-invariant along %c, the "
                    "axis it moves along (got voxel (%d, %d, %d) of it followed by voxel (%d, %d, "
                    "%d) that is not: a moving wall must be the same after any shift along its "
                    "velocity, e.g. a slit wall)",
-                   s->file, sp, s->species[sp].name, k ? "inorganic" : "organic", "xyz"[ax], x, y,
-                   z, c[0], c[1], c[2]);
+                   s->file, sp, s->species[sp].name, k ? "inorganic" : "organic", "xyz"[ax], q[0],
+                   q[1], q[2], c[0], c[1], c[2]);
           return -1;
         }
   }
   return 0;
 }
 
-/* Steps of the build that every rank runs alike; -1 with the message in err. */
-static int build_local(const scene_t *s, image_walls_t *g, char *err, size_t errlen) {
+/* The halo around gen (voxels): the fluid's min_wall_distance scan reaches ceil(d / voxel) voxels
+ * and needs the wall classes there, which need the pore voxels within the thickness of them. */
+static int halo_voxels(const image_walls_t *g) {
+  const int scan = g->min_distance > 0 ? (int)ceil(g->min_distance / g->h) : 0;
+  return scan + (int)ceil(g->thickness / g->h * (1 + 1e-12));
+}
+
+/* The local steps before the first collective one: the image file, the thickness, the window. */
+static int read_stage(const scene_t *s, image_walls_t *g, const double *sub_lo,
+                      const double *sub_hi, uint8_t **phase, char *err, size_t errlen) {
   const scene_geometry_t *geo = &s->geometry;
   struct stat sb;
+  *phase = NULL;
   if (stat(geo->image, &sb) != 0) {
     snprintf(err, errlen,
              "%s: key 'geometry.image': expected a segmented image (raw + PATH.hdr sidecar, .h5, "
@@ -266,84 +185,57 @@ static int build_local(const scene_t *s, image_walls_t *g, char *err, size_t err
         geo->wall_thickness > 0 ? "" : ", the default rc + rd of the fluid-wall pairs");
     return -1;
   }
-  mdp_image_t img;
-  if (scene_geometry_read_image(s, &img, err, errlen)) return -1;
-  g->n[0] = img.nx, g->n[1] = img.ny, g->n[2] = img.nz;
-  const size_t total = mdp_image_count(&img);
-  image_walls_counts_t *ct = &g->count;
-  ct->voxels = (long long)total;
-  for (size_t i = 0; i < total; i++) {
-    const int p = mdp_image_phase(&img, i);
-    ct->pore += p == MDP_PHASE_PORE;
-    ct->organic += p == MDP_PHASE_ORGANIC;
-    ct->inorganic += p == MDP_PHASE_INORGANIC;
-  }
-  const long long nsolid[2] = {ct->organic, ct->inorganic};
-  const int wsp[2] = {geo->organic_species, geo->inorganic_species};
-  for (int k = 0; k < 2; k++)
-    if (nsolid[k] > 0 && wsp[k] < 0) {
-      snprintf(err, errlen,
-               "%s: key 'geometry.species.%s': expected a wall species for the %lld %s voxels of "
-               "%s (got none)",
-               s->file, k ? "inorganic" : "organic", nsolid[k], k ? "inorganic" : "organic",
-               geo->image);
-      mdp_image_free(&img);
-      return -1;
-    }
-  if (check_moving_walls(s, &img, err, errlen)) {
-    mdp_image_free(&img);
+  if (image_window_read(s, g, sub_lo, sub_hi, halo_voxels(g), phase, err, errlen)) return -1;
+  const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
+  g->cls = calloc(total ? (size_t)total : 1, 1);
+  if (!g->cls) {
+    snprintf(err, errlen, "%s: geometry: out of memory for %lld voxels", s->file, total);
     return -1;
   }
-  g->cls = calloc(total ? total : 1, 1);
-  int32_t *cl = malloc((total ? total : 1) * sizeof *cl);
-  if (!g->cls || !cl) {
-    free(cl);
-    mdp_image_free(&img);
-    snprintf(err, errlen, "%s: geometry: out of memory for %zu voxels", s->file, total);
-    return -1;
-  }
-  char e[MDP_IMAGE_ERR_LEN];
-  int nc = 0;
-  mdp_image_stats_t st;
-  if (mdp_image_label_clusters(&img, cl, &nc, e)) {
-    snprintf(err, errlen, "%s: key 'geometry.image': %s", s->file, e);
-    free(cl), mdp_image_free(&img);
-    return -1;
-  }
-  ct->clusters = nc;
-  int rc = classify_pores(s, &img, cl, nc, g, &st, err, errlen);
-  free(cl);
-  if (!rc && mdp_image_require_percolation(&img, &st, geo->flow_axis, geo->image, e)) {
-    snprintf(err, errlen,
-             "%s: key 'geometry.flow_axis': expected a box axis along which the pore space "
-             "percolates (after axis_map): %s",
-             s->file, e);
-    rc = -1;
-  }
-  /* walls: solid voxels whose centre is within the thickness of a pore voxel centre */
-  uint32_t *d2 = rc ? NULL : malloc(total * sizeof *d2);
-  if (!rc && (!d2 || edt_pore(&img, g->periodic, d2))) {
+  image_walls_mem(g, total);
+  return check_moving_walls(s, g, *phase, err, errlen);
+}
+
+/* The wall voxels of the window: solid voxels whose centre is within the thickness of a pore
+ * voxel centre (exact where it is used: gen and the min_wall_distance scan around it); the counts
+ * of the rank's own voxels ([organic, inorganic][wall, deep]). 0 or -1 + err (memory). */
+static int classify_walls(const scene_t *s, image_walls_t *g, const uint8_t *phase,
+                          long long own[2][2], char *err, size_t errlen) {
+  const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
+  uint32_t *d2 = malloc((total ? (size_t)total : 1) * sizeof *d2);
+  int per[3];
+  for (int d = 0; d < 3; d++) per[d] = g->periodic[d] && g->win_n[d] == g->n[d];
+  if (!d2 || edt_pore(phase, g->win_n, per, d2)) {
+    free(d2);
     snprintf(err, errlen, "%s: geometry: out of memory for the distance transform", s->file);
-    rc = -1;
+    return -1;
   }
-  if (!rc) {
-    const double t = g->thickness / g->h, t2 = t * t * (1 + 1e-12);
-    for (size_t i = 0; i < total; i++) {
-      const int p = mdp_image_phase(&img, i);
-      if (p == MDP_PHASE_PORE) continue;
-      const int k = p == MDP_PHASE_INORGANIC;
-      if ((double)d2[i] <= t2) {
-        g->cls[i] = k ? IMAGE_VOXEL_INORGANIC : IMAGE_VOXEL_ORGANIC;
-        ct->wall_voxels[k]++;
-      } else {
-        g->cls[i] = IMAGE_VOXEL_DEEP;
-        ct->deep_voxels[k]++;
-      }
+  image_walls_mem(g, total * 4);
+  const double t = g->thickness / g->h, t2 = t * t * (1 + 1e-12);
+  for (long long i = 0; i < total; i++) {
+    const int p = phase[i];
+    if (p == MDP_PHASE_PORE) {
+      if (!g->cls[i]) g->cls[i] = IMAGE_VOXEL_EMPTY; /* a halo pore voxel: no particles here */
+      continue;
     }
+    const int k = p == MDP_PHASE_INORGANIC;
+    g->cls[i] =
+        (double)d2[i] <= t2 ? (k ? IMAGE_VOXEL_INORGANIC : IMAGE_VOXEL_ORGANIC) : IMAGE_VOXEL_DEEP;
   }
   free(d2);
-  mdp_image_free(&img);
-  return rc ? -1 : 0;
+  image_walls_mem(g, -total * 4);
+  for (int z = 0; z < g->own_n[2]; z++)
+    for (int y = 0; y < g->own_n[1]; y++)
+      for (int x = 0; x < g->own_n[0]; x++) {
+        const int lc[3] = {x, y, z};
+        int q[3];
+        image_walls_global(g, g->own_lo, lc, q);
+        const long long w = image_walls_win(g, q);
+        const int p = phase[w];
+        if (p == MDP_PHASE_PORE) continue;
+        own[p == MDP_PHASE_INORGANIC][(g->cls[w] & IMAGE_VOXEL_CLASS) == IMAGE_VOXEL_DEEP]++;
+      }
+  return 0;
 }
 
 /* Every rank's failure, agreed: the message of the lowest failing rank is printed (by it). */
@@ -357,23 +249,82 @@ static int agree(int failed, const char *err, MPI_Comm comm) {
   return first < size ? -1 : 0;
 }
 
-int image_walls_build(const scene_t *s, MPI_Comm comm, image_walls_t *g) {
+/* The build: whole = every rank the whole image (its reductions over MPI_COMM_SELF), else the
+ * rank's part for its subdomain [sub_lo, sub_hi). */
+static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_lo,
+                 const double *sub_hi, image_walls_t *g) {
   const scene_geometry_t *geo = &s->geometry;
   memset(g, 0, sizeof *g);
   g->scene = s;
+  g->whole = whole;
+  g->work = whole ? MPI_COMM_SELF : comm;
   g->h = geo->rc_per_voxel;
   g->min_distance = geo->min_wall_distance;
   for (int d = 0; d < 3; d++) g->lo[d] = s->box_lo[d], g->periodic[d] = s->periodic[d];
   g->thickness = wall_thickness(s);
   char err[4 * MDP_IMAGE_ERR_LEN] = "";
-  int rc = build_local(s, g, err, sizeof err);
+  uint8_t *phase = NULL;
+  int rc = read_stage(s, g, sub_lo, sub_hi, &phase, err, sizeof err);
+  if (agree(rc != 0, err, comm)) {
+    free(phase);
+    image_walls_free(g);
+    return -1;
+  }
+  /* phase counts of the own voxels, summed over the ranks */
+  image_walls_counts_t *ct = &g->count;
+  long long cnt[4] = {0, 0, 0, 0};
+  for (int z = 0; z < g->own_n[2]; z++)
+    for (int y = 0; y < g->own_n[1]; y++)
+      for (int x = 0; x < g->own_n[0]; x++) {
+        const int lc[3] = {x, y, z};
+        int q[3];
+        image_walls_global(g, g->own_lo, lc, q);
+        const int p = phase[image_walls_win(g, q)];
+        cnt[0]++;
+        cnt[1] += p == MDP_PHASE_PORE, cnt[2] += p == MDP_PHASE_ORGANIC;
+        cnt[3] += p == MDP_PHASE_INORGANIC;
+      }
+  MPI_Allreduce(MPI_IN_PLACE, cnt, 4, MPI_LONG_LONG, MPI_SUM, g->work);
+  ct->voxels = cnt[0], ct->pore = cnt[1], ct->organic = cnt[2], ct->inorganic = cnt[3];
+  /* the checks below see the same sums on every rank, so they fail everywhere or nowhere */
+  if (ct->voxels != (long long)g->n[0] * g->n[1] * g->n[2]) {
+    snprintf(err, sizeof err,
+             "%s: geometry: internal error: the ranks' own voxels sum to %lld, the image has "
+             "%lld (the decomposition is not a grid of boxes?)",
+             s->file, ct->voxels, (long long)g->n[0] * g->n[1] * g->n[2]);
+    rc = -1;
+  }
+  const long long nsolid[2] = {ct->organic, ct->inorganic};
+  const int wsp[2] = {geo->organic_species, geo->inorganic_species};
+  for (int k = 0; k < 2 && !rc; k++)
+    if (nsolid[k] > 0 && wsp[k] < 0) {
+      snprintf(err, sizeof err,
+               "%s: key 'geometry.species.%s': expected a wall species for the %lld %s voxels of "
+               "%s (got none)",
+               s->file, k ? "inorganic" : "organic", nsolid[k], k ? "inorganic" : "organic",
+               geo->image);
+      rc = -1;
+    }
+  if (!rc && ct->pore == 0) {
+    snprintf(err, sizeof err,
+             "%s: key 'geometry.flow_axis': expected a box axis along which the pore space "
+             "percolates (after axis_map): %s: empty pore space: no voxel is labelled pore",
+             s->file, geo->image);
+    rc = -1;
+  }
+  if (!rc) rc = image_clusters_classify(s, g, phase, err, sizeof err);
+  long long own[2][2] = {{0, 0}, {0, 0}};
+  if (!rc) rc = classify_walls(s, g, phase, own, err, sizeof err);
+  free(phase);
+  image_walls_mem(g, -(long long)g->win_n[0] * g->win_n[1] * g->win_n[2]);
   if (agree(rc != 0, err, comm)) {
     image_walls_free(g);
     return -1;
   }
+  MPI_Allreduce(MPI_IN_PLACE, own, 4, MPI_LONG_LONG, MPI_SUM, g->work);
+  for (int k = 0; k < 2; k++) ct->wall_voxels[k] = own[k][0], ct->deep_voxels[k] = own[k][1];
   int rank;
   MPI_Comm_rank(comm, &rank);
-  const int wsp[2] = {geo->organic_species, geo->inorganic_species};
   for (int k = 0; k < 2; k++) {
     const double rc = wsp[k] < 0 ? 0 : s->pair[geo->fluid_species][wsp[k]].rc;
     if (rank == 0 && g->count.wall_voxels[k] > 0 && floor(g->thickness / g->h + 1e-9) * g->h < rc)
@@ -397,38 +348,45 @@ int image_walls_build(const scene_t *s, MPI_Comm comm, image_walls_t *g) {
     image_walls_free(g);
     return -1;
   }
-  /* wall voxels in voxel order and their first particles */
-  image_walls_counts_t *ct = &g->count;
-  const int64_t total = (int64_t)ct->voxels;
-  g->n_wall_vox = (long)(ct->wall_voxels[0] + ct->wall_voxels[1]);
-  g->wall_vox = malloc(((size_t)g->n_wall_vox + 1) * sizeof *g->wall_vox);
-  g->wall_start = malloc(((size_t)g->n_wall_vox + 1) * sizeof *g->wall_start);
-  rc = !g->wall_vox || !g->wall_start;
-  if (rc) snprintf(err, sizeof err, "%s: geometry: out of memory for the wall voxels", s->file);
-  long w = 0;
-  g->n_wall = 0;
-  for (int64_t v = 0; !rc && v < total; v++) {
-    const int c = g->cls[v] & IMAGE_VOXEL_CLASS;
-    if (c != IMAGE_VOXEL_ORGANIC && c != IMAGE_VOXEL_INORGANIC) continue;
-    const long np = image_walls_voxel_count(g, v);
-    g->wall_vox[w] = v;
-    g->wall_start[w++] = g->n_wall;
-    g->n_wall += np;
-    ct->wall_particles[c == IMAGE_VOXEL_INORGANIC] += np;
-  }
-  if (!rc) g->wall_start[w] = g->n_wall;
-  if (!rc) rc = image_fluid_count(g, err, sizeof err);
+  /* fluid counts (collective, the same result everywhere), then the local list and its ids */
+  uint16_t *kept = NULL;
+  rc = image_fluid_count(g, &kept, err, sizeof err);
+  if (!rc) rc = image_ids_assign(g, kept, err, sizeof err);
+  if (kept) image_walls_mem(g, -2LL * g->gen_n[0] * g->gen_n[1] * g->gen_n[2]);
+  free(kept);
   if (agree(rc != 0, err, comm)) {
     image_walls_free(g);
     return -1;
   }
+  /* every rank's voxels read and peak bytes, for the report */
+  MPI_Comm_size(comm, &g->ranks);
+  long long mine[2] = {g->voxels_read, g->mem_peak};
+  long long *all = rank == 0 ? malloc(2 * (size_t)g->ranks * sizeof *all) : NULL;
+  MPI_Gather(mine, 2, MPI_LONG_LONG, all, 2, MPI_LONG_LONG, 0, comm);
+  if (all) {
+    g->rank_read = malloc((size_t)g->ranks * sizeof *g->rank_read);
+    g->rank_peak = malloc((size_t)g->ranks * sizeof *g->rank_peak);
+    for (int r = 0; g->rank_read && g->rank_peak && r < g->ranks; r++)
+      g->rank_read[r] = all[2 * r], g->rank_peak[r] = all[2 * r + 1];
+    free(all);
+  }
   return 0;
+}
+
+int image_walls_build(const scene_t *s, MPI_Comm comm, image_walls_t *g) {
+  return build(s, comm, 1, NULL, NULL, g);
+}
+
+int image_walls_build_local(const scene_t *s, MPI_Comm comm, const double sub_lo[3],
+                            const double sub_hi[3], image_walls_t *g) {
+  return build(s, comm, 0, sub_lo, sub_hi, g);
 }
 
 void image_walls_free(image_walls_t *g) {
   free(g->cls);
-  free(g->wall_vox), free(g->wall_start);
-  free(g->fluid_vox), free(g->fluid_start);
+  free(g->wall_vox), free(g->wall_start), free(g->wall_id);
+  free(g->fluid_vox), free(g->fluid_start), free(g->fluid_id);
+  free(g->rank_read), free(g->rank_peak);
   wall_patches_free(&g->db);
   free(g->cache);
   memset(g, 0, sizeof *g);
@@ -437,7 +395,11 @@ void image_walls_free(image_walls_t *g) {
 /* ---- the particles ------------------------------------------------------------------------------- */
 
 long image_walls_voxel_count(const image_walls_t *g, int64_t v) {
-  const int c = g->cls[v] & IMAGE_VOXEL_CLASS;
+  const int q[3] = {(int)(v % g->n[0]), (int)(v / g->n[0] % g->n[1]),
+                    (int)(v / ((int64_t)g->n[0] * g->n[1]))};
+  const long long w = image_walls_win(g, q);
+  if (w < 0) return 0;
+  const int c = g->cls[w] & IMAGE_VOXEL_CLASS;
   if (c != IMAGE_VOXEL_ORGANIC && c != IMAGE_VOXEL_INORGANIC) return 0;
   int p, o;
   image_walls_patch_of(g->scene->geometry.patch_seed, v, g->db.count, &p, &o);
@@ -457,6 +419,10 @@ long image_walls_total(const image_walls_t *g) {
   return g->n_wall + g->n_fluid;
 }
 
+long image_walls_local(const image_walls_t *g) {
+  return g->wall_start[g->n_wall_vox] + g->fluid_start[g->n_fluid_vox];
+}
+
 long image_walls_find(const long *start, long n, long i) {
   long lo = 0, hi = n; /* start[lo] <= i < start[hi] (start[n] = the total) */
   while (hi - lo > 1) {
@@ -471,16 +437,22 @@ long image_walls_find(const long *start, long n, long i) {
 
 void image_walls_particle(const image_walls_t *g, long i, int64_t *id, int *species, double x[3]) {
   const scene_geometry_t *geo = &g->scene->geometry;
-  *id = (int64_t)i + 1;
-  if (i >= g->n_wall) {
+  const long nw = g->wall_start[g->n_wall_vox];
+  if (i >= nw) {
+    const long f = image_walls_find(g->fluid_start, g->n_fluid_vox, i - nw);
+    *id = 1 + g->n_wall + g->fluid_id[f] + (i - nw - g->fluid_start[f]);
     *species = geo->fluid_species;
-    image_fluid_particle(g, i - g->n_wall, x);
+    image_fluid_particle(g, i - nw, x);
     return;
   }
   const long w = image_walls_find(g->wall_start, g->n_wall_vox, i);
   const int64_t v = g->wall_vox[w];
-  *species = (g->cls[v] & IMAGE_VOXEL_CLASS) == IMAGE_VOXEL_ORGANIC ? geo->organic_species
-                                                                    : geo->inorganic_species;
+  *id = 1 + g->wall_id[w] + (i - g->wall_start[w]);
+  const int q[3] = {(int)(v % g->n[0]), (int)(v / g->n[0] % g->n[1]),
+                    (int)(v / ((int64_t)g->n[0] * g->n[1]))};
+  *species = (g->cls[image_walls_win(g, q)] & IMAGE_VOXEL_CLASS) == IMAGE_VOXEL_ORGANIC
+                 ? geo->organic_species
+                 : geo->inorganic_species;
   image_walls_voxel_particle(g, v, i - g->wall_start[w], x);
 }
 
@@ -550,5 +522,29 @@ void image_walls_report(const image_walls_t *g, FILE *out) {
           IMAGE_FLUID_TRIES, ct->fluid_redrawn, pv > 0 ? (double)ct->fluid_particles / pv : 0.0);
   fprintf(out, "  particles: %ld (walls %ld, fluid %ld), ids 1..%ld\n", image_walls_total(g),
           g->n_wall, g->n_fluid, image_walls_total(g));
+  /* memory: what each rank read and the peak of the build's arrays (window, clusters, distance
+   * transform, id table, local list; not the patch database, the same on every rank) */
+  if (g->rank_read && g->rank_peak) {
+    long long rmin = g->rank_read[0], rmax = rmin, pmin = g->rank_peak[0], pmax = pmin;
+    for (int r = 1; r < g->ranks; r++) {
+      rmin = g->rank_read[r] < rmin ? g->rank_read[r] : rmin;
+      rmax = g->rank_read[r] > rmax ? g->rank_read[r] : rmax;
+      pmin = g->rank_peak[r] < pmin ? g->rank_peak[r] : pmin;
+      pmax = g->rank_peak[r] > pmax ? g->rank_peak[r] : pmax;
+    }
+    fprintf(out,
+            "  ranks: %d%s; voxels read per rank %lld..%lld (image %lld: %.3g of it at most); "
+            "build peak per rank %.4g..%.4g MB\n",
+            g->ranks, g->whole ? " (each built the whole image)" : "", rmin, rmax, ct->voxels,
+            ct->voxels ? (double)rmax / (double)ct->voxels : 0.0, (double)pmin / 1e6,
+            (double)pmax / 1e6);
+    if (g->ranks <= 16) {
+      fprintf(out, "  per rank (voxels read, peak bytes):");
+      for (int r = 0; r < g->ranks; r++)
+        fprintf(out, " %d: %lld %lld%s", r, g->rank_read[r], g->rank_peak[r],
+                r + 1 < g->ranks ? ";" : "\n");
+    }
+  }
+
   fflush(out);
 }

@@ -3,17 +3,26 @@
  * database (wall_patches.h) with a patch and one of 24 orientations per voxel, and fluid particles
  * in the pore voxels of the clusters that carry flow along geometry.flow_axis.
  *
- * Everything is a pure function of the image, the scene and its seeds: every rank builds the same
- * global list (walls first in voxel order, then fluid in voxel order; ids 1, 2, ...) and offers it
- * to the engine, which keeps the particles of its subdomain. So the configuration does not depend on
- * the number of ranks.
+ * Everything is a pure function of the image, the scene and its seeds. The global list is walls
+ * first in voxel order, then fluid in voxel order, ids 1, 2, ... Each rank builds only its part of
+ * it (image_walls_build_local): it reads the voxels that overlap its subdomain, one more each side,
+ * plus a halo of ceil(min_wall_distance / voxel) + ceil(thickness / voxel) voxels (image_window.c;
+ * partial reads of the file), classifies them, and generates the particles of the voxels that
+ * overlap its subdomain (and the one more each side), with the ids the whole list
+ * would give them (image_ids.c: per-line particle counts summed over the ranks). What needs the
+ * whole image is reduced without any rank holding it: phase and particle counts by MPI_Allreduce,
+ * the pore clusters by labelling each rank's voxels and merging the labels that meet across rank
+ * faces and periodic faces on rank 0 (image_clusters_mpi.c), the voxels that take one extra fluid
+ * particle by a distributed selection of the smallest Philox keys (image_fluid.c). So the
+ * configuration does not depend on the number of ranks and is bitwise that of the whole-list build
+ * this replaced (test build_image_walls_ranks_np4: 1, 2, 3 and 4 ranks). image_walls_build keeps
+ * the whole image and list on every rank (tests, scene checks).
  *
- * Limit: every rank reads the whole image and holds it (about 10 bytes per voxel while building,
- * then 1 byte per voxel plus 16 per wall or fluid voxel), and generates the whole global list
- * (three times: the fluid count, then offer_source's two passes) although it keeps only its own
- * subdomain's particles. Measured (one core): a 256^3 image at rc_per_voxel 0.5, 15.6 M particles:
- * 7.2 s to build, 3.1 s per pass over the list, 361 MB. Reading only a rank's part of the image
- * (plus the wall thickness) is a later step. */
+ * Limits: the halo is read by every rank that needs it (a rank reads its share plus thickness /
+ * voxel + 3 or so voxels on each side of each cut); the id offsets use a table of 16 bytes per
+ * image line (x row) and x segment of the decomposition on every rank; the centre-of-mass velocity
+ * that is removed is summed over all fluid ids on every rank (O(fluid) time, no memory); bounce_back
+ * and the penetration count still hold the whole solid map on every rank (1 byte per voxel). */
 #ifndef MESO_BUILD_IMAGE_WALLS_H
 #define MESO_BUILD_IMAGE_WALLS_H
 
@@ -73,29 +82,48 @@ typedef struct {
   double thickness;    /* wall thickness used (rc)                                        */
   double min_distance; /* geometry.min_wall_distance (rc)                                 */
   int fluid_base;      /* floor of the mean number of fluid particles per voxel           */
-  uint8_t *cls;        /* per voxel (x fastest): enum image_voxel_class                   */
-  wall_patches_t db;   /* the patch database                                              */
-  long n_wall_vox;     /* wall voxels, in voxel order: index and first particle           */
-  int64_t *wall_vox;
-  long *wall_start; /* [n_wall_vox + 1] */
-  long n_fluid_vox; /* fluid voxels, in voxel order: index and first particle          */
-  int64_t *fluid_vox;
-  long *fluid_start;    /* [n_fluid_vox + 1], global index minus the wall particles        */
-  long n_wall, n_fluid; /* particles                                                       */
+  /* The rank's voxels, per box axis a range start + [0, len) (taken modulo n along a periodic
+   * axis; len <= n): own = the voxels whose centre lies in the subdomain (the ranks' own ranges
+   * partition the image), gen = the voxels that overlap the subdomain, one more on each side (their
+   * particles are offered), win = gen plus the halo (what was read). */
+  int own_lo[3], own_n[3], gen_lo[3], gen_n[3], win_lo[3], win_n[3];
+  int whole;         /* every rank built the whole image (image_walls_build)            */
+  MPI_Comm work;     /* the communicator of the reductions (MPI_COMM_SELF when whole)   */
+  uint8_t *cls;      /* per window voxel (x fastest): enum image_voxel_class            */
+  wall_patches_t db; /* the patch database                                              */
+  /* the local list: the gen voxels with particles, walls then fluid, each in voxel order: global
+   * voxel index, first particle in the local list ([n + 1]) and its global id */
+  long n_wall_vox;
+  int64_t *wall_vox, *wall_id;
+  long *wall_start;
+  long n_fluid_vox;
+  int64_t *fluid_vox, *fluid_id;
+  long *fluid_start;
+  long n_wall, n_fluid; /* particles of the whole list                                     */
   image_walls_counts_t count;
   image_walls_cache_t *cache; /* the last fluid voxel generated (sequential access)       */
+  /* memory: voxels this rank read, bytes of the build's arrays now and at their peak; rank 0
+   * holds every rank's pair for the report ([ranks], NULL elsewhere) */
+  long long voxels_read, mem_now, mem_peak;
+  int ranks;
+  long long *rank_read, *rank_peak;
 } image_walls_t;
 
 /* Read and check the scene's image, classify its voxels, load or build the patch database, count
- * the particles of every voxel. Collective over comm (the patch database may be built); every rank
- * gets the same result. 0, or -1 after a message on stderr (rank 0) naming the scene file, the key
- * and what was expected. */
+ * the particles. image_walls_build: every rank builds the whole image and the whole list (tests,
+ * scene checks). image_walls_build_local: the rank's part for the subdomain [sub_lo, sub_hi)
+ * (sim_subdomain). Collective over comm. 0, or -1 after a message on stderr (by the lowest failing
+ * rank) naming the scene file, the key and what was expected. */
 int image_walls_build(const scene_t *scene, MPI_Comm comm, image_walls_t *g);
+int image_walls_build_local(const scene_t *scene, MPI_Comm comm, const double sub_lo[3],
+                            const double sub_hi[3], image_walls_t *g);
 void image_walls_free(image_walls_t *g);
 
-/* Total particles, and particle i (0 <= i < total) of the global list: id i + 1, its species and
- * position. Fastest when called with i increasing (fluid voxels are generated one at a time). */
+/* Total particles of the whole list; particles of the local list (the whole list after
+ * image_walls_build); particle i (0 <= i < local) of the local list: its id, species, position.
+ * Fastest when called with i increasing (fluid voxels are generated one at a time). */
 long image_walls_total(const image_walls_t *g);
+long image_walls_local(const image_walls_t *g);
 void image_walls_particle(const image_walls_t *g, long i, int64_t *id, int *species, double x[3]);
 
 /* The report block (image, phases, walls kept and dropped, particles per species, pore clusters and
@@ -106,22 +134,57 @@ void image_walls_report(const image_walls_t *g, FILE *out);
  * Philox hash of (patch_seed, voxel), independent of the decomposition. */
 void image_walls_patch_of(uint64_t patch_seed, int64_t voxel, int patches, int *patch, int *orient);
 
-/* Between image_walls.c and image_fluid.c. */
-/* Fluid counts per voxel (base + the IMAGE_VOXEL_EXTRA bit, total = round(density x volume)),
- * then every fluid voxel's particles generated once to know how many keep min_wall_distance from
- * the walls: fills fluid_vox, fluid_start, n_fluid, the fluid counts and the cache. 0 or -1 +
- * message naming the scene file. */
-int image_fluid_count(image_walls_t *g, char *err, size_t errlen);
-/* Fluid particle i (0 <= i < n_fluid) of the global fluid list (cached per voxel). */
-void image_fluid_particle(const image_walls_t *g, long i, double x[3]);
-/* The last k < n with start[k] <= i (start non-decreasing, start[0] = 0 <= i < start[n]). */
-long image_walls_find(const long *start, long n, long i);
+/* Between image_walls.c, image_window.c, image_clusters_mpi.c, image_fluid.c and image_ids.c. */
+/* Window index of voxel q (box axes; any integer along a periodic axis), -1 when outside the image
+ * or the window. */
+long long image_walls_win(const image_walls_t *g, const int q[3]);
+/* Global voxel coordinates of local coordinates c of a range [start, start + len) (wrapped). */
+static inline void image_walls_global(const image_walls_t *g, const int start[3], const int c[3],
+                                      int q[3]) {
+  for (int d = 0; d < 3; d++) q[d] = (start[d] + c[d]) % g->n[d];
+}
+static inline int64_t image_walls_voxel(const image_walls_t *g, const int q[3]) {
+  return (int64_t)q[0] + (int64_t)g->n[0] * ((int64_t)q[1] + (int64_t)g->n[1] * q[2]);
+}
+/* 1 when global coordinates q lie in the range [start, start + len) (wrapped) of every axis. */
+int image_walls_in_range(const image_walls_t *g, const int start[3], const int len[3],
+                         const int q[3]);
+/* Memory bookkeeping of the build's arrays (signed bytes). */
+void image_walls_mem(image_walls_t *g, long long bytes);
+
+/* The window (image_window.c): the image's size, the rank's ranges for the subdomain (whole: the
+ * whole image) with `halo` voxels around gen, and the phases (mdp_phase_t) of the window voxels,
+ * read with partial reads and geometry.axis_map. Local (no communication). 0 or -1 + err. */
+int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3],
+                      const double sub_hi[3], int halo, uint8_t **phase, char *err, size_t errlen);
+
+/* The pore clusters (image_clusters_mpi.c): labels the rank's gen voxels, merges across ranks on
+ * rank 0, sets FLUID / EMPTY on the pore voxels of gen and fills the cluster counts (identical on
+ * every rank). Collective over g->work. 0, or -1 with the same message on every rank (the flow axis
+ * does not percolate, or memory). */
+int image_clusters_classify(const scene_t *s, image_walls_t *g, const uint8_t *phase, char *err,
+                            size_t errlen);
+
+/* Fluid counts per voxel of gen (base + the IMAGE_VOXEL_EXTRA bit, total = round(density x
+ * volume)): *kept = the kept particles of every gen voxel (allocated here, gen order, x fastest)
+ * and the global fluid counts. Collective over
+ * g->work. 0 or -1 + message naming the scene file (same on every rank). */
+int image_fluid_count(image_walls_t *g, uint16_t **kept, char *err, size_t errlen);
 /* The kept fluid particles of voxel v (positions into x[3 * k], at most fluid_base + 1): returns
  * how many; *dropped receives those that found no place, *redrawn (may be NULL) the positions
  * drawn again because they were too near a wall particle. */
 int image_fluid_voxel(const image_walls_t *g, int64_t v, double *x, long *dropped, long *redrawn);
-/* Number of wall particles of voxel v (0 unless a wall voxel), and its particle j. */
+/* Fluid particle i of the local fluid list (0 <= i < fluid_start[n_fluid_vox]; cached per voxel). */
+void image_fluid_particle(const image_walls_t *g, long i, double x[3]);
+/* The last k < n with start[k] <= i (start non-decreasing, start[0] = 0 <= i < start[n]). */
+long image_walls_find(const long *start, long n, long i);
+/* Number of wall particles of voxel v (0 unless a wall voxel of the window), and its particle j. */
 long image_walls_voxel_count(const image_walls_t *g, int64_t v);
 void image_walls_voxel_particle(const image_walls_t *g, int64_t v, long j, double x[3]);
+
+/* The local list and its ids (image_ids.c): the wall and fluid particle counts of every gen voxel,
+ * summed per image line and rank segment over the ranks, give every gen voxel its first id.
+ * Collective over g->work. 0 or -1 + message (same on every rank). */
+int image_ids_assign(image_walls_t *g, const uint16_t *kept, char *err, size_t errlen);
 
 #endif

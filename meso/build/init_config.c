@@ -96,10 +96,63 @@ static void set_get(const void *vctx, long i, int64_t *id, int *sp, double x[3],
   }
 }
 
-/* The geometry builder's global list: walls, then fluid; velocities generated (frozen walls: 0). */
-static void geometry_get(const void *ctx, long i, int64_t *id, int *sp, double x[3], double v[3]) {
-  image_walls_particle(ctx, i, id, sp, x);
-  v[0] = v[1] = v[2] = 0;
+/* The geometry builder (build/image_walls.h): each rank builds the particles of the voxels that
+ * overlap its subdomain and offers them. The centre-of-mass velocity removed is that of the whole
+ * list summed in id order, as offer_source sums it: the walls (ids 1..n_wall) are frozen, the fluid
+ * takes ids n_wall + 1 .. total, and a Maxwell-Boltzmann velocity depends on the id and species
+ * alone, so every rank sums the same numbers in the same order without the list (O(fluid) time). */
+static int offer_geometry(sim_t *sim, const scene_t *s) {
+  MPI_Comm comm = sim_comm(sim);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  double sub_lo[3], sub_hi[3];
+  sim_subdomain(sim, sub_lo, sub_hi);
+  image_walls_t g;
+  if (image_walls_build_local(s, comm, sub_lo, sub_hi, &g)) return -1;
+  if (rank == 0) image_walls_report(&g, stdout);
+  const double kT = s->init.temperature;
+  const int fsp = s->geometry.fluid_species;
+  double vcm[3] = {0, 0, 0}, p[3] = {0, 0, 0}, mass = 0;
+  for (long i = g.n_wall; i < image_walls_total(&g); i++) {
+    double v[3];
+    init_mb_velocity(s, (int64_t)i + 1, fsp, kT, v);
+    for (int d = 0; d < 3; d++) p[d] += s->species[fsp].mass * v[d];
+    mass += s->species[fsp].mass;
+  }
+  for (int d = 0; d < 3; d++) vcm[d] = mass > 0 ? p[d] / mass : 0;
+  const long n = image_walls_local(&g);
+  long stored = 0;
+  int fail = 0;
+  for (long i = 0; i < n && !fail; i++) {
+    int64_t id;
+    int sp;
+    double x[3], v[3] = {0, 0, 0};
+    image_walls_particle(&g, i, &id, &sp, x);
+    if (!s->species[sp].frozen) {
+      init_mb_velocity(s, id, sp, kT, v);
+      for (int d = 0; d < 3; d++) v[d] -= vcm[d];
+    }
+    const int r = sim_add_particle(sim, id, sp, x, v);
+    if (r < 0) fail = 1;
+    stored += r > 0;
+  }
+  const long total = image_walls_total(&g);
+  image_walls_free(&g);
+  MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, comm);
+  if (fail) {
+    if (rank == 0) fprintf(stderr, "%s: out of memory while adding %ld particles\n", s->file, n);
+    return -1;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &stored, 1, MPI_LONG, MPI_SUM, comm);
+  if (stored != total) {
+    if (rank == 0)
+      fprintf(stderr,
+              "%s: geometry: %ld particles in the list but %ld stored (a particle kept by no "
+              "rank or by two: a bug of the rank-local build)\n",
+              s->file, total, stored);
+    return -1;
+  }
+  return 0;
 }
 
 int init_offer_set(sim_t *sim, const scene_t *s, const particle_set_t *set, const char *source) {
@@ -125,17 +178,7 @@ int init_configuration(sim_t *sim, const scene_t *s) {
     }
     return offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
   }
-  if (s->init.kind == INIT_GEOMETRY) {
-    /* walls and fluid from the image (build/image_walls.h): every rank builds the same list */
-    int rank;
-    MPI_Comm_rank(comm, &rank);
-    image_walls_t g;
-    if (image_walls_build(s, comm, &g)) return -1;
-    if (rank == 0) image_walls_report(&g, stdout);
-    const int rc = offer_source(sim, s, image_walls_total(&g), geometry_get, &g, 0, s->file);
-    image_walls_free(&g);
-    return rc;
-  }
+  if (s->init.kind == INIT_GEOMETRY) return offer_geometry(sim, s);
   particle_set_t set;
   int rc = s->init.kind == INIT_LAMMPS_DATA ? lammps_data_read_bcast(s->init.path, s, comm, &set)
                                             : snapshot_read_bcast(s->init.path, s, comm, &set);

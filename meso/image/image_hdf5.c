@@ -99,6 +99,14 @@ static int read_voxel_size(hid_t obj, double *out, const char *path, const char 
 
 int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
                         char *err) {
+  return mdp_image_read_hdf5_box(path, opts, NULL, img, NULL, err);
+}
+
+/* The box is a hyperslab of the dataset: only its voxels are read from the file (whole chunks of a
+ * chunked dataset, decompressed by HDF5). */
+int mdp_image_read_hdf5_box(const char *path, const mdp_image_read_opts_t *opts,
+                            const mdp_image_box_t *box, mdp_image_t *img, int dims_out[3],
+                            char *err) {
   const char *dname = opts->dataset[0] ? opts->dataset : "/labels";
   H5E_auto2_t old_func;
   void *old_data;
@@ -139,16 +147,23 @@ int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp
                (unsigned long long)dims[2], INT_MAX);
       goto done;
     }
+  if (dims_out) dims_out[0] = (int)dims[2], dims_out[1] = (int)dims[1], dims_out[2] = (int)dims[0];
+  int lo[3] = {0, 0, 0}, sz[3] = {(int)dims[2], (int)dims[1], (int)dims[0]};
+  if (box) memcpy(lo, box->lo, sizeof lo), memcpy(sz, box->size, sizeof sz);
+  if (box && (sz[0] < 1 || sz[1] < 1 || sz[2] < 1)) { /* dims only */
+    rc = 0;
+    goto done;
+  }
   {
     char what[400];
     snprintf(what, sizeof what, "dataset '%s' of shape [%llu][%llu][%llu]", dname,
              (unsigned long long)dims[0], (unsigned long long)dims[1], (unsigned long long)dims[2]);
     /* the image, plus a slab of slices as int32 (one slice, or up to 4M voxels) */
-    const double bytes = (double)dims[0] * (double)dims[1] * (double)dims[2] +
-                         4.0 * (double)dims[1] * (double)dims[2] + 4.0 * (1 << 22);
+    const double bytes = (double)sz[0] * (double)sz[1] * (double)sz[2] +
+                         4.0 * (double)sz[0] * (double)sz[1] + 4.0 * (1 << 22);
     if (mdp_image_check_memory(bytes, path, what, err)) goto done;
   }
-  if (mdp_image_alloc(img, (int)dims[2], (int)dims[1], (int)dims[0], err)) {
+  if (mdp_image_alloc(img, sz[0], sz[1], sz[2], err)) {
     mdp_image_err_prefix(err, path, dname);
     goto done;
   }
@@ -189,14 +204,15 @@ int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp
   slice = malloc(per * (size_t)nk * sizeof *slice);
   for (int k0 = 0; k0 < img->nz; k0 += nk) {
     const int kn = img->nz - k0 < nk ? img->nz - k0 : nk;
-    hsize_t start[3] = {(hsize_t)k0, 0, 0}, count[3] = {(hsize_t)kn, dims[1], dims[2]};
+    hsize_t start[3] = {(hsize_t)(lo[2] + k0), (hsize_t)lo[1], (hsize_t)lo[0]};
+    hsize_t count[3] = {(hsize_t)kn, (hsize_t)sz[1], (hsize_t)sz[0]};
     hsize_t mdim[1] = {per * (size_t)kn};
     if (mspace >= 0) H5Sclose(mspace);
     mspace = H5Screate_simple(1, mdim, NULL);
     H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL);
     if (!slice || H5Dread(dset, H5T_NATIVE_INT32, mspace, space, H5P_DEFAULT, slice) < 0) {
       snprintf(err, MDP_IMAGE_ERR_LEN, "%s: reading dataset '%s' slices z=%d..%d failed", path,
-               dname, k0, k0 + kn - 1);
+               dname, lo[2] + k0, lo[2] + k0 + kn - 1);
       goto done;
     }
     for (size_t p = 0; p < per * (size_t)kn; p++) {
@@ -204,14 +220,14 @@ int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp
         const size_t q = p % per;
         snprintf(err, MDP_IMAGE_ERR_LEN,
                  "%s: dataset '%s' voxel (%d,%d,%d) has label %d; labels must be 0..255", path,
-                 dname, (int)(q % (size_t)img->nx), (int)(q / (size_t)img->nx), k0 + (int)(p / per),
-                 (int)slice[p]);
+                 dname, lo[0] + (int)(q % (size_t)img->nx), lo[1] + (int)(q / (size_t)img->nx),
+                 lo[2] + k0 + (int)(p / per), (int)slice[p]);
         goto done;
       }
       img->label[per * (size_t)k0 + p] = (uint8_t)slice[p];
     }
   }
-  rc = mdp_image_check_labels(img, path, err);
+  rc = box ? 0 : mdp_image_check_labels(img, path, err);
 done:
   free(slice);
   if (mspace >= 0) H5Sclose(mspace);

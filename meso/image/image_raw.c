@@ -104,8 +104,11 @@ static long long element(const unsigned char *p, const char *type, int big) {
   return (long long)u;
 }
 
-int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
-                       char *err) {
+/* The file's layout: the options completed from the sidecar and defaults, checked against the
+ * file size. axis[f] = box axis (0 x, 1 y, 2 z) of the f-th fastest file index. 0 or 1 + err. */
+static int raw_layout(const char *path, const mdp_image_read_opts_t *opts,
+                      mdp_image_read_opts_t *out, int axis[3], int *esize, int *big_endian,
+                      char *err) {
   mdp_image_read_opts_t o = *opts;
   char side[4096];
   snprintf(side, sizeof side, "%s.hdr", path);
@@ -137,7 +140,6 @@ int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_
              o.byte_order);
     return 1;
   }
-  int axis[3]; /* axis[f] = physical axis (0 x, 1 y, 2 z) of the f-th fastest file index */
   int seen = 0;
   for (int f = 0; f < 3; f++) {
     char c = (char)tolower((unsigned char)o.axis_order[f]);
@@ -172,10 +174,30 @@ int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_
              path, (long long)sb.st_size, o.nx, o.ny, o.nz, o.type, o.header_bytes, need);
     return 1;
   }
+  *out = o;
+  *esize = size;
+  *big_endian = big;
+  return 0;
+}
+
+/* The box [lo, lo + size) (box == NULL: the whole image), read run by run along the file's fastest
+ * axis: a rank reading its part of a large image seeks past the rest. */
+int mdp_image_read_raw_box(const char *path, const mdp_image_read_opts_t *opts,
+                           const mdp_image_box_t *box, mdp_image_t *img, int dims[3], char *err) {
+  mdp_image_read_opts_t o;
+  int axis[3], size, big;
+  memset(img, 0, sizeof *img);
+  if (raw_layout(path, opts, &o, axis, &size, &big, err)) return 1;
+  const int dim[3] = {o.nx, o.ny, o.nz};
+  if (dims) memcpy(dims, dim, sizeof dim);
+  int lo[3] = {0, 0, 0}, sz[3] = {o.nx, o.ny, o.nz};
+  if (box) memcpy(lo, box->lo, sizeof lo), memcpy(sz, box->size, sizeof sz);
+  if (box && (sz[0] < 1 || sz[1] < 1 || sz[2] < 1)) return 0; /* dims only */
+  const long long n = (long long)sz[0] * sz[1] * sz[2];
   char what[128];
   snprintf(what, sizeof what, "key 'dims' %dx%dx%d of %s", o.nx, o.ny, o.nz, o.type);
-  if (mdp_image_check_memory((double)data_bytes + (double)n, path, what, err)) return 1;
-  if (mdp_image_alloc(img, o.nx, o.ny, o.nz, err)) {
+  if (mdp_image_check_memory((double)n + (double)sz[axis[0]] * size, path, what, err)) return 1;
+  if (mdp_image_alloc(img, sz[0], sz[1], sz[2], err)) {
     mdp_image_err_prefix(err, path, "dims");
     return 1;
   }
@@ -185,41 +207,59 @@ int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_
   }
   if (o.voxel_size > 0) img->voxel_size = o.voxel_size;
   if (o.unit[0]) snprintf(img->unit, sizeof img->unit, "%s", o.unit);
+  const int nf[3] = {dim[axis[0]], dim[axis[1]], dim[axis[2]]};
+  const int run = sz[axis[0]];
   FILE *f = fopen(path, "rb");
-  unsigned char *buf = malloc((size_t)data_bytes);
-  if (!f || !buf || fseeko(f, o.header_bytes, SEEK_SET) != 0 ||
-      fread(buf, (size_t)size, (size_t)n, f) != (size_t)n) {
-    snprintf(err, MDP_IMAGE_ERR_LEN, "%s: read failed: %s", path,
-             f ? "short read" : strerror(errno));
-    if (f) fclose(f);
-    free(buf);
-    goto fail;
-  }
-  fclose(f);
-  int dim[3] = {o.nx, o.ny, o.nz}, nf[3] = {dim[axis[0]], dim[axis[1]], dim[axis[2]]};
-  long long fidx = 0;
-  for (int c2 = 0; c2 < nf[2]; c2++)
-    for (int c1 = 0; c1 < nf[1]; c1++)
-      for (int c0 = 0; c0 < nf[0]; c0++, fidx++) {
+  unsigned char *buf = malloc((size_t)run * (size_t)size);
+  long long at = -1; /* the file position after the last run: seek only where runs are apart */
+  for (int c2 = lo[axis[2]]; f && buf && c2 < lo[axis[2]] + sz[axis[2]]; c2++)
+    for (int c1 = lo[axis[1]]; c1 < lo[axis[1]] + sz[axis[1]]; c1++) {
+      const long long first = ((long long)c2 * nf[1] + c1) * nf[0] + lo[axis[0]];
+      const long long off = o.header_bytes + first * size;
+      if ((off != at && fseeko(f, (off_t)off, SEEK_SET) != 0) ||
+          fread(buf, (size_t)size, (size_t)run, f) != (size_t)run) {
+        snprintf(err, MDP_IMAGE_ERR_LEN, "%s: read failed: short read", path);
+        fclose(f);
+        free(buf);
+        goto fail;
+      }
+      at = off + (long long)run * size;
+      for (int c0 = 0; c0 < run; c0++) {
         int ijk[3];
-        ijk[axis[0]] = c0, ijk[axis[1]] = c1, ijk[axis[2]] = c2;
-        long long v = element(buf + fidx * size, o.type, big);
+        ijk[axis[0]] = lo[axis[0]] + c0, ijk[axis[1]] = c1, ijk[axis[2]] = c2;
+        long long v = element(buf + (size_t)c0 * size, o.type, big);
         if (v < 0 || v > 255) {
           snprintf(err, MDP_IMAGE_ERR_LEN,
                    "%s: voxel (%d,%d,%d) has label %lld; labels must be 0..255 (segmented image "
                    "expected)",
                    path, ijk[0], ijk[1], ijk[2], v);
+          fclose(f);
           free(buf);
           goto fail;
         }
-        img->label[mdp_image_index(img, ijk[0], ijk[1], ijk[2])] = (uint8_t)v;
+        img->label[mdp_image_index(img, ijk[0] - lo[0], ijk[1] - lo[1], ijk[2] - lo[2])] =
+            (uint8_t)v;
       }
+    }
+  if (!f || !buf) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%s: read failed: %s", path,
+             f ? "out of memory" : strerror(errno));
+    if (f) fclose(f);
+    free(buf);
+    goto fail;
+  }
+  fclose(f);
   free(buf);
-  if (mdp_image_check_labels(img, path, err)) goto fail;
+  if (!box && mdp_image_check_labels(img, path, err)) goto fail;
   return 0;
 fail:
   mdp_image_free(img);
   return 1;
+}
+
+int mdp_image_read_raw(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                       char *err) {
+  return mdp_image_read_raw_box(path, opts, NULL, img, NULL, err);
 }
 
 int mdp_image_write_raw(const mdp_image_t *img, const char *path, char *err) {

@@ -14,7 +14,11 @@ int mdp_image_tiff_available(void) {
 }
 int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
                         char *err) {
-  (void)opts;
+  return mdp_image_read_tiff_box(path, opts, NULL, img, NULL, err);
+}
+int mdp_image_read_tiff_box(const char *path, const mdp_image_read_opts_t *opts,
+                            const mdp_image_box_t *box, mdp_image_t *img, int dims[3], char *err) {
+  (void)opts, (void)box, (void)dims;
   (void)img;
   snprintf(err, MDP_IMAGE_ERR_LEN,
            "%s: mdpore was built without libtiff; install libtiff-dev and rebuild, or convert the "
@@ -41,9 +45,12 @@ int mdp_image_tiff_available(void) {
   return 1;
 }
 
+/* The pages read so far (nz: all pages seen). With a box, data holds only the box (allocated
+ * once) and pages outside it are skipped undecoded; size 0 (dims only) decodes nothing. */
 typedef struct {
   int nx, ny, nz, cap;
   uint8_t *data;
+  const mdp_image_box_t *box;
 } stack_t_;
 
 static void quiet_handler(const char *module, const char *fmt, va_list ap) {
@@ -90,7 +97,31 @@ static int read_pages(const char *file, stack_t_ *st, int whole_stack, char *err
       break;
     }
     size_t per = (size_t)w * h;
-    if (st->nz == st->cap) {
+    const mdp_image_box_t *b = st->box;
+    const int z = st->nz,
+              in_box = b && b->size[0] > 0 && z >= b->lo[2] && z < b->lo[2] + b->size[2];
+    if (b && !in_box) { /* a page outside the box: counted, not decoded */
+      st->nz++;
+      page++;
+      if (TIFFLastDirectory(t)) break;
+      if (!TIFFReadDirectory(t)) {
+        snprintf(err, MDP_IMAGE_ERR_LEN,
+                 "%s: page %d cannot be read after %d pages (expected a complete stack: a "
+                 "truncated or damaged file?)",
+                 file, page, page);
+        rc = 1;
+        break;
+      }
+      continue;
+    }
+    if (b && (b->lo[0] + b->size[0] > (int)w || b->lo[1] + b->size[1] > (int)h)) {
+      snprintf(err, MDP_IMAGE_ERR_LEN,
+               "%s page %d: size %ux%u, smaller than the box read (x %d..%d, y %d..%d)", file, page,
+               w, h, b->lo[0], b->lo[0] + b->size[0] - 1, b->lo[1], b->lo[1] + b->size[1] - 1);
+      rc = 1;
+      break;
+    }
+    if (!b && st->nz == st->cap) {
       const int cap = st->cap ? 2 * st->cap : 1;
       char what[96];
       snprintf(what, sizeof what, "page %d of %ux%u pixels", page, w, h);
@@ -122,7 +153,9 @@ static int read_pages(const char *file, stack_t_ *st, int whole_stack, char *err
       rc = 1;
       break;
     }
-    for (uint32_t y = 0; y < h && !rc; y++) {
+    /* rows are decoded in order up to the last one the box needs (strips may be compressed) */
+    const uint32_t y_end = b ? (uint32_t)(b->lo[1] + b->size[1]) : h;
+    for (uint32_t y = 0; y < y_end && !rc; y++) {
       if (TIFFReadScanline(t, line, y, 0) < 0) {
         snprintf(err, MDP_IMAGE_ERR_LEN, "%s page %d: cannot read row %u", file, page, y);
         rc = 1;
@@ -137,7 +170,12 @@ static int read_pages(const char *file, stack_t_ *st, int whole_stack, char *err
           rc = 1;
           break;
         }
-        st->data[per * (size_t)st->nz + (size_t)y * w + x] = (uint8_t)v;
+        if (!b)
+          st->data[per * (size_t)st->nz + (size_t)y * w + x] = (uint8_t)v;
+        else if ((int)y >= b->lo[1] && (int)x >= b->lo[0] && (int)x < b->lo[0] + b->size[0])
+          st->data[(size_t)b->size[0] * ((size_t)(y - (uint32_t)b->lo[1]) +
+                                         (size_t)b->size[1] * (size_t)(z - b->lo[2])) +
+                   (x - (uint32_t)b->lo[0])] = (uint8_t)v;
       }
     }
     _TIFFfree(line);
@@ -180,9 +218,28 @@ static int has_tiff_ext(const char *name) {
 
 int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
                         char *err) {
+  return mdp_image_read_tiff_box(path, opts, NULL, img, NULL, err);
+}
+
+int mdp_image_read_tiff_box(const char *path, const mdp_image_read_opts_t *opts,
+                            const mdp_image_box_t *box, mdp_image_t *img, int dims[3], char *err) {
   TIFFSetWarningHandler(quiet_handler);
   TIFFSetErrorHandler(quiet_handler);
-  stack_t_ st = {0, 0, 0, 0, NULL};
+  stack_t_ st = {0, 0, 0, 0, NULL, box};
+  const int only_dims = box && (box->size[0] < 1 || box->size[1] < 1 || box->size[2] < 1);
+  if (box && !only_dims) {
+    char what[96];
+    snprintf(what, sizeof what, "a box of %dx%dx%d voxels", box->size[0], box->size[1],
+             box->size[2]);
+    if (mdp_image_check_memory(2.0 * (double)box->size[0] * box->size[1] * box->size[2], path, what,
+                               err))
+      return 1;
+    st.data = malloc((size_t)box->size[0] * (size_t)box->size[1] * (size_t)box->size[2]);
+    if (!st.data) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s: out of memory for %s", path, what);
+      return 1;
+    }
+  }
   struct stat sb;
   int rc = 0;
   memset(img, 0, sizeof *img);
@@ -216,7 +273,19 @@ int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp
   } else {
     rc = read_pages(path, &st, 1, err);
   }
-  if (!rc && (rc = mdp_image_alloc(img, st.nx, st.ny, st.nz, err)))
+  if (dims) dims[0] = st.nx, dims[1] = st.ny, dims[2] = st.nz;
+  if (!rc && box && !only_dims && box->lo[2] + box->size[2] > st.nz) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "%s: %d pages, fewer than the box read (z %d..%d)", path,
+             st.nz, box->lo[2], box->lo[2] + box->size[2] - 1);
+    rc = 1;
+  }
+  if (only_dims) {
+    free(st.data);
+    return rc;
+  }
+  const int bn[3] = {box ? box->size[0] : st.nx, box ? box->size[1] : st.ny,
+                     box ? box->size[2] : st.nz};
+  if (!rc && (rc = mdp_image_alloc(img, bn[0], bn[1], bn[2], err)))
     mdp_image_err_prefix(err, path, "ImageWidth/ImageLength");
   else if (!rc) {
     memcpy(img->label, st.data, mdp_image_count(img));
@@ -225,7 +294,7 @@ int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp
     if (rc) mdp_image_err_prefix(err, path, "labels");
     if (opts->voxel_size > 0) img->voxel_size = opts->voxel_size;
     if (opts->unit[0]) snprintf(img->unit, sizeof img->unit, "%s", opts->unit);
-    if (!rc) rc = mdp_image_check_labels(img, path, err);
+    if (!rc && !box) rc = mdp_image_check_labels(img, path, err);
     if (rc) mdp_image_free(img);
   }
   free(st.data);

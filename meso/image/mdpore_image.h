@@ -97,6 +97,26 @@ int mdp_image_read_tiff(const char *path, const mdp_image_read_opts_t *opts, mdp
                         char *err);
 int mdp_image_tiff_available(void); /* 1 when built with libtiff */
 
+/* ---- partial reads (image_read_box.c; the format files read the box) ----
+ * The voxels [lo, lo + size) of the file's image (file axes), with the file's label map, voxel size
+ * and unit, into img (size[0] x size[1] x size[2]); dims receives the whole image's size. size ==
+ * NULL: only dims (img is left empty). Labels are checked inside the box only; an error names the
+ * voxel in the whole image's coordinates. HDF5 reads a hyperslab, raw seeks to each run along its
+ * fastest axis, TIFF decodes only the pages of the box and its rows up to the last one needed. */
+typedef struct {
+  int lo[3], size[3];
+} mdp_image_box_t;
+int mdp_image_read_box(const char *path, const mdp_image_read_opts_t *opts, const int lo[3],
+                       const int size[3], mdp_image_t *img, int dims[3], char *err);
+/* The per-format readers behind it (box == NULL: the whole image, as mdp_image_read_FORMAT; a box
+ * of size 0: dims only). */
+int mdp_image_read_raw_box(const char *path, const mdp_image_read_opts_t *opts,
+                           const mdp_image_box_t *box, mdp_image_t *img, int dims[3], char *err);
+int mdp_image_read_hdf5_box(const char *path, const mdp_image_read_opts_t *opts,
+                            const mdp_image_box_t *box, mdp_image_t *img, int dims[3], char *err);
+int mdp_image_read_tiff_box(const char *path, const mdp_image_read_opts_t *opts,
+                            const mdp_image_box_t *box, mdp_image_t *img, int dims[3], char *err);
+
 /* ---- writers (atomic: temporary file in the same folder, then rename) ---- */
 /* HDF5: dataset "/labels" (uint8, dims [nz][ny][nx]) with attributes voxel_size, unit, label_map.
  */
