@@ -68,6 +68,11 @@ typedef struct backend_ops {
    * sums[s] and sum v_axis sums[MESO_MAX_SPECIES + s] (frozen species: 0). NULL: the engine sums
    * st->p. 0 or -1. */
   int (*flux_sums)(sim_state_t *st, int axis, double sums[2 * MESO_MAX_SPECIES]);
+  /* Test-only (meso/run/run_fault.c): set (add = 0) or add to (add = 1) component `axis` of the
+   * position (field 0) or velocity (field 1) of particle `id` where this backend keeps the
+   * particles between steps; a rank that does not own it changes nothing. NULL: the engine writes
+   * st->p. 0 or -1. */
+  int (*fault_write)(sim_state_t *st, int64_t id, int field, int axis, double value, int add);
 } backend_ops_t;
 
 /* The CPU backend (backend/cpu/cpu_backend.c). */

@@ -191,6 +191,20 @@ void sim_rebuild_lists(sim_t *sim) {
   if (sim->ops->rebuild_lists) sim->ops->rebuild_lists(&sim->st);
 }
 
+int sim_fault_write(sim_t *sim, int64_t id, int field, int axis, double value, int add) {
+  sim_state_t *st = &sim->st;
+  if (sim->ops->fault_write) {
+    if (sim->ops->fault_write(st, id, field, axis, value, add) == 0) return 0;
+    fprintf(stderr, "mdpore: MDPORE_TEST_FAULT: the backend's write failed\n");
+    return -1;
+  }
+  particles_t *p = &st->p;
+  double *a = field ? p->v[axis] : p->x[axis];
+  for (int i = 0; i < p->n_local; i++)
+    if (p->id[i] == id) a[i] = add ? a[i] + value : value;
+  return 0;
+}
+
 void sim_forces_loaded(sim_t *sim) {
   sim->st.forces_loaded = 1;
 }

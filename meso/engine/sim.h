@@ -81,6 +81,10 @@ void sim_rebuild_lists(sim_t *sim);
 int sim_check_count(sim_t *sim);
 /* The last error message of this rank ("" when none). */
 const char *sim_last_error(const sim_t *sim);
+/* Test-only fault hook (meso/run/run_fault.h): set (add = 0) or add to (add = 1) component `axis`
+ * of the position (field 0) or velocity (field 1) of particle `id` on the rank that owns it, where
+ * the backend keeps it (on the GPU for the CUDA backend). 0 or -1 (message printed). */
+int sim_fault_write(sim_t *sim, int64_t id, int field, int axis, double value, int add);
 /* The backend that runs the phases: "cpu" or "cuda". */
 const char *sim_backend_name(const sim_t *sim);
 

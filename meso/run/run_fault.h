@@ -6,8 +6,10 @@
  *   nan_position  x_x = NaN            -> the non-finite check of the drift
  *   jump          x_x += 3 box lengths -> lost: farther than a neighbour subdomain (or the box)
  *   remove        dropped from storage -> the global particle count changed
- * Unset, the run loop pays one branch per step on an integer. CPU backend only (the CUDA backend
- * keeps the particles on the GPU between steps: the fault is refused there). Not for users. */
+ * Unset, the run loop pays one branch per step on an integer. The value faults (nan_velocity,
+ * nan_position, jump) work on both backends: they go through sim_fault_write, a device write of
+ * one value on the CUDA backend (the particles live on the GPU between steps); remove works on the
+ * CPU backend only (refused on CUDA). Not for users. */
 #ifndef MESO_RUN_FAULT_H
 #define MESO_RUN_FAULT_H
 
@@ -33,7 +35,8 @@ typedef struct {
  * a backend that cannot take it). */
 int run_fault_init(run_fault_t *f, const sim_t *sim, int rank);
 
-/* Damages the particle on the rank that owns it (call only when step == f->step). */
-void run_fault_apply(const run_fault_t *f, sim_t *sim);
+/* Damages the particle on the rank that owns it (call only when step == f->step). 0, or -1 when
+ * the device write failed (message printed). */
+int run_fault_apply(const run_fault_t *f, sim_t *sim);
 
 #endif

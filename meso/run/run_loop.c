@@ -191,7 +191,10 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     if (s->checkpoint.every > 0 &&
         (due(&s->checkpoint, step) || step == last || run_flux_check_at(&rf, step)))
       sim_rebuild_lists(sim);
-    if (fault.kind && step == fault.step) run_fault_apply(&fault, sim);
+    /* Not a branch on the result: stopping one rank here would leave the others waiting in the
+     * step's collectives. A failed device write has printed its CUDA error; a device fault stays
+     * pending, and the step's own device calls then fail and stop the run collectively. */
+    if (fault.kind && step == fault.step) (void)run_fault_apply(&fault, sim);
     MPI_Barrier(comm);
     const double t0 = MPI_Wtime();
     if (sim_step(sim)) {

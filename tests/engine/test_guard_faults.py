@@ -19,7 +19,15 @@ the count check, which cannot know it), step 20 and what to try, and ends the ru
 stopped at step 20"; the thermo CSV holds steps 0..19 only, every value finite; no summary.json
 (no NaN reaches the outputs). Also: the same scene without a fault runs to the end (exit 0,
 summary written), and a malformed MDPORE_TEST_FAULT is refused.
-Usage: test_guard_faults.py MDPORE "MPIEXEC FLAGS" SCENE WORKDIR
+
+With BACKEND cuda (ctest cuda_guard_faults; 2 ranks share the GPUs there are; skipped, exit 77,
+printing why, without one): the same cases through the device write of the hook (sim_fault_write),
+which exercise the CUDA kick-drift kernel's checks: the non-finite position/velocity test after the
+wall effects (a NaN position with a finite velocity), the loss of a particle farther than two box
+lengths (1 rank: the device wrap) and, on 2 ranks, that the drift's record wins over the host
+migration's loss of the same particle. `remove` is refused on CUDA (the particles live in device
+arrays; asserted). Not run on a GPU yet when written (no GPU on the machine it was written on).
+Usage: test_guard_faults.py MDPORE "MPIEXEC FLAGS" SCENE WORKDIR [cpu|cuda]
 """
 import json
 import math
@@ -29,6 +37,7 @@ import subprocess
 import sys
 
 mdpore, mpi, scene, work = sys.argv[1:5]
+BACKEND = sys.argv[5] if len(sys.argv) > 5 else "cpu"
 failures = []
 
 
@@ -43,7 +52,7 @@ def run(np_, fault, out):
     env.pop("MDPORE_TEST_FAULT", None)
     if fault:
         env["MDPORE_TEST_FAULT"] = fault
-    cmd = (mpi.split() + ["-n", str(np_)] if np_ > 1 else []) + [mdpore, "run", "--backend", "cpu",
+    cmd = (mpi.split() + ["-n", str(np_)] if np_ > 1 else []) + [mdpore, "run", "--backend", BACKEND,
                                                                  "--output-dir", out, scene]
     return subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=300)
 
@@ -73,6 +82,11 @@ CASES = {
 def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
+    if BACKEND == "cuda":
+        probe = subprocess.run([mdpore, "run", "--backend", "cuda", "--explain", scene], capture_output=True, text=True)
+        if probe.returncode:
+            print("skipped: no GPU (" + probe.stderr.strip().split("available: ")[-1] + ")")
+            sys.exit(77)
     for np_ in (1, 2):
         out = os.path.join(work, f"clean_np{np_}")
         p = run(np_, None, out)
@@ -83,6 +97,10 @@ def main():
             p = run(np_, f"{kind}:20:7", out)
             err = p.stderr
             what = f"np {np_} {kind}"
+            if BACKEND == "cuda" and kind == "remove":
+                check(p.returncode != 0 and "MDPORE_TEST_FAULT=remove works on the cpu backend only" in err,
+                      f"{what}: refused on the CUDA backend", err[-400:])
+                continue
             check(p.returncode != 0, f"{what}: non-zero exit ({p.returncode})")
             missing = [s for s in parts + ["mdpore: step 20: ", "mdpore: run stopped at step 20"] if s not in err]
             check(not missing, f"{what}: the message names cause, particle, step and advice",

@@ -108,6 +108,11 @@ int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[17]);
  * v_axis sums[MESO_MAX_SPECIES + s]. 0 or -1. */
 int cuda_sim_flux_sums(cuda_sim_t *g, int axis, double sums[2 * MESO_MAX_SPECIES]);
 
+/* Test-only fault hook: set (add = 0) or add to (add = 1) component `axis` of the position (field
+ * 0) or velocity (field 1) of the owned particle `id`, on the device (one kernel over the owned
+ * particles, then a synchronisation). 0 or -1. */
+int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int axis, double value, int add);
+
 /* 1 when the halo steps overlap interior work with the host exchanges. */
 int cuda_sim_overlap(const cuda_sim_t *g);
 /* Bytes of device memory this state holds. */

@@ -89,9 +89,12 @@ int cuda_glue_check(sim_state_t *st) {
   if (!rc) rc = cuda_sim_fetch_problems(c->g, &c->cp);
   step_problem_t pr = st->pr;
   if (rc) step_problem_note(&pr, STEP_NO_MEMORY, -1, NULL, 0);
-  if (c->mr.n_lost)
-    step_problem_note(&pr, STEP_LOST, c->mr.lost_id, c->mr.lost_x, (double)c->mr.n_lost);
   const cuda_problem_t *cp = &c->cp;
+  /* The CPU path stops at its drift check, before the migration; here the drift's problems wait
+   * for this check, so a particle the drift found non-finite (or too fast) has meanwhile been
+   * dropped as lost by the host migration (several ranks): the drift's record names the cause. */
+  if (c->mr.n_lost && !(cp->kind && cp->at_drift))
+    step_problem_note(&pr, STEP_LOST, c->mr.lost_id, c->mr.lost_x, (double)c->mr.n_lost);
   if (cp->kind) {
     step_problem_note(&pr, cp->kind, cp->id, cp->x, cp->value);
     if (cp->kind == CUDA_TOO_FAST) pr.limit = st->plan.max_disp;
@@ -117,6 +120,13 @@ void cuda_glue_want_pressure(sim_state_t *st, int on) {
 
 void cuda_glue_rebuild_lists(sim_state_t *st) {
   cuda_sim_rebuild_lists(cuda_glue(st)->g);
+}
+
+/* The test-only fault hook writes the device copy, which is the particles' home between steps
+ * (a write to st->p would be overwritten by the next download, and never seen by the device). */
+int cuda_glue_fault_write(sim_state_t *st, int64_t id, int field, int axis, double value, int add) {
+  st->host_stale = 1;
+  return cuda_sim_fault_write(cuda_glue(st)->g, id, field, axis, value, add);
 }
 
 void cuda_glue_sync_host(sim_state_t *st) {
@@ -203,4 +213,5 @@ const backend_ops_t cuda_ops_one_rank = {
     .want_pressure = cuda_glue_want_pressure,
     .rebuild_lists = cuda_glue_rebuild_lists,
     .flux_sums = cuda_glue_flux_sums,
+    .fault_write = cuda_glue_fault_write,
 };

@@ -37,6 +37,7 @@ int cuda_glue_flux_sums(sim_state_t *st, int axis, double sums[2 * MESO_MAX_SPEC
 void cuda_glue_sync_host(sim_state_t *st);
 void cuda_glue_want_pressure(sim_state_t *st, int on);
 void cuda_glue_rebuild_lists(sim_state_t *st);
+int cuda_glue_fault_write(sim_state_t *st, int64_t id, int field, int axis, double value, int add);
 const char *cuda_glue_phase_note(int phase);
 
 extern const backend_ops_t cuda_ops_one_rank, cuda_ops_ranks;

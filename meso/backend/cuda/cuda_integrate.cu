@@ -16,14 +16,17 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
   double x[3] = {p.x[0][i], p.x[1][i], p.x[2][i]};
   double v[3] = {p.v[0][i], p.v[1][i], p.v[2][i]};
   const double x_old[3] = {x[0], x[1], x[2]};
+  int nonfinite = 0; /* noted once per particle: the count of a kind is a particle count */
   if (q.mobile[s]) {
     const double f[3] = {p.f[0][i], p.f[1][i], p.f[2][i]};
     const double d2 = verlet_kick_drift(x, v, f, q.dt, q.half_dt, q.inv_mass[s]);
     if (!(d2 < q.max_disp * q.max_disp)) {
-      if (isfinite(d2))
+      if (isfinite(d2)) {
         dev_note(pb, CUDA_TOO_FAST, 1, p.id[i], x[0], x[1], x[2], sqrt(d2));
-      else
+      } else {
         dev_note(pb, CUDA_NONFINITE, 1, p.id[i], x[0], x[1], x[2], 0.0);
+        nonfinite = 1;
+      }
     }
   } else if (q.moving[s]) { /* a moving wall: x += u dt, v = u (physics/verlet.h) */
     verlet_moving_wall_drift(x, v, q.wall_u[s], q.dt);
@@ -32,7 +35,20 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
    * mobile particles, on the unwrapped drift (x - x_old is the displacement) */
   if (q.walls && q.mobile[s] && particle_effects_after_drift(&q.pe, i, x, v, x_old))
     dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
-  /* the periodic wrap (the CPU path's migration: decomp_wrap) */
+  /* d2 is the displacement, blind to a position that was already non-finite before the drift or
+   * that a wall effect made non-finite after it (as the CPU path's kick_drift): such a particle
+   * would sit in bin 0 on one rank, or be dropped as lost by the host migration on several, and
+   * the run would stop on the wrong cause or on none. Folded into this kernel's record: no
+   * extra launch or copy. */
+  if (q.mobile[s] && !nonfinite && !isfinite(x[0] + x[1] + x[2] + v[0] + v[1] + v[2]))
+    dev_note(pb, CUDA_NONFINITE, 1, p.id[i], x[0], x[1], x[2], 0.0);
+  /* the periodic wrap (the CPU path's migration: decomp_wrap); farther than two box lengths from
+   * the lower face is a loss there (migrate.c wrap_axis_in_place), not a wrap */
+  int far = 0;
+  for (int d = 0; d < 3; d++)
+    if (q.box_periodic[d] && isfinite(x[d]) && fabs(x[d] - q.box_lo[d]) > 2.0 * q.box_len[d])
+      far = 1;
+  if (far) dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
   for (int d = 0; d < 3; d++)
     if (q.box_periodic[d]) x[d] = box_wrap(x[d], q.box_lo[d], q.box_hi[d], q.box_len[d]);
   for (int d = 0; d < 3; d++) {
@@ -74,6 +90,15 @@ __global__ void k_finish(const struct dev_params q, int n, struct dev_fields p,
   for (int d = 0; d < 3; d++) p.v[d][i] = v[d];
 }
 
+/* One value of one particle (the test-only fault hook). */
+__global__ void k_fault_write(int n, struct dev_fields p, int64_t id, int field, int axis,
+                              double value, int add) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n || p.id[i] != id) return;
+  double *a = field ? p.v[axis] : p.x[axis];
+  a[i] = add ? a[i] + value : value;
+}
+
 static int blocks_of(int n) {
   return (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
 }
@@ -90,6 +115,13 @@ void cuda_predict(struct cuda_sim *g, int setup) {
 void cuda_finish_forces(struct cuda_sim *g, int add_particle, int kick) {
   if (g->n)
     k_finish<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, add_particle, kick);
+}
+
+extern "C" int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int axis, double value,
+                                    int add) {
+  if (!g->n) return 0;
+  k_fault_write<<<blocks_of(g->n), CUDA_BLOCK>>>(g->n, g->a, id, field, axis, value, add);
+  return cuda_check(cudaDeviceSynchronize(), "test fault");
 }
 
 /* Copy the problem record to the host (this synchronises with the step) and clear it. */
