@@ -18,6 +18,12 @@
 #define CAMP_MAX_GRADIENTS 64
 #define CAMP_MAX_RUNS (3 * CAMP_MAX_GRADIENTS)
 #define CAMP_PATH 4096
+/* The generated template's wall patch density (docs/walls.md section 16): at 4 particles per rc^3
+ * image slits have no slip within 0.07 rc and their pore fluid sits at the bulk density (6.0-6.1)
+ * whose viscosity is the default mu; the paper's 8 gives -0.2 rc and a denser, more viscous pore
+ * fluid (validation/walls/slit_poiseuille.py --wall-density). geometry.wall_density keeps 8. */
+#define CAMP_DEFAULT_WALL_DENSITY 4.0
+#define CAMP_WALL_DENSITY_TEXT "4"
 
 /* How the runs are driven (--drive): a body force on every fluid particle, or an inlet force in an
  * open reservoir added along the flow axis (pressure-driven; docs/permeability.md). */
@@ -45,6 +51,8 @@ typedef struct {
   double voxel_size_m;         /* --voxel-size (m per voxel; 0 = from the image or the mapping) */
   double viscosity;            /* mu of the fluid in reduced units */
   int viscosity_given;
+  double wall_density; /* image input: geometry.wall_density of the template */
+  int wall_density_given;
   double temperature_K;  /* units: kT of the reduced units */
   int temperature_given; /* --temperature was given (it wins over a scene's units block) */
   long long seed;
@@ -85,6 +93,7 @@ typedef struct {
   double fluid_density;  /* n, particles per rc^3 */
   double viscosity;      /* mu, reduced */
   char viscosity_source[256];
+  double wall_density;  /* wall particles per rc^3 of the template (NAN: a scene's own) */
   double length_unit_m; /* metres per rc */
   char length_source[256];
   double temperature_K;

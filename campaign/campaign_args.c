@@ -40,6 +40,8 @@ const char *camp_usage =
     "                      mapping rc = 0.82 nm)\n"
     "  --viscosity MU      fluid viscosity in reduced units (default 5.41: mDPD A=-40 B=25\n"
     "                      gamma=4.5 rd=0.75, validation/engine/viscosity.py)\n"
+    "  --wall-density W    image: wall patch density, particles per rc^3 "
+    "(default " CAMP_WALL_DENSITY_TEXT ": no slip on slits, docs/walls.md section 16)\n"
     "  --temperature K     temperature of kT for the SI units (default 298.15)\n"
     "  --seed S            base seed (default 12345; each gradient gets its own)\n"
     "  --flux-every N      flux sample interval in steps (default 10)\n"
@@ -116,6 +118,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->np = 1;
   o->rc_per_voxel = 0.5;
   o->viscosity = 5.41;
+  o->wall_density = CAMP_DEFAULT_WALL_DENSITY;
   o->temperature_K = 298.15;
   o->seed = 12345;
   o->flux_every = 10;
@@ -182,6 +185,11 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     } else if (!strcmp(s, "--voxel-size")) {
       if (parse_double(s, v, 0, 1, "a voxel edge in metres (0 < M < 1)", &o->voxel_size_m))
         return -1;
+    } else if (!strcmp(s, "--wall-density")) {
+      if (parse_double(s, v, 0, 1000, "a wall density 0 < W < 1000 (particles per rc^3)",
+                       &o->wall_density))
+        return -1;
+      o->wall_density_given = 1;
     } else if (!strcmp(s, "--viscosity")) {
       if (parse_double(s, v, 0, HUGE_VAL, "a viscosity > 0 (reduced units)", &o->viscosity))
         return -1;
@@ -246,6 +254,13 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   }
   absolute(input, o->input, sizeof o->input);
   o->input_is_scene = ends_with(input, ".yaml") || ends_with(input, ".yml");
+  if (o->input_is_scene && o->wall_density_given) {
+    fprintf(stderr,
+            "mdpore permeability: --wall-density: applies to an IMAGE input only (got the scene "
+            "%s: set geometry.wall_density in it)\n",
+            input);
+    return -1;
+  }
   if (!o->sample[0]) {
     const char *b = strrchr(o->input, '/');
     snprintf(o->sample, sizeof o->sample, "%.255s", b ? b + 1 : o->input);

@@ -109,6 +109,7 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   fprintf(f, "percolates: %d %d %d\n", c->percolates[0], c->percolates[1], c->percolates[2]);
   fprintf(f, "fluid_density: %.17g\nviscosity: %.17g\nviscosity_source: %s\n", c->fluid_density,
           c->viscosity, c->viscosity_source);
+  if (isfinite(c->wall_density)) fprintf(f, "wall_density: %.17g\n", c->wall_density);
   fprintf(f, "length_unit_m: %.17g\nlength_source: %s\n", c->length_unit_m, c->length_source);
   fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
           c->target_error, c->np);
@@ -144,6 +145,7 @@ int camp_read_manifest(const char *workdir, campaign *c) {
     return -1;
   }
   memset(c, 0, sizeof *c);
+  c->wall_density = NAN; /* a scene's own, or a manifest from before --wall-density */
   int ln = 0, rc = 0, head = 0;
   while (!rc && fgets(line, sizeof line, f)) {
     ln++;
@@ -199,17 +201,12 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       struct {
         const char *key;
         double *to;
-      } nums[] = {{"porosity", &c->porosity},
-                  {"rc_per_voxel", &c->rc_per_voxel},
-                  {"h_hydraulic", &c->h_hydraulic},
-                  {"fluid_density", &c->fluid_density},
-                  {"viscosity", &c->viscosity},
-                  {"length_unit_m", &c->length_unit_m},
-                  {"temperature_K", &c->temperature_K},
-                  {"target_error", &c->target_error},
-                  {"reservoir", &c->reservoir},
-                  {"energy_J", &c->energy_J},
-                  {"particle_mass_kg", &c->particle_mass_kg}};
+      } nums[] = {{"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
+                  {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
+                  {"viscosity", &c->viscosity},         {"wall_density", &c->wall_density},
+                  {"length_unit_m", &c->length_unit_m}, {"temperature_K", &c->temperature_K},
+                  {"target_error", &c->target_error},   {"reservoir", &c->reservoir},
+                  {"energy_J", &c->energy_J},           {"particle_mass_kg", &c->particle_mass_kg}};
       for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
         if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
       if (!strcmp(k, "np")) {

@@ -115,7 +115,8 @@ static int write_image_template(const camp_opts *o, const mdp_image_t *img, cons
   fprintf(f, "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}, "
              "body_force: {liquid: [0.0, 0.0, 0.0]}, bounce_back: {}}\n");
   fprintf(f, "geometry:\n  image: \"%s\"\n  rc_per_voxel: %.17g\n  flow_axis: x\n", o->input, a);
-  fprintf(f, "  fluid_density: %g\n  species: {fluid: liquid", DEFAULT_FLUID_DENSITY);
+  fprintf(f, "  fluid_density: %g\n  wall_density: %.17g\n  species: {fluid: liquid",
+          DEFAULT_FLUID_DENSITY, o->wall_density);
   if (n_inorg) fprintf(f, ", inorganic: quartz");
   if (n_org) fprintf(f, ", organic: kerogen");
   fprintf(f, "}\n");
@@ -344,6 +345,7 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
            o->viscosity_given ? "--viscosity"
                               : "mDPD A=-40 B=25 gamma=4.5 rd=0.75 at n=6.07 "
                                 "(validation/engine/viscosity.py, reverse Poiseuille)");
+  c->wall_density = o->input_is_scene ? NAN : o->wall_density;
   c->temperature_K = o->temperature_K;
   c->energy_J = c->particle_mass_kg = NAN;
   c->target_error = o->target_error;

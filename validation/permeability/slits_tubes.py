@@ -130,6 +130,10 @@ def main():
     ap.add_argument("--radii", type=float, nargs="*", help="tube radii R in rc (default 2 3 4)")
     ap.add_argument("--wall-voxels", type=int, default=4)
     ap.add_argument("--viscosity", type=float, default=5.80)
+    ap.add_argument("--wall-density", type=float, default=8.0,
+                    help="the campaigns' --wall-density (default 8, the paper's and the slit validation's, whose "
+                         "slip -0.2 rc this checks against and whose pore fluid has mu 5.80; the campaign default "
+                         "4 has no slip to fit, docs/walls.md section 16)")
     ap.add_argument("--target-error", type=float,
                     help="per run (default 0.001, i.e. no early stop: every run goes the full --max-steps)")
     ap.add_argument("--max-steps", type=int, help="per run (default 50000; --quick 4000)")
@@ -170,7 +174,8 @@ def main():
             wd = os.path.join(workdir, f"{shape}_{size:g}")
             cmd = [exe, "permeability", image, "--axis", "x", "--gradients", ",".join(f"{g:g}" for g in gl),
                    "--target-error", f"{target:g}", "--max-steps", str(max_steps), "--viscosity",
-                   f"{args.viscosity:g}", "--np", str(args.np), "--models", "darcy", "--workdir", wd]
+                   f"{args.viscosity:g}", "--wall-density", f"{args.wall_density:g}", "--np", str(args.np),
+                   "--models", "darcy", "--workdir", wd]
             print(f"{shape} {size:g}: {' '.join(cmd[1:])}", flush=True)
             _, wall_s = sh(cmd, os.path.join(workdir, f"{shape}_{size:g}.log"))
             with open(os.path.join(wd, "permeability.json")) as f:

@@ -9,6 +9,9 @@ Two stages, because the mDPD runs want a GPU:
       images, the foam runs (here, CPU), and each case's campaign emitted (mdpore permeability
       --emit-scenes): WORK/commands.txt lists every run (run them anywhere, e.g. on a GPU machine,
       in the same folder tree);
+  sphere_array.py run WORK [--case sph40_c0.125] [--np N] [--gradients LIST]
+      emit, then every run of WORK/commands.txt here, one after another (a CPU campaign: one
+      case at 20 rc per cell is ~47k particles, minutes per 10^4 steps on 2 cores), then report;
   sphere_array.py report WORK [--outdir DIR]
       mdpore permeability --collect per case, the table (k_mDPD, k_foam, k_ZH in rc^2, ratios with
       errors), validation/permeability/results/sphere_array.{md,csv,png}; exit 1 when a ratio
@@ -19,6 +22,7 @@ import argparse
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -46,7 +50,7 @@ def sh(*args, cwd=None):
 def emit(a):
     os.makedirs(a.work, exist_ok=True)
     cmds = []
-    for L, c in CASES:
+    for L, c in cases(a):
         d = os.path.join(a.work, name(L, c))
         os.makedirs(d, exist_ok=True)
         img = os.path.join(d, "image.h5")
@@ -59,17 +63,38 @@ def emit(a):
                 f.write(out)
         em = os.path.join(d, "emit")
         if not os.path.exists(os.path.join(em, "commands.txt")):
+            extra = ["--gradients", a.gradients] if a.gradients else []
             sh("permeability", img, "--axis", "x", "--emit-scenes", em, "--rc-per-voxel", str(RC_PER_VOXEL),
-               "--max-steps", str(a.max_steps), "--target-error", str(a.target_error))
+               "--max-steps", str(a.max_steps), "--target-error", str(a.target_error), "--np", str(a.np), *extra)
         cmds += open(os.path.join(em, "commands.txt")).read().splitlines()
     with open(os.path.join(a.work, "commands.txt"), "w") as f:
         f.write("\n".join(cmds) + "\n")
     print(f"{len(cmds)} runs in {os.path.join(a.work, 'commands.txt')}")
 
 
+def cases(a):
+    chosen = [(L, c) for L, c in CASES if not a.case or name(L, c) in a.case]
+    if not chosen:
+        sys.exit(f"sphere_array.py: --case: expected one of {', '.join(name(L, c) for L, c in CASES)}")
+    return chosen
+
+
+def run(a):
+    emit(a)
+    cmds = open(os.path.join(a.work, "commands.txt")).read().splitlines()
+    for i, cmd in enumerate(cmds):
+        m = re.match(r"cd '([^']+)'", cmd)
+        if m and os.path.exists(os.path.join(m.group(1), "summary.json")):
+            print(f"[{i + 1}/{len(cmds)}] finished before: {m.group(1)}", flush=True)
+            continue
+        print(f"[{i + 1}/{len(cmds)}] {cmd}", flush=True)
+        subprocess.run(["bash", "-c", cmd], check=False)
+    return report(a)
+
+
 def report(a):
-    rows = []
-    for L, c in CASES:
+    rows, setup = [], ""
+    for L, c in cases(a):
         d = os.path.join(a.work, name(L, c))
         foam = json.load(open(os.path.join(d, "foam.json")))
         k_foam = foam["permeability_voxel2"] * RC_PER_VOXEL ** 2
@@ -79,24 +104,28 @@ def report(a):
         pj = json.load(open(os.path.join(em, "permeability.json")))
         ax = pj["axes"]["x"]
         k, err = ax["k_rc2"], ax["k_rc2_err"]  # the Darcy k of the campaign (its report's k)
+        mu = pj["viscosity"]
+        setup = (f"mu = {mu:g} ({pj.get('viscosity_source', '')}), wall density "
+                 f"{pj.get('wall_density', 8):g}")
         rows.append(dict(case=name(L, c), cell_rc=L * RC_PER_VOXEL, c=c, porosity=foam["porosity"],
                          k_mdpd=k, k_mdpd_err=err, k_foam=k_foam, k_zh=k_zh,
                          mdpd_over_foam=k / k_foam, mdpd_over_foam_err=err / k_foam,
                          mdpd_over_zh=k / k_zh, foam_over_zh=k_foam / k_zh,
                          rows_table=ax.get("rows"), law=ax.get("chosen"),
-                         mdpd_over_foam_mu_pore=k * MU_PORE / MU_CAMPAIGN / k_foam,
+                         mdpd_over_foam_mu_pore=k * MU_PORE / mu / k_foam,
                          sphere_radius_rc=L * RC_PER_VOXEL * (3 * c / (4 * 3.141592653589793)) ** (1 / 3)))
     out = a.outdir
     os.makedirs(out, exist_ok=True)
-    with open(os.path.join(out, "sphere_array.csv"), "w", newline="") as f:
+    with open(os.path.join(out, f"sphere_array{a.tag}.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
     bad = [r for r in rows if abs(r["mdpd_over_foam"] - 1) > 0.05 + 2 * r["mdpd_over_foam_err"]]
     lines = ["# Sphere arrays at >= 20 rc per cell: mDPD against Zick & Homsy and OpenFOAM (issue 11, 7b)", "",
-             f"Command: `/usr/bin/python3 validation/permeability/sphere_array.py emit|report WORK` "
-             f"(mDPD runs on the GPU machine). k in rc^2 (superficial velocity q = Q / A_total), "
-             f"{RC_PER_VOXEL} rc per voxel, body force along x, bounce_back walls, mu = 5.41.", "",
+             f"Command: `/usr/bin/python3 validation/permeability/sphere_array.py emit|run|report WORK"
+             + "".join(f" --case {x}" for x in (a.case or [])) + (f" --gradients {a.gradients}" if a.gradients else "")
+             + f" --max-steps {a.max_steps} --target-error {a.target_error}`. k in rc^2 (superficial velocity "
+             f"q = Q / A_total), {RC_PER_VOXEL} rc per voxel, body force along x, bounce_back walls, {setup}.", "",
              "| case | cell (rc) | c | k mDPD | k foam | k ZH | mDPD/foam | mDPD/ZH | foam/ZH |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -109,14 +138,14 @@ def report(a):
     for r in rows:
         R = r["sphere_radius_rc"]
         c_eff = r["c"] * (1 - SLIP / R) ** 3
-        lines.append(f"- {r['case']}: with the viscosity at the pore density (mu {MU_PORE} instead of {MU_CAMPAIGN}: "
+        lines.append(f"- {r['case']}: with the viscosity at the pore density (mu {MU_PORE} instead of the campaign's: "
                      f"k = mu q / G scales with it) mDPD/foam = {r['mdpd_over_foam_mu_pore']:.3f}; the bounce_back "
                      f"slip {SLIP} rc puts the no-slip surface {-SLIP} rc outside spheres of radius {R:.2f} rc: "
                      f"effective solid fraction {c_eff:.3f} instead of {r['c']:g} (+{100 * (c_eff / r['c'] - 1):.0f}%), "
                      f"which lowers a Stokes k by roughly that much again.")
     lines += ["", "Both effects shrink only as 1/R (the slip) or not at all (the viscosity): a 20-24 rc cell is not "
               "yet the continuum limit for this wall model; the ratio did not move between 20 and 24 rc."]
-    open(os.path.join(out, "sphere_array.md"), "w").write("\n".join(lines) + "\n")
+    open(os.path.join(out, f"sphere_array{a.tag}.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:
         import matplotlib
@@ -133,7 +162,7 @@ def report(a):
         ax.set_ylabel("permeability ratio")
         ax.legend()
         fig.tight_layout()
-        fig.savefig(os.path.join(out, "sphere_array.png"), dpi=120)
+        fig.savefig(os.path.join(out, f"sphere_array{a.tag}.png"), dpi=120)
     except ImportError:
         pass
     return 1 if bad else 0
@@ -141,13 +170,17 @@ def report(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("stage", choices=["emit", "report"])
+    ap.add_argument("stage", choices=["emit", "run", "report"])
+    ap.add_argument("--case", action="append", help="only these cases (default all), e.g. sph40_c0.125")
+    ap.add_argument("--np", type=int, default=1, help="ranks per run in commands.txt")
+    ap.add_argument("--tag", default="", help="suffix of the result files (sphere_array{TAG}.md)")
+    ap.add_argument("--gradients", help="body forces (default: the campaign's auto ladder)")
     ap.add_argument("work")
     ap.add_argument("--max-steps", type=int, default=200000)
     ap.add_argument("--target-error", type=float, default=0.02)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "validation", "permeability", "results"))
     a = ap.parse_args()
-    return emit(a) if a.stage == "emit" else report(a)
+    return {"emit": emit, "run": run, "report": report}[a.stage](a)
 
 
 if __name__ == "__main__":
