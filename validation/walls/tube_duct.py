@@ -232,6 +232,8 @@ def main():
     ap.add_argument("--bulk-runs", action="store_true",
                     help="measure mu at each core density here (default: the slit validation's bulk runs)")
     ap.add_argument("--bulk-steps", type=int, default=50000)
+    ap.add_argument("--wall-density", type=float, default=8.0,
+                    help="wall patch density (geometry.wall_density; 4 is the campaigns', docs/walls.md section 16)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--patch-seed", type=int, default=1)
     ap.add_argument("--reuse", action="store_true", help="analyse existing runs of the same scenes again")
@@ -244,14 +246,15 @@ def main():
     radii = args.radii if args.radii is not None else ([2.0] if q else [2.0, 3.0, 4.0])
     sides = args.sides if args.sides is not None else ([4.0] if q else [4.0, 6.0, 8.0])
     steps = args.steps or (8000 if q else 40000)
-    tag = "tube_duct" + ("_quick" if q else "") + ("" if args.boundary == "bounce_back" else "_" + args.boundary)
+    tag = "tube_duct" + ("_quick" if q else "") + ("" if args.boundary == "bounce_back" else "_" + args.boundary) + \
+        ("" if args.wall_density == 8.0 else f"_wd{args.wall_density:g}")
     outdir = args.outdir or mdval.out_dir("walls")
     os.makedirs(outdir, exist_ok=True)
     base = os.environ.get("MDPORE_VALIDATION_OUT") or tempfile.gettempdir()
     workdir = os.path.abspath(args.workdir or os.path.join(base, tag + "_runs"))
     img_dir = os.path.join(workdir, "images")
     os.makedirs(img_dir, exist_ok=True)
-    patches = os.path.join(workdir, f"patches-e{RC_PER_VOXEL:g}-d8-s{args.patch_seed}.h5")
+    patches = os.path.join(workdir, f"patches-e{RC_PER_VOXEL:g}-d{args.wall_density:g}-s{args.patch_seed}.h5")
     mu_ref, mu_ref_err, mu_src = mu_reference()
     if args.slip is not None:
         b, b_spread, b_src = args.slip, 0.0, "--slip"
@@ -278,6 +281,7 @@ def main():
         wd = os.path.join(workdir, name)
         scene = image_scene(name, box, image, patches, steps=equil + steps, seed=args.seed,
                             patch_seed=args.patch_seed, g=[g, 0.0, 0.0], boundary=args.boundary,
+                            wall_density=None if args.wall_density == 8.0 else args.wall_density,
                             snapshot=args.every, thermo_every=100)
         print(f"{name}: box {box}, pore area {area:g} rc^2, g = {g}, {equil} + {steps} steps ...", flush=True)
         wall_s = run_or_reuse(scene, wd, args.np, args.reuse)
