@@ -79,9 +79,10 @@ def cases(a):
     return chosen
 
 
-def run(a):
-    emit(a)
-    cmds = open(os.path.join(a.work, "commands.txt")).read().splitlines()
+def run_commands(work):
+    """Every line of WORK/commands.txt (emitted campaigns: `cd RUN && mpiexec ... run scene.yaml`) here,
+    one after another, skipping the runs whose summary.json exists (finished before)."""
+    cmds = open(os.path.join(work, "commands.txt")).read().splitlines()
     for i, cmd in enumerate(cmds):
         m = re.match(r"cd '([^']+)'", cmd)
         if m and os.path.exists(os.path.join(m.group(1), "summary.json")):
@@ -89,6 +90,11 @@ def run(a):
             continue
         print(f"[{i + 1}/{len(cmds)}] {cmd}", flush=True)
         subprocess.run(["bash", "-c", cmd], check=False)
+
+
+def run(a):
+    emit(a)
+    run_commands(a.work)
     return report(a)
 
 
