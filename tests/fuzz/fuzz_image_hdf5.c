@@ -5,6 +5,7 @@
  *   byte 0: dataset type   1: rank (0..4)   2: flags (1 chunked, 2 huge shape, 4 other name,
  *   8 a group named labels)   3..6: the dims   then per attribute (voxel_size, unit, label_map):
  *   kind, length, bytes (a number or text)   the rest: the voxel values' bytes, repeated. */
+#include "fuzz_image_box.h"
 #include "fuzz_util.h"
 #include "mdpore_image.h"
 
@@ -142,6 +143,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   mdp_image_read_opts_init(&o);
   mdp_image_t img;
   const int rc = mdp_image_read(path, &o, &img, err);
+  fuzz_image_box_check(path, &o, rc == 0 ? &img : NULL); /* before the outcome replay judges */
   if (rc == 0) mdp_image_free(&img);
   fuzz_outcome(rc, err, path);
   return 0;

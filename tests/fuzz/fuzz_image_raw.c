@@ -1,6 +1,7 @@
 /* Fuzz entry: a raw image with its sidecar header (docs/images.md) through mdp_image_read. The
  * input is the sidecar text, a line "%%", then the voxel bytes; without that line the whole input is
  * the sidecar and the data file is empty. */
+#include "fuzz_image_box.h"
 #include "fuzz_util.h"
 #include "mdpore_image.h"
 
@@ -23,6 +24,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   mdp_image_read_opts_init(&o);
   mdp_image_t img;
   const int rc = mdp_image_read(path, &o, &img, err);
+  fuzz_image_box_check(path, &o, rc == 0 ? &img : NULL); /* before the outcome replay judges */
   if (rc == 0) mdp_image_free(&img);
   fuzz_outcome(rc, err, path);
   return 0;

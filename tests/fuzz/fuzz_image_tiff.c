@@ -1,4 +1,5 @@
 /* Fuzz entry: a TIFF stack (one multi-page file) through mdp_image_read. */
+#include "fuzz_image_box.h"
 #include "fuzz_util.h"
 #include "mdpore_image.h"
 
@@ -10,6 +11,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   mdp_image_read_opts_init(&o);
   mdp_image_t img;
   const int rc = mdp_image_read(path, &o, &img, err);
+  fuzz_image_box_check(path, &o, rc == 0 ? &img : NULL); /* before the outcome replay judges */
   if (rc == 0) mdp_image_free(&img);
   fuzz_outcome(rc, err, path);
   return 0;
