@@ -6,6 +6,11 @@
  *              fluid at density 6.2 outside it; even rows of cells shifted by Lx/2; A = -40 for
  *              all pairs, B = 25, rd = 0.75, gamma = 4.5, g_z = 0.02 on the fluid, dt = 0.01.
  * usage: [mpiexec -n R] gpu_bench bulk|porous K [steps] [warmup] [cpu|cuda] [SKIN[,SKIN...]]
+ *        [MEMORY[,MEMORY...]]
+ * MEMORY: the CUDA path's memory modes to time in turn (auto, fast, compact; default auto), each on
+ * a fresh system (docs/engine-cuda.md "Memory modes"). The line also gives the set-up time (filling
+ * the host arrays, then sim_setup: upload, sort, first forces), the fluid-only rate and the
+ * projected wall time of 3000 time units at this rate.
  * On R ranks (one GPU each) the box is R times longer along x and split along x: weak scaling.
  * SKIN: Verlet skins of the neighbour lists to time in turn (default: the backend's); each gets a
  * fresh system. After the timed steps, 100 more steps with a thermo sample every 10 give <T> and
@@ -108,9 +113,17 @@ static long fill_porous(sim_t *sim, const scene_t *s, int kx, int k) {
 
 /* Build, warm up and time one system; one line of results on rank 0. 0 or 1. */
 static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int steps, int warm) {
+  const double t_fill = MPI_Wtime();
   sim_t *sim = sim_create(s, MPI_COMM_WORLD);
   const long n = sim ? (porous ? fill_porous(sim, s, k * nranks, k) : fill_bulk(sim, s)) : -1;
+  const double t_setup = MPI_Wtime();
   if (n < 0 || sim_setup(sim)) return 1;
+  const double fill_s = t_setup - t_fill, setup_s = MPI_Wtime() - t_setup;
+  /* fluid share: the wall particles of the porous cells (fill_porous's counts) */
+  const double c = 16.0, pi = 3.14159265358979323846;
+  const double n_wall_cell = (double)lround(8.0 * pi * (49.0 - 36.0) * 2.0);
+  const double n_fluid_cell = (double)lround(6.2 * (c * c - pi * 49.0) * 2.0);
+  const double fluid_share = porous ? n_fluid_cell / (n_fluid_cell + n_wall_cell) : 1.0;
   for (int i = 0; i < warm; i++)
     if (sim_step(sim)) return 1;
   MPI_Barrier(MPI_COMM_WORLD);
@@ -120,13 +133,14 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int step
   const double t = MPI_Wtime() - t0; /* each step ends with a device->host copy: synchronised */
   long builds = 0, nsteps = 0;
   double skin = 0;
-  const char *device = "cpu";
+  const char *device = "cpu", *memory = "-";
   double bytes = 0;
 #ifdef MDPORE_HAVE_CUDA
   cuda_sim_t *gpu = cuda_backend_device(sim_state(sim), sim_backend_name(sim));
   if (gpu) {
     device = cuda_sim_device_name(gpu);
     bytes = (double)cuda_sim_bytes(gpu) / (double)n;
+    memory = cuda_sim_memory_mode(gpu);
     cuda_sim_list_stats(gpu, &builds, &nsteps, &skin);
   }
 #endif
@@ -142,13 +156,17 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int step
     p += (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 30;
   }
   const double mps = (double)n * steps / t;
+  /* 3000 time units (the paper's flooding runs) at dt = s->dt */
+  const double project_h = 3000.0 / s->dt * (double)n / mps / 3600.0;
   if (rank == 0)
-    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" skin=%.2f "
-           "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g ns_per_particle_step=%.4g "
-           "gpu_bytes_per_particle=%.1f T=%.4f p=%.4f\n",
-           porous ? "porous" : "bulk", k, nranks, n, steps, device, skin,
-           nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6, 1e9 / mps,
-           bytes * nranks, T, p);
+    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" memory=%s skin=%.2f "
+           "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g MPS_fluid=%.4g "
+           "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f fill_s=%.1f setup_s=%.1f "
+           "hours_for_3000_tau=%.2f T=%.4f p=%.4f\n",
+           porous ? "porous" : "bulk", k, nranks, n, steps, device, memory, skin,
+           nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6,
+           mps * fluid_share / 1e6, 1e9 / mps, bytes * nranks, fill_s, setup_s, project_h, T, p);
+  fflush(stdout);
   sim_destroy(sim);
   return 0;
 }
@@ -184,9 +202,29 @@ int main(int argc, char **argv) {
   }
   char skins[256];
   snprintf(skins, sizeof skins, "%s", argc > 6 ? argv[6] : "-1");
-  for (char *tok = strtok(skins, ","); tok; tok = strtok(NULL, ",")) {
-    s->neighbour_skin = atof(tok);
-    if (run_one(s, porous, k, nranks, rank, steps, warm)) return 1;
+  char modes[256];
+  snprintf(modes, sizeof modes, "%s", argc > 7 ? argv[7] : "auto");
+  char *save_mode = NULL;
+  for (char *mode = strtok_r(modes, ",", &save_mode); mode;
+       mode = strtok_r(NULL, ",", &save_mode)) {
+    if (!strcmp(mode, "auto"))
+      s->gpu_memory = SCENE_GPU_MEMORY_AUTO;
+    else if (!strcmp(mode, "fast"))
+      s->gpu_memory = SCENE_GPU_MEMORY_FAST;
+    else if (!strcmp(mode, "compact"))
+      s->gpu_memory = SCENE_GPU_MEMORY_COMPACT;
+    else {
+      fprintf(stderr, "gpu_bench: memory mode: expected auto, fast or compact (got '%s')\n", mode);
+      return 2;
+    }
+    char skin_list[256];
+    snprintf(skin_list, sizeof skin_list, "%s", skins);
+    char *save_skin = NULL;
+    for (char *tok = strtok_r(skin_list, ",", &save_skin); tok;
+         tok = strtok_r(NULL, ",", &save_skin)) {
+      s->neighbour_skin = atof(tok);
+      if (run_one(s, porous, k, nranks, rank, steps, warm)) return 1;
+    }
   }
   free(s);
   MPI_Finalize();

@@ -25,7 +25,11 @@ static void usage(FILE *to) {
       "  --skin S          Verlet skin of the CUDA path's neighbour lists on one GPU, in rc units\n"
       "                    (default 0: rebuilt every step, the fastest at dt = 0.01; the physics "
       "is the\n"
-      "                    same)\n");
+      "                    same)\n"
+      "  --gpu-memory M    auto, fast or compact: the CUDA path with per-step neighbour lists\n"
+      "                    (fast, ~790 bytes per particle) or without (compact, <= 200 bytes per\n"
+      "                    particle, slower; the same forces). auto (default): compact only when\n"
+      "                    the fast mode would not fit in the GPU's memory\n");
 }
 
 int cmd_run(int argc, char **argv) {
@@ -38,15 +42,17 @@ int cmd_run(int argc, char **argv) {
                                        {"restart", required_argument, NULL, 'r'},
                                        {"backend", required_argument, NULL, 'b'},
                                        {"skin", required_argument, NULL, 'k'},
+                                       {"gpu-memory", required_argument, NULL, 'm'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
   int explain = 0, c;
   long steps = -1;
   const char *outdir = NULL, *restart = NULL, *backend = "auto";
   double skin = -1.0;
+  int gpu_memory = SCENE_GPU_MEMORY_AUTO;
   optind = 1;
   opterr = rank == 0;
-  while ((c = getopt_long(argc, argv, "es:o:r:b:k:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, "es:o:r:b:k:m:h", opts, NULL)) != -1) {
     switch (c) {
     case 'e':
       explain = 1;
@@ -81,6 +87,20 @@ int cmd_run(int argc, char **argv) {
       }
       break;
     }
+    case 'm':
+      if (!strcmp(optarg, "auto"))
+        gpu_memory = SCENE_GPU_MEMORY_AUTO;
+      else if (!strcmp(optarg, "fast"))
+        gpu_memory = SCENE_GPU_MEMORY_FAST;
+      else if (!strcmp(optarg, "compact"))
+        gpu_memory = SCENE_GPU_MEMORY_COMPACT;
+      else {
+        if (rank == 0)
+          fprintf(stderr, "mdpore run: --gpu-memory: expected auto, fast or compact (got '%s')\n",
+                  optarg);
+        return 2;
+      }
+      break;
     case 'h':
       if (rank == 0) usage(stdout);
       return 0;
@@ -100,6 +120,7 @@ int cmd_run(int argc, char **argv) {
   }
   if (steps >= 0) scene->steps = steps;
   if (skin >= 0.0) scene->neighbour_skin = skin;
+  scene->gpu_memory = gpu_memory;
   char err[512];
   if (sim_backend_choose(backend, size, &scene->backend, err, sizeof err)) {
     if (rank == 0) fprintf(stderr, "mdpore run: %s\n", err);

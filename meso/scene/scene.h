@@ -144,6 +144,12 @@ typedef struct {
 
 /* Engine backends (meso/backend/<name>). */
 enum scene_backend { SCENE_BACKEND_CPU = 0, SCENE_BACKEND_CUDA = 1 };
+/* Memory mode of the CUDA path (docs/engine-cuda.md "Memory modes"). */
+enum scene_gpu_memory {
+  SCENE_GPU_MEMORY_AUTO = 0,
+  SCENE_GPU_MEMORY_FAST = 1,
+  SCENE_GPU_MEMORY_COMPACT = 2
+};
 
 typedef struct {
   char file[SCENE_PATH_LEN]; /* the scene file this came from (for messages) */
@@ -188,6 +194,8 @@ typedef struct {
   double neighbour_skin; /* Verlet skin of the CUDA path's neighbour lists (rc units); < 0: the
                             backend's default. Set by --skin, not read from the scene file: it
                             changes the run time, not the physics (docs/engine-cuda.md) */
+  int gpu_memory;        /* enum scene_gpu_memory, set by --gpu-memory (0 = auto): the CUDA path's
+                     neighbour lists (fast) or none (compact); the same forces either way */
 } scene_t;
 
 /* Parse and validate a scene file with the effects of `catalog` (meso/effects: scene_load() in

@@ -6,7 +6,7 @@
 # Usage: test_cuda_restart.sh MDPORE SCENE
 set -u
 M=$1; S=$2
-W=cuda_restart_test; rm -rf $W; mkdir -p $W; cd $W || exit 1
+W=cuda_restart_test${MDPORE_GPU_MEMORY:+_$MDPORE_GPU_MEMORY}; rm -rf $W; mkdir -p $W; cd $W || exit 1
 if ! $M run --backend cuda --explain $S > /dev/null 2> probe.txt; then
   echo "skipped: no GPU ($(sed 's/.*available: //' probe.txt))"; exit 77
 fi

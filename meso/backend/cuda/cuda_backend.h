@@ -115,6 +115,8 @@ int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int axis, double 
 
 /* 1 when the halo steps overlap interior work with the host exchanges. */
 int cuda_sim_overlap(const cuda_sim_t *g);
+/* The memory mode in use: "fast" (neighbour lists) or "compact" (none; docs/engine-cuda.md). */
+const char *cuda_sim_memory_mode(const cuda_sim_t *g);
 /* Bytes of device memory this state holds. */
 size_t cuda_sim_bytes(const cuda_sim_t *g);
 /* 1 when the pair math was built in double (MDPORE_DOUBLE), 0 for single precision. */

@@ -91,8 +91,63 @@ static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct d
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
 
+/* dst[k] = src[perm[k]] for one field of T. */
+template <class T>
+__global__ void k_gather_one(int n, const int *__restrict__ perm, const T *__restrict__ src,
+                             T *__restrict__ dst) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k < n) dst[k] = src[perm[k]];
+}
+
+/* Gather one field through the scratch array and swap the two (compact mode: every field array and
+ * the scratch hold 8 bytes per slot). */
+template <class T> static void gather_swap(struct cuda_sim *g, int blocks, T **field) {
+  k_gather_one<T><<<blocks, CUDA_BLOCK>>>(g->n, g->perm, *field, (T *)g->sort_scratch);
+  T *const was = *field;
+  *field = (T *)g->sort_scratch;
+  g->sort_scratch = (double *)was;
+}
+
+/* Compact mode, one rank: the same stable sort by bin with cub's double-buffer variant (no key and
+ * value copies in its temporary storage), then each field gathered on its own through the 8-byte
+ * scratch, so no second field set is held. The order is that of sort_range. */
+static int sort_one_set(struct cuda_sim *g, int with_f) {
+  const struct dev_params *q = &g->prm;
+  const int n = g->n;
+  if (n == 0) return cuda_check(cudaMemset(g->cell_start, 0, (q->ncell + 1) * sizeof(int)), "sort");
+  const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota, 0);
+  int end_bit = 1;
+  while (end_bit < 32 && (1u << end_bit) <= (unsigned)q->ncell) end_bit++;
+  cub::DoubleBuffer<uint32_t> keys(g->key, g->key_sorted);
+  cub::DoubleBuffer<int> values(g->iota, g->perm);
+  size_t tmp = g->sort_tmp_bytes;
+  if (cuda_check(cub::DeviceRadixSort::SortPairs(g->sort_tmp, tmp, keys, values, n, 0, end_bit),
+                 "cell sort"))
+    return -1;
+  if (keys.Current() != g->key_sorted) { /* the result landed in the input buffers: swap names */
+    uint32_t *tk = g->key;
+    g->key = g->key_sorted;
+    g->key_sorted = tk;
+    int *tv = g->iota;
+    g->iota = g->perm;
+    g->perm = tv;
+  }
+  gather_swap<int64_t>(g, blocks, &g->a.id);
+  gather_swap<int>(g, blocks, &g->a.species);
+  for (int d = 0; d < 3; d++) {
+    gather_swap<double>(g, blocks, &g->a.x[d]);
+    gather_swap<double>(g, blocks, &g->a.v[d]);
+    if (with_f) gather_swap<double>(g, blocks, &g->a.f[d]);
+    if (q->use_vpred) gather_swap<double>(g, blocks, &g->a.vpred[d]);
+  }
+  k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted, g->cell_start);
+  return cuda_check(cudaGetLastError(), "cell sort kernels");
+}
+
 int cuda_sort_cells(struct cuda_sim *g, int with_f) {
   g->lists_valid = 0;
+  if (g->sort_scratch) return sort_one_set(g, with_f);
   if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start, with_f)) return -1;
   struct dev_fields t = g->a;
   g->a = g->b;

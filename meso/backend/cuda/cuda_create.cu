@@ -23,14 +23,14 @@ static void fill_coef(struct dev_coef *d, const pair_coef_t *c) {
 }
 
 static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s,
-                      const double sub_lo[3], const double sub_hi[3], const int dims[3], char *err,
-                      size_t len) {
+                      const double sub_lo[3], const double sub_hi[3], const int dims[3],
+                      int compact, char *err, size_t len) {
   const int multi = dims[0] * dims[1] * dims[2] > 1;
   const double rcut = plan->rcut > 0 ? plan->rcut : 1.0;
   /* Several ranks rebuild the ghosts, and with them the lists, every step: no skin there. */
-  const double skin = multi || !plan->pair_terms ? 0.0
-                      : s->neighbour_skin >= 0   ? s->neighbour_skin
-                                                 : CUDA_DEFAULT_SKIN;
+  const double skin = multi || !plan->pair_terms || compact ? 0.0
+                      : s->neighbour_skin >= 0              ? s->neighbour_skin
+                                                            : CUDA_DEFAULT_SKIN;
   const double list_cut = sqrt((double)q->cut2_max) + skin;
   q->skin = skin;
   q->list_cut2 = skin > 0.0 ? (meso_real)(list_cut * list_cut) : q->cut2_max;
@@ -125,9 +125,25 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   }
   /* Several ranks overlap interior passes with the host exchanges unless MDPORE_CUDA_OVERLAP=0
    * (kept for measuring what the overlap gains: bench/RESULTS.md). */
+  g->memory_request = s->gpu_memory;
+  /* MDPORE_GPU_MEMORY=auto|fast|compact stands in for --gpu-memory where a scene is built in code
+   * (tests, benchmarks); the command-line choice wins when it is not auto. */
+  const char *mem_env = getenv("MDPORE_GPU_MEMORY");
+  if (mem_env && *mem_env && g->memory_request == SCENE_GPU_MEMORY_AUTO) {
+    if (!strcmp(mem_env, "fast"))
+      g->memory_request = SCENE_GPU_MEMORY_FAST;
+    else if (!strcmp(mem_env, "compact"))
+      g->memory_request = SCENE_GPU_MEMORY_COMPACT;
+    else if (strcmp(mem_env, "auto")) {
+      snprintf(err, len, "MDPORE_GPU_MEMORY: expected auto, fast or compact (got '%s')", mem_env);
+      free(g);
+      return NULL;
+    }
+  }
+  g->compact = g->memory_request == SCENE_GPU_MEMORY_COMPACT; /* (no skin: fill_cells) */
   const char *ov = getenv("MDPORE_CUDA_OVERLAP");
   g->overlap = !(ov && !strcmp(ov, "0"));
-  if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, err, len)) {
+  if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, g->compact, err, len)) {
     free(g);
     return NULL;
   }

@@ -102,7 +102,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   dc.table[id_i] = (meso_real)((double)fixed / STATIC_FIXED_SCALE);
 }
 
-template <int KERNEL, int DENSITY, int CACHE>
+/* LISTS 0: the compact memory mode (no lists; the force pass scans the bins again). */
+template <int KERNEL, int DENSITY, int CACHE, int LISTS>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_density(const struct dev_params q, int n, int cap, int stride, const int *__restrict__ start,
               const int *__restrict__ gstart, const struct dev_pos *__restrict__ pos,
@@ -130,7 +131,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   if (CACHE && mode == 1 && !any_dynamic_near(q, dc.cell_dynamic, key[i])) {
     rho[i] = cached; /* a wall particle with no mobile neighbour: nothing to scan */
     if (vel) vel[i].pad = cached;
-    count[i] = 0;
+    if (LISTS) count[i] = 0;
     return;
   }
   int m = 0;
@@ -140,7 +141,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= q.list_cut2 || t == i) return;                       /* most candidates */
         if (CACHE && mode == 1 && q.static_frozen[pj.species]) return; /* in the cached part */
-        if (m < stride) {
+        if (LISTS && m < stride) {
           mine[m % NBR_CHUNK] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
           if (m % NBR_CHUNK == NBR_CHUNK - 1) flush(m / NBR_CHUNK);
         }
@@ -152,11 +153,12 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
                                           : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
       });
-  const int kept = m < stride ? m : stride;
-  if (kept % NBR_CHUNK) flush(kept / NBR_CHUNK); /* the last, partial chunk */
   if (CACHE && mode == 1) sum = cached + sum;
   if (DENSITY) rho[i] = sum;
   if (DENSITY && vel) vel[i].pad = sum; /* one rank: the force pass reads it there */
+  if (!LISTS) return;
+  const int kept = m < stride ? m : stride;
+  if (kept % NBR_CHUNK) flush(kept / NBR_CHUNK); /* the last, partial chunk */
   count[i] = m;
   if (m > stride) atomicMax(most, m);
 }
@@ -222,7 +224,14 @@ static int cache_prepare(struct cuda_sim *g) {
 
 template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim *g, int part) {
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  k_density<KERNEL, DENSITY, CACHE><<<blocks, CUDA_BLOCK>>>(
+  if (g->compact) {
+    k_density<KERNEL, DENSITY, CACHE, 0><<<blocks, CUDA_BLOCK>>>(
+        g->prm, g->n, g->cap, 0, g->cell_start, g->prm.multi && part != 1 ? g->gcell_start : NULL,
+        g->pos, g->key_sorted, g->rho, NULL, NULL, NULL, part >= 0 ? g->key : NULL,
+        (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g));
+    return;
+  }
+  k_density<KERNEL, DENSITY, CACHE, 1><<<blocks, CUDA_BLOCK>>>(
       g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
       g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,
@@ -242,9 +251,13 @@ static void launch_part(struct cuda_sim *g, int part) {
 /* Clear the overflow record and launch one part (-1: all) of the scan; lists start with room for
  * 48 entries. */
 static int start_scan(struct cuda_sim *g, int part) {
-  if (g->nbr_stride == 0 && cuda_nbr_reserve(g, 48)) return -1;
+  if (!g->compact && g->nbr_stride == 0) {
+    if (cuda_nbr_reserve(g, 48)) return -1;
+    if (g->compact) cuda_pack(g); /* switched (no room for the lists): arrays re-made */
+  }
   if (cache_prepare(g)) return -1;
-  if (cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass")) return -1;
+  if (!g->compact && cuda_check(cudaMemsetAsync(g->nbr_most, 0, sizeof(int)), "density pass"))
+    return -1;
   launch_part(g, part);
   return 0;
 }
@@ -252,6 +265,7 @@ static int start_scan(struct cuda_sim *g, int part) {
 /* The longest list that did not fit since start_scan (0: all fitted; waits for the scan), or -1. */
 static int overflow(struct cuda_sim *g) {
   int most = 0;
+  if (g->compact) return 0; /* no lists */
   if (cuda_check(cudaMemcpy(&most, g->nbr_most, sizeof(int), cudaMemcpyDeviceToHost),
                  "density pass"))
     return -1;
@@ -349,9 +363,10 @@ int cuda_density_pass(struct cuda_sim *g) {
     if (most < 0) return -1;
     if (most == 0) break;
     if (cuda_nbr_reserve(g, most + most / 8 + 8)) return -1;
+    if (g->compact) cuda_pack(g); /* switched (no room for the lists): arrays re-made */
   }
   g->n_builds++;
-  if (g->prm.skin <= 0.0 || g->prm.multi) return 0;
+  if (g->prm.skin <= 0.0 || g->prm.multi || g->compact) return 0;
   /* Positions at this build: the pack kernel measures the displacement from them. */
   if (!g->pos0 && cuda_alloc(g, (void **)&g->pos0, (size_t)g->cap * sizeof(struct dev_pos)))
     return -1;

@@ -30,6 +30,10 @@ struct force_args {
   const uint32_t *part;
   uint32_t part_flag;
   int accumulate;
+  /* Compact mode (nbr NULL): the bins to scan (owned; ghosts with several ranks, NULL in the
+   * interior part) and each slot's bin. */
+  const int *start, *gstart;
+  const uint32_t *key;
 };
 
 /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
@@ -50,9 +54,11 @@ __device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *
 }
 
 /* TERMS: the pair terms; VIRIAL: per-particle virial (stress profiles); PV: block sums of the pair
- * virial (the pressure of a thermo sample; skipped on the other steps). With the thermostat the
- * partner's density travels in its packed velocity (vel.pad, cuda_rho_to_vel): one load less. */
-template <int TERMS, int VIRIAL, int PV>
+ * virial (the pressure of a thermo sample; skipped on the other steps); LISTS 0: the compact memory
+ * mode, partners found by scanning the bins again (the same traversal order and float operations
+ * as the list build, so the same forces bitwise). With the thermostat the partner's density travels
+ * in its packed velocity (vel.pad, cuda_rho_to_vel): one load less. */
+template <int TERMS, int VIRIAL, int PV, int LISTS>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -73,18 +79,11 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       wall_sqrt_ratio = (meso_real)q.pe.wall_boundary.field[i].sqrt_ratio;
     }
     meso_real sfx = 0, sfy = 0, sfz = 0;
-    /* a frozen particle is never integrated: no force of its own (the pairs with mobile partners
-     * are evaluated from their side), so wall-wall pairs are never computed */
-    const int m = q.mobile[pi.species] ? a.count[i] : 0;
-    for (int k = 0; k < m; k++) {
-      const uint32_t e = a.nbr[nbr_index(i, k, a.cap)];
-      const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
-      const struct dev_pos pj = a.pos[t];
-      meso_real dx, dy, dz;
-      dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+    const auto pair = [&](int t, const struct dev_pos &pj, meso_real dx, meso_real dy,
+                          meso_real dz) {
       const meso_real r2 = dx * dx + dy * dy + dz * dz;
       const struct dev_coef &c = row[pj.species];
-      if (r2 >= c.cut2 || r2 == MESO_R(0.0)) continue;      /* r2 == 0: coincident, no direction */
+      if (r2 >= c.cut2 || r2 == MESO_R(0.0)) return;        /* r2 == 0: coincident, no direction */
       const meso_real inv_r = rsqrt(r2), dist = r2 * inv_r; /* no division */
       struct dev_vel vj = {0, 0, 0, 0};
       if (TERMS & PAIR_TERM_THERMOSTAT) vj = a.vel[t];
@@ -108,7 +107,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       sfx += s * dx;
       sfy += s * dy;
       sfz += s * dz;
-      if (!PV && !VIRIAL) continue;
+      if (!PV && !VIRIAL) return;
       const meso_real hs = MESO_R(0.5) * s; /* each pair is seen from both sides */
       w[0] += hs * dx * dx;
       w[1] += hs * dy * dy;
@@ -116,6 +115,26 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       w[3] += hs * dx * dy;
       w[4] += hs * dx * dz;
       w[5] += hs * dy * dz;
+    };
+    /* a frozen particle is never integrated: no force of its own (the pairs with mobile partners
+     * are evaluated from their side), so wall-wall pairs are never computed */
+    if (LISTS) {
+      const int m = q.mobile[pi.species] ? a.count[i] : 0;
+      for (int k = 0; k < m; k++) {
+        const uint32_t e = a.nbr[nbr_index(i, k, a.cap)];
+        const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
+        const struct dev_pos pj = a.pos[t];
+        meso_real dx, dy, dz;
+        dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+        pair(t, pj, dx, dy, dz);
+      }
+    } else if (q.mobile[pi.species]) {
+      dev_for_each_neighbour(
+          q, a.start, a.gstart, a.n, a.pos, pi, a.key[i],
+          [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
+            (void)code;
+            if (t != i) pair(t, pj, dx, dy, dz);
+          });
     }
     if (a.write_f) {
       a.fx[i] = sfx;
@@ -128,15 +147,24 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   if (PV) block_virial_sums(w, a.block_virial, a.accumulate);
 }
 
+template <int T, int LISTS>
+static void launch_mode(const struct dev_params &q, const struct force_args &a, int blocks,
+                        int virial, int pv) {
+  if (virial)
+    k_force<T, 1, 1, LISTS><<<blocks, CUDA_BLOCK>>>(q, a);
+  else if (pv)
+    k_force<T, 0, 1, LISTS><<<blocks, CUDA_BLOCK>>>(q, a);
+  else
+    k_force<T, 0, 0, LISTS><<<blocks, CUDA_BLOCK>>>(q, a);
+}
+
 template <int T>
 static void launch(const struct dev_params &q, const struct force_args &a, int blocks, int virial,
                    int pv) {
-  if (virial)
-    k_force<T, 1, 1><<<blocks, CUDA_BLOCK>>>(q, a);
-  else if (pv)
-    k_force<T, 0, 1><<<blocks, CUDA_BLOCK>>>(q, a);
+  if (a.nbr)
+    launch_mode<T, 1>(q, a, blocks, virial, pv);
   else
-    k_force<T, 0, 0><<<blocks, CUDA_BLOCK>>>(q, a);
+    launch_mode<T, 0>(q, a, blocks, virial, pv);
 }
 
 /* part < 0: every owned particle; 1 / 0: only the interior / boundary particles (several ranks,
@@ -149,7 +177,7 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
   g->pressure_valid = pv;
   g->last_force_step = step;
   if (n == 0) return;
-  struct force_args a = {g->nbr,
+  struct force_args a = {g->compact ? NULL : g->nbr,
                          g->nbr_count,
                          g->cap,
                          g->pos,
@@ -166,7 +194,10 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                          !keep_forces,
                          part >= 0 ? g->key : NULL,
                          (uint32_t)(part > 0 ? 1 : 0),
-                         part == 0};
+                         part == 0,
+                         g->cell_start,
+                         g->prm.multi && part != 1 ? g->gcell_start : NULL,
+                         g->key_sorted};
   const int virial = want_virial && g->virial != NULL;
   switch (g->prm.terms & 15) { /* 8 (wall no slip) comes with 4 (its check) */
   case 0:

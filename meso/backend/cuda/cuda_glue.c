@@ -52,7 +52,15 @@ int cuda_glue_setup_begin(sim_state_t *st) {
   memset(&c->mr, 0, sizeof c->mr);
   c->finished = 0;
   st->host_stale = 1;
-  return cuda_sim_upload(c->g, &st->p);
+  if (cuda_sim_upload(c->g, &st->p)) return -1;
+  /* the mode is settled at the first upload (auto: compact when the lists would not fit) */
+  if (!c->mode_told && st->dc.rank == 0)
+    printf("mdpore: GPU memory mode %s (%s)\n", cuda_sim_memory_mode(c->g),
+           strcmp(cuda_sim_memory_mode(c->g), "compact")
+               ? "neighbour lists of each step"
+               : "no neighbour lists: the force pass scans the bins again");
+  c->mode_told = 1;
+  return 0;
 }
 
 int cuda_glue_kick_drift(sim_state_t *st) {
@@ -184,7 +192,8 @@ static const char *phase_note(const plan_t *plan, int phase) {
   case PHASE_GHOSTS:
     return "one rank: cells wrap periodically on the device, no ghosts";
   case PHASE_NEIGHBOURS:
-    return "one bin scan builds the lists and sums the densities";
+    return "one bin scan builds the lists and sums the densities (--gpu-memory compact, or auto "
+           "when the lists would not fit: no lists, the force pass scans the bins again)";
   case PHASE_RHO_SYNC:
     return "one rank: no ghosts";
   default:

@@ -18,6 +18,7 @@ typedef struct {
   decomp_t halo_dc; /* dc without the self-exchange along axes not cut between ranks */
   double *halo_rho;
   int halo_rho_cap, halo_ready;
+  int mode_told; /* the memory mode was printed (after the first upload) */
 } cuda_glue_t;
 
 static inline cuda_glue_t *cuda_glue(sim_state_t *st) {

@@ -113,9 +113,17 @@ struct dev_problem {
 struct cuda_sim {
   struct dev_params prm;
   int n, cap;
-  struct dev_fields a, b; /* a: current; b: scratch for the sort */
-  meso_real *rho;         /* [cap] (density pass only) */
-  double *virial;         /* [6 cap] per-particle virial (on request) */
+  struct dev_fields a, b; /* a: current; b: scratch for the sort (not allocated in the compact
+                             mode on one rank: the fields go through sort_scratch one by one) */
+  /* Memory mode (docs/engine-cuda.md "Memory modes"): 0 fast (per-step neighbour lists, ~790 B per
+   * particle); 1 compact (no lists: the force and wall-field passes scan the bins again; on one
+   * rank the sort gathers one field at a time through sort_scratch, <= 200 B per particle). */
+  int compact;
+  int memory_request;   /* enum scene_gpu_memory: auto, fast or compact (auto: compact only when the
+                         fast mode's memory would not fit) */
+  double *sort_scratch; /* [cap] 8 bytes per slot (compact, one rank) */
+  meso_real *rho;       /* [cap] (density pass only) */
+  double *virial;       /* [6 cap] per-particle virial (on request) */
   int virial_cap;
   uint32_t *key, *key_sorted; /* cell of each particle */
   int *iota, *perm;
@@ -192,6 +200,9 @@ int cuda_reserve(struct cuda_sim *g, int n);
 int cuda_grow(struct cuda_sim *g, int need);
 int cuda_set_virial(struct cuda_sim *g, int on);
 int cuda_nbr_reserve(struct cuda_sim *g, int stride);
+/* Switch to the compact mode (lists, and on one rank the sort's second field set, freed; the
+ * particles kept). 0 or -1. */
+int cuda_go_compact(struct cuda_sim *g, const char *why);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 /* with_f: carry the forces along (they are needed after the sort only when kept from a checkpoint

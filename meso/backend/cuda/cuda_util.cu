@@ -37,10 +37,16 @@ static void free_fields(struct cuda_sim *g, struct dev_fields *f) {
   }
 }
 
+/* In the compact mode on one rank every field array takes 8 bytes per slot (species too), so that
+ * the sort can gather any field into sort_scratch and swap the two pointers (cuda_cells.cu). */
+static int one_set(const struct cuda_sim *g) {
+  return g->compact && !g->prm.multi;
+}
+
 static int alloc_fields(struct cuda_sim *g, struct dev_fields *f, int cap) {
   const size_t n = (size_t)cap;
   int rc = cuda_alloc(g, (void **)&f->id, n * sizeof(int64_t)) ||
-           cuda_alloc(g, (void **)&f->species, n * sizeof(int32_t));
+           cuda_alloc(g, (void **)&f->species, n * (one_set(g) ? 8 : sizeof(int32_t)));
   for (int d = 0; d < 3 && !rc; d++) {
     rc = cuda_alloc(g, (void **)&f->x[d], n * sizeof(double)) ||
          cuda_alloc(g, (void **)&f->v[d], n * sizeof(double)) ||
@@ -69,12 +75,13 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   cuda_free_ptr(g, (void **)&g->rho_stage);
   cuda_free_ptr(g, (void **)&g->pos0);
   cuda_free_ptr(g, (void **)&g->wall_field);
+  cuda_free_ptr(g, (void **)&g->sort_scratch);
   g->prm.pe.wall_boundary.field = NULL;
   g->lists_valid = 0;
   g->nbr_stride = 0;
   g->virial_cap = 0;
   g->bytes = 0;
-  if (n >= (1 << NBR_SLOT_BITS) - 4096) {
+  if (!g->compact && n >= (1 << NBR_SLOT_BITS) - 4096) {
     fprintf(stderr, "mdpore: CUDA backend: %d particles on one GPU: at most %d\n", n,
             (1 << NBR_SLOT_BITS) - 4096);
     return -1;
@@ -82,16 +89,23 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   const size_t c = (size_t)cap;
   const int blocks = (cap + CUDA_BLOCK - 1) / CUDA_BLOCK;
   size_t tmp = 0;
-  cub::DeviceRadixSort::SortPairs(NULL, tmp, (const uint32_t *)NULL, (uint32_t *)NULL,
-                                  (const int *)NULL, (int *)NULL, cap);
-  if (alloc_fields(g, &g->a, cap) || alloc_fields(g, &g->b, cap) ||
+  if (one_set(g)) { /* the double-buffer sort: no key / value copies in its temporary storage */
+    cub::DoubleBuffer<uint32_t> keys(NULL, NULL);
+    cub::DoubleBuffer<int> values(NULL, NULL);
+    cub::DeviceRadixSort::SortPairs(NULL, tmp, keys, values, cap);
+  } else {
+    cub::DeviceRadixSort::SortPairs(NULL, tmp, (const uint32_t *)NULL, (uint32_t *)NULL,
+                                    (const int *)NULL, (int *)NULL, cap);
+  }
+  if (alloc_fields(g, &g->a, cap) || (!one_set(g) && alloc_fields(g, &g->b, cap)) ||
+      (one_set(g) && cuda_alloc(g, (void **)&g->sort_scratch, c * sizeof(double))) ||
       (g->prm.density && cuda_alloc(g, (void **)&g->rho, c * sizeof(meso_real))) ||
       cuda_alloc(g, (void **)&g->key, c * sizeof(uint32_t)) ||
       cuda_alloc(g, (void **)&g->key_sorted, c * sizeof(uint32_t)) ||
       cuda_alloc(g, (void **)&g->iota, c * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->perm, c * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->pos, c * sizeof(struct dev_pos)) ||
-      cuda_alloc(g, (void **)&g->nbr_count, c * sizeof(int)) ||
+      (!one_set(g) && cuda_alloc(g, (void **)&g->nbr_count, c * sizeof(int))) ||
       (g->prm.multi && g->prm.density &&
        cuda_alloc(g, (void **)&g->rho_stage, c * sizeof(meso_real))) ||
       ((g->prm.terms & PAIR_TERM_THERMOSTAT) &&
@@ -118,9 +132,35 @@ static int room_for(const struct cuda_sim *g, int need) {
   return need + need / 4 + 4096;
 }
 
-/* Room for n particles; contents are not kept (called before an upload only). */
+/* Bytes per slot of the fast mode's arrays besides the lists (reserve_cap), and the list room a
+ * run of mDPD water at rho 6.2-8 ends up with (strides of ~128 entries measured on the porous
+ * benchmark: bench/RESULTS.md, 791 bytes per particle). */
+static size_t fast_bytes_per_slot(const struct cuda_sim *g) {
+  const size_t set = 8 + 4 + 3 * 3 * 8 + (g->prm.use_vpred ? 3 * 8 : 0);
+  return 2 * set + sizeof(meso_real) + 4 * 4 + sizeof(struct dev_pos) + 4 +
+         ((g->prm.terms & PAIR_TERM_THERMOSTAT) ? sizeof(struct dev_vel) : 0) + 8 /* sort */ +
+         128 * 4 /* lists */;
+}
+
+/* Room for n particles; contents are not kept (called before an upload only). With --gpu-memory
+ * auto the fast mode is kept unless its estimate exceeds 92% of the device's free memory. */
 int cuda_reserve(struct cuda_sim *g, int n) {
   if (n <= g->cap) return 0;
+  if (!g->compact && g->memory_request == SCENE_GPU_MEMORY_AUTO && g->prm.terms) {
+    size_t free_b = 0, total_b = 0;
+    const double need = (double)room_for(g, n) * (double)fast_bytes_per_slot(g);
+    const int info = cudaMemGetInfo(&free_b, &total_b) == cudaSuccess;
+    /* test hook: pretend this much is free (ctest cuda_memory_auto) */
+    const char *fake = getenv("MDPORE_CUDA_TEST_FREE_BYTES");
+    if (info && fake && *fake) free_b = (size_t)strtod(fake, NULL);
+    if (info && need > 0.92 * (double)free_b) {
+      char why[256];
+      snprintf(why, sizeof why,
+               "the fast mode would need ~%.1f GB for %d particles, %.1f GB of %.1f GB are free",
+               need / 1e9, n, (double)free_b / 1e9, (double)total_b / 1e9);
+      if (cuda_go_compact(g, why)) return -1;
+    }
+  }
   return reserve_cap(g, n, room_for(g, n));
 }
 
@@ -131,8 +171,27 @@ static int copy_back(void *dst, const void *src, size_t bytes) {
 /* Room for need slots, keeping the owned particles [0, n), their bins (key_sorted), boundary flags
  * (key) and the boundary permutation (perm[0, n_boundary)); everything else is rebuilt by the
  * passes that follow. Waits for the work in flight. 0 or -1. */
+static int realloc_keep(struct cuda_sim *g, int need);
+
 int cuda_grow(struct cuda_sim *g, int need) {
   if (need <= g->cap) return 0;
+  return realloc_keep(g, need);
+}
+
+/* Compact mode from now on (docs/engine-cuda.md "Memory modes"); called before the first upload
+ * (auto) or when a list would not fit (cuda_density.cu). Every array is re-made in the new mode,
+ * the particles kept. */
+int cuda_go_compact(struct cuda_sim *g, const char *why) {
+  if (g->compact) return 0;
+  fprintf(stderr, "mdpore: CUDA backend: compact memory mode (no neighbour lists): %s\n", why);
+  g->compact = 1;
+  g->prm.skin = 0.0; /* no lists to keep */
+  g->prm.list_cut2 = g->prm.cut2_max;
+  g->lists_valid = g->lists_maybe_valid = 0;
+  return g->cap > 0 ? realloc_keep(g, g->cap) : 0;
+}
+
+static int realloc_keep(struct cuda_sim *g, int need) {
   if (cuda_check(cudaDeviceSynchronize(), "grow")) return -1;
   const size_t n = (size_t)g->n, nb = (size_t)g->n_boundary;
   struct dev_fields old = g->a;
@@ -142,7 +201,7 @@ int cuda_grow(struct cuda_sim *g, int need) {
   g->key = g->key_sorted = NULL;
   g->perm = NULL;
   const int cap_was = g->cap;
-  int rc = reserve_cap(g, need, room_for(g, need));
+  int rc = reserve_cap(g, need, need > cap_was ? room_for(g, need) : cap_was);
   if (!rc) {
     rc = copy_back(g->a.id, old.id, n * 8) || copy_back(g->a.species, old.species, n * 4) ||
          copy_back(g->key, okey, n * 4) || copy_back(g->key_sorted, oks, n * 4) ||
@@ -160,13 +219,30 @@ int cuda_grow(struct cuda_sim *g, int need) {
   return rc ? -1 : 0;
 }
 
-/* Neighbour-list room for stride entries per particle. */
+/* Neighbour-list room for stride entries per particle. When the device has no room for it, the
+ * memory mode is auto and there is one rank, the compact mode takes over (the caller sees
+ * g->compact set; the packed arrays were re-made and must be packed again). */
 int cuda_nbr_reserve(struct cuda_sim *g, int stride) {
   stride = (stride + NBR_CHUNK - 1) / NBR_CHUNK * NBR_CHUNK; /* whole chunks */
-  if (stride <= g->nbr_stride) return 0;
+  if (g->compact || stride <= g->nbr_stride) return 0;
   cuda_free_ptr(g, (void **)&g->nbr);
-  if (cuda_alloc(g, (void **)&g->nbr, (size_t)g->cap * (size_t)stride * sizeof(uint32_t)))
+  g->nbr_stride = 0;
+  const size_t bytes = (size_t)g->cap * (size_t)stride * sizeof(uint32_t);
+  const cudaError_t e = cudaMalloc((void **)&g->nbr, bytes);
+  if (e == cudaErrorMemoryAllocation && g->memory_request == SCENE_GPU_MEMORY_AUTO &&
+      !g->prm.multi) { /* (several ranks decide before the upload only: cuda_reserve) */
+    g->nbr = NULL;
+    (void)cudaGetLastError(); /* not sticky: clear it */
+    char why[256];
+    snprintf(why, sizeof why, "no room for neighbour lists of %d entries (%.1f GB) on the device",
+             stride, (double)bytes / 1e9);
+    return cuda_go_compact(g, why);
+  }
+  if (cuda_check(e, "cudaMalloc (neighbour lists)")) {
+    g->nbr = NULL;
     return -1;
+  }
+  g->bytes += bytes;
   g->nbr_stride = stride;
   return 0;
 }
@@ -205,7 +281,8 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->gcell_start,  (void **)&g->counter,
                    (void **)&g->rho_stage,    (void **)&g->pos0,
                    (void **)&g->rebuild,      (void **)&g->wall_field,
-                   (void **)&g->rho_static,   (void **)&g->cell_dynamic};
+                   (void **)&g->rho_static,   (void **)&g->cell_dynamic,
+                   (void **)&g->sort_scratch};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
@@ -218,6 +295,10 @@ extern "C" int cuda_sim_count(const cuda_sim_t *g) {
 
 extern "C" int cuda_sim_overlap(const cuda_sim_t *g) {
   return g->overlap && g->prm.multi;
+}
+
+extern "C" const char *cuda_sim_memory_mode(const cuda_sim_t *g) {
+  return g->compact ? "compact" : "fast";
 }
 
 extern "C" size_t cuda_sim_bytes(const cuda_sim_t *g) {

@@ -8,10 +8,13 @@
 #include "physics/pair_forces.h"
 #include "physics/wall_boundary.h"
 
+/* LISTS 0: the compact memory mode (the bins scanned again, in the lists' order). */
+template <int LISTS>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_wall_field(const struct dev_params q, int n, int cap, const struct dev_pos *__restrict__ pos,
                  const uint32_t *__restrict__ nbr, const int *__restrict__ count,
-                 wall_field_t *__restrict__ field) {
+                 const int *__restrict__ start, const int *__restrict__ gstart,
+                 const uint32_t *__restrict__ key, wall_field_t *__restrict__ field) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const struct dev_pos pi = pos[i];
@@ -19,14 +22,9 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   const wall_boundary_params_t *w = &q.pe.wall_boundary;
   const meso_real inv_h = (meso_real)w->inv_h;
   meso_real acc[WALL_FIELD_ACC] = {0, 0, 0, 0, 0, 0, 0, 0};
-  const int m = q.mobile[pi.species] ? count[i] : 0;
-  for (int k = 0; k < m; k++) {
-    const uint32_t e = nbr[nbr_index(i, k, cap)];
-    const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
+  const auto partner = [&](const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
     const struct dev_coef &c = row[pj.species];
-    if (c.wall_phi2 == MESO_R(0.0)) continue; /* not a wall partner */
-    meso_real dx, dy, dz;
-    dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+    if (c.wall_phi2 == MESO_R(0.0)) return; /* not a wall partner */
     const meso_real r2 = dx * dx + dy * dy + dz * dz;
     if (r2 < c.wall_phi2) {
       const meso_real weight = wall_field_add(inv_h, r2, dx, dy, dz, acc);
@@ -36,6 +34,24 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       const meso_real wR = pair_weight_random_inv(meso_sqrt(r2), c.inv_rc, q.s_exp, q.s_one);
       acc[4] += c.gamma * wR * wR;
     }
+  };
+  if (LISTS) {
+    const int m = q.mobile[pi.species] ? count[i] : 0;
+    for (int k = 0; k < m; k++) {
+      const uint32_t e = nbr[nbr_index(i, k, cap)];
+      const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
+      meso_real dx, dy, dz;
+      dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+      partner(pj, dx, dy, dz);
+    }
+  } else if (q.mobile[pi.species]) {
+    dev_for_each_neighbour(
+        q, start, gstart, n, pos, pi, key[i],
+        [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
+          (void)code;
+          /* the lists hold the partners within the largest cutoff */
+          if (t != i && dx * dx + dy * dy + dz * dz < q.list_cut2) partner(pj, dx, dy, dz);
+        });
   }
   field[i] = wall_field_finish(w, acc);
 }
@@ -43,6 +59,11 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
 void cuda_wall_field(struct cuda_sim *g) {
   if (!g->wall_field || g->n == 0) return;
   const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  k_wall_field<<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count,
-                                       g->wall_field);
+  if (g->compact)
+    k_wall_field<0><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, NULL, NULL, g->cell_start,
+                                            g->prm.multi ? g->gcell_start : NULL, g->key_sorted,
+                                            g->wall_field);
+  else
+    k_wall_field<1><<<blocks, CUDA_BLOCK>>>(g->prm, g->n, g->cap, g->pos, g->nbr, g->nbr_count,
+                                            NULL, NULL, NULL, g->wall_field);
 }
