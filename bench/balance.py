@@ -17,7 +17,9 @@ the GPU / fastest-CPU throughput ratio (issue 14, item 4: users compare with a C
 
 usage: /usr/bin/python3 bench/balance.py [--np 2] [--nx 96] [--ny 32] [--nz 32] [--steps 400]
            [--threads 1] [--dynamic] [--check] [--workdir DIR] [--frozen-weight W]
-           [--gpu-compare LAYOUTS]
+           [--gpu-compare LAYOUTS] [--backend cpu|cuda] [--one-rank] [--image RAW] [--make-image-only]
+--backend cuda: the runs on NP GPUs (one per rank; issue 15), with --one-rank the same image on one
+GPU first (strong scaling). --image: a stored image (the GPU machine has no numpy).
 --check (the ctest variant): fails unless cost cuts bring the weight imbalance to <= 1.05 and below
 the uniform cuts', the particle count is conserved, and with --dynamic a deliberately wrong
 frozen weight is corrected by at least one rebalancing that lowers the busy-time imbalance.
@@ -142,12 +144,26 @@ def main():
                     help="both halves open (porosity 0.85): the busy-time imbalance of uniform cuts is then "
                          "the machine's timing noise floor")
     ap.add_argument("--bind", default="none", help="mpiexec --bind-to (none, core)")
+    ap.add_argument("--image", default=None,
+                    help="a stored image of this kind (raw + .hdr, NX x NY x NZ) instead of making one "
+                         "(machines without numpy: make it elsewhere with --make-image-only)")
+    ap.add_argument("--make-image-only", action="store_true", help="write WORKDIR/hetero.raw and stop")
+    ap.add_argument("--backend", default="cpu", help="cpu or cuda (one GPU per rank)")
+    ap.add_argument("--one-rank", action="store_true",
+                    help="also run on one rank (no balancing): the strong-scaling speed-up of each cut")
     a = ap.parse_args()
     mdpore = os.environ.get("MDPORE") or os.path.join(ROOT, "build", "bin", "mdpore")
     os.makedirs(a.workdir, exist_ok=True)
     wd = os.path.abspath(a.workdir)
     img = os.path.join(wd, "hetero.raw")
-    p_dense, p_open = make_image(img, a.nx, a.ny, a.nz, 11, a.homogeneous)
+    if a.image:
+        img = os.path.abspath(a.image)
+        p_dense = p_open = float("nan")
+    else:
+        p_dense, p_open = make_image(img, a.nx, a.ny, a.nz, 11, a.homogeneous)
+    if a.make_image_only:
+        print(f"image {img}: porosity {p_dense:.3f} | {p_open:.3f}")
+        return 0
     global BIND
     BIND = a.bind
     box = [a.nx * 0.5, a.ny * 0.5, a.nz * 0.5]
@@ -164,16 +180,26 @@ def main():
         runs.append(("cost+moving", {"cuts": "cost", "frozen_weight": 2.0,
                                      "every": max(a.steps // 8, 10), "threshold": 1.05}))
     res = {}
+    one = None
+    if a.one_rank:
+        summ, _ = run(mdpore, os.path.join(wd, "one_rank"), scene(img, box, a.steps, 1, None), 1, a.threads,
+                      a.backend)
+        one = summ["timing"]["particle_steps_per_second"]
+        print(f"one rank     {one / 1e6:8.3f} M particle-steps/s (all {summ['timing']['particles']} particles, "
+              f"backend {a.backend})")
     for name, bal in runs:
         summ, log = run(mdpore, os.path.join(wd, name.replace("+", "_")), scene(img, box, a.steps, a.np, bal),
-                        a.np, a.threads)
+                        a.np, a.threads, a.backend)
         lb, t = summ["load_balance"], summ["timing"]
         res[name] = (lb, t)
         busy = lb["imbalance_busy"]
         print(f"{name:12s} {t['particle_steps_per_second'] / 1e6:8.3f} M particle-steps/s "
               f"(all {t['particles']} particles), loop {t['loop_seconds']:.2f} s; imbalance busy "
               f"{busy if busy is None else f'{busy:.3f}'}, weight {lb['imbalance_weight']:.3f}; "
-              f"rebalances {lb['rebalances']}; busy fraction {lb.get('busy_fraction', 0):.2f}")
+              f"rebalances {lb['rebalances']}; busy fraction {lb.get('busy_fraction') or 0:.2f}")
+        if one:
+            sp = t["particle_steps_per_second"] / one
+            print(f"    speed-up over one rank {sp:.3f}, strong-scaling efficiency {sp / a.np:.3f}")
         for line in log.splitlines():
             if "load balancing" in line or "cuts moved" in line:
                 print("    " + line.strip())

@@ -18,6 +18,7 @@
  * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps. */
 #include "effects/effect.h"
 #include "engine/sim.h"
+#include "engine/sim_balance.h"
 #include "engine/sim_internal.h"
 #ifdef MDPORE_HAVE_CUDA
 #include "backend/cuda/cuda_backend.h"
@@ -112,10 +113,11 @@ static long fill_porous(sim_t *sim, const scene_t *s, int kx, int k) {
 }
 
 /* Build, warm up and time one system; one line of results on rank 0. 0 or 1. */
-static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int steps, int warm) {
+static int run_one(scene_t *s, int porous, int k, int nranks, int grow, int rank, int steps,
+                   int warm) {
   const double t_fill = MPI_Wtime();
   sim_t *sim = sim_create(s, MPI_COMM_WORLD);
-  const long n = sim ? (porous ? fill_porous(sim, s, k * nranks, k) : fill_bulk(sim, s)) : -1;
+  const long n = sim ? (porous ? fill_porous(sim, s, k * grow, k) : fill_bulk(sim, s)) : -1;
   const double t_setup = MPI_Wtime();
   if (n < 0 || sim_setup(sim)) return 1;
   const double fill_s = t_setup - t_fill, setup_s = MPI_Wtime() - t_setup;
@@ -127,10 +129,21 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int step
   for (int i = 0; i < warm; i++)
     if (sim_step(sim)) return 1;
   MPI_Barrier(MPI_COMM_WORLD);
+  sim_phase_seconds_reset(sim);
   const double t0 = MPI_Wtime();
   for (int i = 0; i < steps; i++)
     if (sim_step(sim)) return 1;
   const double t = MPI_Wtime() - t0; /* each step ends with a device->host copy: synchronised */
+  /* Where the step's host time goes, per phase (max over the ranks, ms per step): the GPU's
+   * kernels run asynchronously, so their time shows in the phase where the host next waits. */
+  double ph[PHASE_COUNT];
+  MPI_Reduce(sim_phase_seconds(sim), ph, PHASE_COUNT, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+  if (rank == 0 && getenv("GPU_BENCH_PHASES")) {
+    printf("phases (ms per step, max over %d rank(s)):", nranks);
+    for (int k = 0; k < PHASE_COUNT; k++)
+      if (ph[k] > 0) printf(" %s %.3f", step_phase_names[k], 1e3 * ph[k] / steps);
+    printf("\n");
+  }
   long builds = 0, nsteps = 0;
   double skin = 0;
   const char *device = "cpu", *memory = "-";
@@ -159,13 +172,14 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int step
   /* 3000 time units (the paper's flooding runs) at dt = s->dt */
   const double project_h = 3000.0 / s->dt * (double)n / mps / 3600.0;
   if (rank == 0)
-    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" memory=%s skin=%.2f "
-           "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g MPS_fluid=%.4g "
-           "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f fill_s=%.1f setup_s=%.1f "
-           "hours_for_3000_tau=%.2f T=%.4f p=%.4f\n",
-           porous ? "porous" : "bulk", k, nranks, n, steps, device, memory, skin,
-           nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6,
-           mps * fluid_share / 1e6, 1e9 / mps, bytes * nranks, fill_s, setup_s, project_h, T, p);
+    printf(
+        "case=%s scaling=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" memory=%s skin=%.2f "
+        "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g MPS_fluid=%.4g "
+        "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f fill_s=%.1f setup_s=%.1f "
+        "hours_for_3000_tau=%.2f T=%.4f p=%.4f\n",
+        porous ? "porous" : "bulk", grow == nranks ? "weak" : "strong", k, nranks, n, steps, device,
+        memory, skin, nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6,
+        mps * fluid_share / 1e6, 1e9 / mps, bytes * nranks, fill_s, setup_s, project_h, T, p);
   fflush(stdout);
   sim_destroy(sim);
   return 0;
@@ -183,15 +197,19 @@ int main(int argc, char **argv) {
   int nranks = 1, rank = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &nranks);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  /* GPU_BENCH_STRONG=1: the same box on any number of ranks (strong scaling); else the box grows
+   * with the ranks along x (weak scaling). */
+  const int strong = getenv("GPU_BENCH_STRONG") && !strcmp(getenv("GPU_BENCH_STRONG"), "1");
+  const int grow = strong ? 1 : nranks;
   scene_t *s = malloc(sizeof *s);
   if (porous) {
-    scene_base(s, 16.0 * k * nranks, 2.0, 16.0 * k, 2);
+    scene_base(s, 16.0 * k * grow, 2.0, 16.0 * k, 2);
     s->procs[0] = nranks; /* split along x only */
     s->procs[1] = s->procs[2] = 1;
     effect_name_in_scene(s, EFFECT_BODY_FORCE);
     SCENE_EFFECT_OPTIONS(s, EFFECT_BODY_FORCE, body_force_params_t)->g[0][2] = 0.02;
   } else {
-    scene_base(s, (double)k * nranks, k, k, 1);
+    scene_base(s, (double)k * grow, k, k, 1);
     s->procs[0] = nranks;
     s->procs[1] = s->procs[2] = 1;
   }
@@ -223,7 +241,7 @@ int main(int argc, char **argv) {
     for (char *tok = strtok_r(skin_list, ",", &save_skin); tok;
          tok = strtok_r(NULL, ",", &save_skin)) {
       s->neighbour_skin = atof(tok);
-      if (run_one(s, porous, k, nranks, rank, steps, warm)) return 1;
+      if (run_one(s, porous, k, nranks, grow, rank, steps, warm)) return 1;
     }
   }
   free(s);

@@ -36,7 +36,10 @@ typedef struct sim_state {
   void *impl;        /* the backend's own state */
   /* steps that passed the drift check (the dt advice of a stop) */
   step_history_t hist;
-  double busy_seconds;  /* time in the phases that do not communicate (engine/sim_balance.h) */
+  double busy_seconds; /* time in the phases that do not communicate (engine/sim_balance.h) */
+  /* host wall time in each phase of the step list since set-up (a GPU phase's kernels run
+   * asynchronously: their time shows where the host next waits for the device) */
+  double phase_seconds[PHASE_COUNT];
   double busy_total;    /* the same since the first set-up                                */
   long busy_since;      /* the step busy_seconds counts from                              */
   double cost_fit[5];   /* load-balance cost fit: its normal equations' sums over the run */

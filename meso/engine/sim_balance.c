@@ -210,6 +210,12 @@ void sim_cuts(const sim_t *sim, const double *cuts[3], int dims[3]) {
   }
 }
 
+const double *sim_phase_seconds(const sim_t *sim) {
+  return sim->st.phase_seconds;
+}
+void sim_phase_seconds_reset(sim_t *sim) {
+  memset(sim->st.phase_seconds, 0, sizeof sim->st.phase_seconds);
+}
 double sim_busy_seconds(const sim_t *sim) {
   return sim->st.busy_seconds;
 }

@@ -35,6 +35,10 @@ void sim_cuts(const sim_t *sim, const double *cuts[3], int dims[3]);
  * lists, the integration), summed since the last reset. Meaningful on the CPU backend only
  * (sim_busy_measured). */
 double sim_busy_seconds(const sim_t *sim);
+/* Host wall seconds spent in each phase of the step list (effects/plan.h PHASE_*) since set-up or
+ * the last reset (benchmarks: where a step's time goes). */
+const double *sim_phase_seconds(const sim_t *sim);
+void sim_phase_seconds_reset(sim_t *sim);
 /* The frozen particle weight in use (balance.frozen_weight, or the last fit). */
 double sim_frozen_weight(const sim_t *sim);
 void sim_busy_reset(sim_t *sim);

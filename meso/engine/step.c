@@ -22,12 +22,15 @@ int sim_run_phases(sim_t *sim, const unsigned char *list, int n) {
     const int is_check = phase == PHASE_CHECK_DRIFT || phase == PHASE_CHECK;
     if (is_check) st->pr.hist = &st->hist; /* a stop suggests a dt from what passed */
     const int timed = op && !communicates(phase);
-    const double t0 = timed ? MPI_Wtime() : 0;
+    const double t0 = op ? MPI_Wtime() : 0;
     const int rc = op ? op(st) : 0;
-    if (timed) {
+    if (op) {
       const double dt = MPI_Wtime() - t0;
-      st->busy_seconds += dt;
-      st->busy_total += dt;
+      if (!st->in_setup) st->phase_seconds[phase] += dt;
+      if (timed) {
+        st->busy_seconds += dt;
+        st->busy_total += dt;
+      }
     }
     if (is_check) {
       if (rc) return rc;
