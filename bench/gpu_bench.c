@@ -10,10 +10,14 @@
  * SKIN: Verlet skins of the neighbour lists to time in turn (default: the backend's); each gets a
  * fresh system. After the timed steps, 100 more steps with a thermo sample every 10 give <T> and
  * <p>: a skin that missed a pair would show there (the skin changes no physics).
- * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps. */
+ * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps.
+ * MDPORE_BENCH_RNG=philox|philox2x32|fast: the generator of the pair random numbers
+ * (dpd_thermostat's rng; default philox), printed as rng=... */
+#include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
 #include "engine/sim.h"
 #include "engine/sim_internal.h"
+#include "physics/pair_random.h"
 #ifdef MDPORE_HAVE_CUDA
 #include "backend/cuda/cuda_backend.h"
 #endif
@@ -57,6 +61,10 @@ static void scene_base(scene_t *s, double lx, double ly, double lz, int n_specie
   effect_name_in_scene(s, EFFECT_MDPD_ATTRACTION);
   effect_name_in_scene(s, EFFECT_MDPD_REPULSION);
   effect_name_in_scene(s, EFFECT_DPD_THERMOSTAT);
+  const char *rng = getenv("MDPORE_BENCH_RNG");
+  for (int r = 0; rng && r < PAIR_RNG_COUNT; r++)
+    if (!strcmp(rng, pair_rng_word(r)))
+      SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = r;
 }
 
 static long add(sim_t *sim, long id, int species, double x, double y, double z, const scene_t *s) {
@@ -143,11 +151,13 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int rank, int step
   }
   const double mps = (double)n * steps / t;
   if (rank == 0)
-    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" skin=%.2f "
+    printf("case=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" rng=%s skin=%.2f "
            "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g ns_per_particle_step=%.4g "
            "gpu_bytes_per_particle=%.1f T=%.4f p=%.4f\n",
-           porous ? "porous" : "bulk", k, nranks, n, steps, device, skin,
-           nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6, 1e9 / mps,
+           porous ? "porous" : "bulk", k, nranks, n, steps, device,
+           pair_rng_word(
+               SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng),
+           skin, nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6, 1e9 / mps,
            bytes * nranks, T, p);
   sim_destroy(sim);
   return 0;
