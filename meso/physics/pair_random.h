@@ -8,7 +8,7 @@
  *  - philox2x32: Philox2x32-10, counter = the two ids as 32-bit words (ids < 2^32), half the
  *    multiplies (this was the build option MDPORE_PAIR_RNG=philox2x32; the same numbers);
  *  - fast: Philox2x32-7, the same counter, a 32-bit key hashed from (seed, step): 7 multiplies of
- *    32 x 32 -> 64 bits per draw instead of 20 (pair_random_xi_fast below says why it is sound).
+ *    32 x 32 -> 64 bits per draw instead of 20 (pair_random_bits_fast below says why it is sound).
  * Each maps its counter through a keyed bijection, so for one (seed, step) distinct pairs never
  * share a counter and their outputs are distinct 64-bit blocks (xi uses 32 bits of it). */
 #ifndef MESO_PHYSICS_PAIR_RANDOM_H
@@ -26,7 +26,7 @@ enum pair_rng { PAIR_RNG_PHILOX = 0, PAIR_RNG_PHILOX2X32 = 1, PAIR_RNG_FAST = 2,
 MESO_HD const char *pair_rng_word(int rng) {
   return rng == PAIR_RNG_FAST ? "fast" : rng == PAIR_RNG_PHILOX2X32 ? "philox2x32" : "philox";
 }
-/* Its construction, for --explain and the summaries. */
+/* Its construction, for --explain and the benchmarks. */
 MESO_HD const char *pair_rng_construction(int rng) {
   return rng == PAIR_RNG_FAST         ? "Philox2x32-7, hashed (seed, step) key"
          : rng == PAIR_RNG_PHILOX2X32 ? "Philox2x32-10"
