@@ -15,11 +15,15 @@
  * SKIN: Verlet skins of the neighbour lists to time in turn (default: the backend's); each gets a
  * fresh system. After the timed steps, 100 more steps with a thermo sample every 10 give <T> and
  * <p>: a skin that missed a pair would show there (the skin changes no physics).
- * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps. */
+ * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps.
+ * MDPORE_BENCH_RNG=philox|philox2x32|fast: the generator of the pair random numbers
+ * (dpd_thermostat's rng; default philox), printed as rng=... */
+#include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
 #include "engine/sim.h"
 #include "engine/sim_balance.h"
 #include "engine/sim_internal.h"
+#include "physics/pair_random.h"
 #ifdef MDPORE_HAVE_CUDA
 #include "backend/cuda/cuda_backend.h"
 #endif
@@ -63,6 +67,10 @@ static void scene_base(scene_t *s, double lx, double ly, double lz, int n_specie
   effect_name_in_scene(s, EFFECT_MDPD_ATTRACTION);
   effect_name_in_scene(s, EFFECT_MDPD_REPULSION);
   effect_name_in_scene(s, EFFECT_DPD_THERMOSTAT);
+  const char *rng = getenv("MDPORE_BENCH_RNG");
+  for (int r = 0; rng && r < PAIR_RNG_COUNT; r++)
+    if (!strcmp(rng, pair_rng_word(r)))
+      SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = r;
 }
 
 static long add(sim_t *sim, long id, int species, double x, double y, double z, const scene_t *s) {
@@ -172,14 +180,16 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int grow, int rank
   /* 3000 time units (the paper's flooding runs) at dt = s->dt */
   const double project_h = 3000.0 / s->dt * (double)n / mps / 3600.0;
   if (rank == 0)
-    printf(
-        "case=%s scaling=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" memory=%s skin=%.2f "
-        "list_builds_per_step=%.3f seconds=%.3f MPS=%.4g MPS_fluid=%.4g "
-        "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f fill_s=%.1f setup_s=%.1f "
-        "hours_for_3000_tau=%.2f T=%.4f p=%.4f\n",
-        porous ? "porous" : "bulk", grow == nranks ? "weak" : "strong", k, nranks, n, steps, device,
-        memory, skin, nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6,
-        mps * fluid_share / 1e6, 1e9 / mps, bytes * nranks, fill_s, setup_s, project_h, T, p);
+    printf("case=%s scaling=%s K=%d ranks=%d particles=%ld steps=%d device=\"%s\" memory=%s rng=%s "
+           "skin=%.2f list_builds_per_step=%.3f seconds=%.3f MPS=%.4g MPS_fluid=%.4g "
+           "ns_per_particle_step=%.4g gpu_bytes_per_particle=%.1f fill_s=%.1f setup_s=%.1f "
+           "hours_for_3000_tau=%.2f T=%.4f p=%.4f\n",
+           porous ? "porous" : "bulk", grow == nranks ? "weak" : "strong", k, nranks, n, steps,
+           device, memory,
+           pair_rng_word(
+               SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng),
+           skin, nsteps > 0 ? (double)builds / (double)(nsteps + 1) : 1.0, t, mps / 1e6,
+           mps * fluid_share / 1e6, 1e9 / mps, bytes * nranks, fill_s, setup_s, project_h, T, p);
   fflush(stdout);
   sim_destroy(sim);
   return 0;

@@ -2,15 +2,16 @@
  *   -gamma w_R^2 (e . v_ij) e + sigma w_R xi_ij / sqrt(dt) e,  w_R = (1 - r/rc)^s,
  *   sigma^2 = 2 gamma kT.
  * xi_ij = xi_ji comes from the counter-based generator of meso/physics/pair_random.h. v_ij uses the
- * Groot-Warren predicted velocities, so ghosts must carry velocities. Option: exponent s (1). */
+ * Groot-Warren predicted velocities, so ghosts must carry velocities. Options: exponent s (1);
+ * rng, the generator of xi: philox (Philox4x32-10, the default), philox2x32 (Philox2x32-10) or fast
+ * (Philox2x32-7 with a hashed key; pair_random.h says why it is sound). */
+#include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
+#include "physics/pair_random.h"
 
 #include <math.h>
 #include <stddef.h>
 
-typedef struct {
-  double exponent; /* s of w_R = (1 - r/rc)^s */
-} dpd_thermostat_options_t;
 _Static_assert(sizeof(dpd_thermostat_options_t) <= SCENE_EFFECT_OPTION_BYTES, "options too large");
 
 static dpd_thermostat_options_t *options(scene_t *s) {
@@ -22,14 +23,27 @@ static const dpd_thermostat_options_t *options_of(const scene_t *s) {
 
 static void defaults(scene_t *s) {
   options(s)->exponent = 1.0;
+  options(s)->rng = PAIR_RNG_PHILOX;
 }
 
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
-  static const char *const keys[] = {"exponent", NULL};
+  static const char *const keys[] = {"exponent", "rng", NULL};
+  /* in enum pair_rng order */
+  static const char *const rng_words[] = {"philox", "philox2x32", "fast", NULL};
+  _Static_assert(PAIR_RNG_PHILOX == 0 && PAIR_RNG_PHILOX2X32 == 1 && PAIR_RNG_FAST == 2 &&
+                     PAIR_RNG_COUNT == 3,
+                 "rng_words follows enum pair_rng");
   if (yt_check_keys(t, opt, path, keys)) return -1;
-  yaml_node_t *v = yt_get(t, opt, "exponent");
-  if (!v) return 0;
   char sub[192];
+  yaml_node_t *v = yt_get(t, opt, "rng");
+  if (v) {
+    snprintf(sub, sizeof sub, "%s.rng", path);
+    const int rng = yt_enum(t, v, sub, rng_words);
+    if (rng < 0) return -1;
+    options(s)->rng = rng;
+  }
+  v = yt_get(t, opt, "exponent");
+  if (!v) return 0;
   snprintf(sub, sizeof sub, "%s.exponent", path);
   if (yt_double(t, v, sub, &options(s)->exponent)) return -1;
   if (!(options(s)->exponent > 0))
@@ -39,6 +53,10 @@ static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
 }
 
 static int check(const scene_t *s, scene_report_t *r) {
+  const int rng = options_of(s)->rng;
+  if (rng < 0 || rng >= PAIR_RNG_COUNT) /* scenes built in code */
+    return r->error(r, "effects.dpd_thermostat.rng",
+                    "expected philox, philox2x32 or fast (got generator number %d)", rng);
   if (!(s->kT >= 0))
     return r->error(r, "kT", "expected kT >= 0 for dpd_thermostat (got %g)", s->kT);
   for (int a = 0; a < s->n_species; a++)
@@ -64,6 +82,7 @@ static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
   (void)err, (void)errlen;
   const double e = options_of(s)->exponent;
   plan->weight_exp = e > 0 ? e : 1.0;
+  plan->pair_rng = options_of(s)->rng;
   return 0;
 }
 
@@ -74,8 +93,9 @@ static void describe(const scene_t *s, FILE *out) {
           "gamma = ",
           e > 0 ? e : 1.0);
   effect_print_pair_param(s, out, offsetof(scene_pair_t, gamma));
-  fprintf(out, "; kT = %g; xi from Philox(seed %llu, step, ids)", s->kT,
-          (unsigned long long)s->seed);
+  const int rng = options_of(s)->rng;
+  fprintf(out, "; kT = %g; xi from %s (rng %s; seed %llu, step, ids)", s->kT,
+          pair_rng_construction(rng), pair_rng_word(rng), (unsigned long long)s->seed);
 }
 
 const effect_t effect_dpd_thermostat = {

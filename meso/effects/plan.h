@@ -76,6 +76,8 @@ typedef struct {
   double vv_lambda;   /* Groot-Warren lambda */
   double predict_c;   /* (lambda - 1/2) dt: v~ = v + predict_c f / m */
   uint64_t seed;      /* of the pair random numbers */
+  int pair_rng;       /* their generator: enum pair_rng (physics/pair_random.h; dpd_thermostat's
+                         option rng, 0 = Philox4x32-10) */
   int n_species;
   double mass[SCENE_MAX_SPECIES], inv_mass[SCENE_MAX_SPECIES];
   int mobile[SCENE_MAX_SPECIES];

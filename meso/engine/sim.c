@@ -68,11 +68,12 @@ void sim_destroy(sim_t *sim) {
 
 int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], const double v[3]) {
   sim_state_t *st = &sim->st;
-  if (id < 0 || id > PAIR_RANDOM_MAX_ID) {
+  const int64_t max_id = pair_random_max_id(st->plan.pair_rng);
+  if (id < 0 || id > max_id) {
     fprintf(stderr,
-            "mdpore: particle id %lld: expected 0 to %lld (the pair random numbers of this build "
-            "are keyed on the ids; %s)\n",
-            (long long)id, (long long)PAIR_RANDOM_MAX_ID, st->scene.file);
+            "mdpore: particle id %lld: expected 0 to %lld (the pair random numbers, generator "
+            "%s, are keyed on the ids; %s)\n",
+            (long long)id, (long long)max_id, pair_rng_word(st->plan.pair_rng), st->scene.file);
     return -1;
   }
   if (species < 0 || species >= st->plan.n_species) {

@@ -6,11 +6,16 @@
  * largest force component; |rho_gpu - rho_cpu| <= 2e-6 rho; after 5 steps |dx| <= 1e-6, |dv| <=
  * 1e-4. The same again with wall_boundary (Li et al.'s boundary, issue 10): the wall field from the
  * frozen particles, the no-slip scaling of the wall pairs' thermostat and the reflections after the
- * drift agree between the backends to the same bounds. Skipped (exit 77) without a GPU. */
+ * drift agree between the backends to the same bounds. Both again with each other generator of
+ * the pair random numbers (dpd_thermostat's rng: fast, philox2x32; issue 14): the device draws
+ * the host's numbers, so forces and trajectories agree to the same bounds, and they differ from
+ * the default generator's. Skipped (exit 77) without a GPU. */
 #include "test_cuda_common.h"
 
 #include "backend/cuda/cuda_backend.h"
+#include "effects/dpd_thermostat.h"
 #include "engine/sim_internal.h"
+#include "physics/pair_random.h"
 
 static sim_t *build(scene_t *s, int backend, int n) {
   s->backend = backend;
@@ -23,7 +28,7 @@ static double min_image(double d, double L) {
   return d - L * rint(d / L);
 }
 
-static int run_case(int wall_boundary) {
+static int run_case(int wall_boundary, int rng, double *f0) {
   scene_t s;
   test_scene_mdpd(&s, 8.0, 6.0, 7.0);
   s.n_species = 2;
@@ -42,13 +47,16 @@ static int run_case(int wall_boundary) {
   /* reverse Poiseuille along a periodic axis (a wall-bounded one is refused by the plan) */
   SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->reverse_axis = 1;
   if (wall_boundary) effect_name_in_scene(&s, EFFECT_WALL_BOUNDARY);
-  printf("--- %s ---\n", wall_boundary ? "with wall_boundary" : "without wall_boundary");
+  SCENE_EFFECT_OPTIONS(&s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = rng;
+  printf("--- %s, rng %s ---\n", wall_boundary ? "with wall_boundary" : "without wall_boundary",
+         pair_rng_word(rng));
   const int n = 2016; /* density 6 */
   sim_t *cpu = build(&s, SCENE_BACKEND_CPU, n);
   CHECK(cpu, "building the CPU simulation");
   test_state_t a0, a5, b;
   thermo_t ta;
   CHECK(!test_state_get(cpu, n, &a0), "reading the CPU state");
+  *f0 = a0.f[0];
   sim_thermo(cpu, &ta);
   for (int k = 0; k < 5; k++) CHECK(!sim_step(cpu), "CPU step %d", k);
   CHECK(!test_state_get(cpu, n, &a5), "reading the CPU state");
@@ -149,7 +157,21 @@ static int run_case(int wall_boundary) {
 int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   test_cuda_require_gpu();
-  if (run_case(0) || run_case(1)) return 1;
+  static double f_default[2]; /* a force component of the philox runs, by wall_boundary */
+  const int cases[5][2] = {{0, PAIR_RNG_PHILOX},
+                           {1, PAIR_RNG_PHILOX},
+                           {0, PAIR_RNG_FAST},
+                           {1, PAIR_RNG_FAST},
+                           {0, PAIR_RNG_PHILOX2X32}};
+  for (int c = 0; c < 5; c++) {
+    double f0 = 0;
+    if (run_case(cases[c][0], cases[c][1], &f0)) return 1;
+    if (cases[c][1] == PAIR_RNG_PHILOX)
+      f_default[cases[c][0]] = f0;
+    else
+      CHECK(f0 != f_default[cases[c][0]], "rng %s: the default generator's forces",
+            pair_rng_word(cases[c][1]));
+  }
   MPI_Finalize();
   return 0;
 }

@@ -3,7 +3,11 @@
  *  - mean ~ 0 and variance ~ 1 over many draws (uniform sqrt(3) U(-1, 1); 5-sigma bounds);
  *  - different steps give uncorrelated numbers;
  *  - with only dpd_thermostat, the total force on a random periodic configuration is zero to
- * rounding (F_ij = -F_ji, random and dissipative parts included). */
+ * rounding (F_ij = -F_ji, random and dissipative parts included), with each generator of
+ * dpd_thermostat's option rng (tests/engine/test_pair_rng_stats.c has their statistics), and the
+ * generators give different forces;
+ *  - the 2x32 generators (philox2x32, fast) refuse particle ids of 2^32 and above. */
+#include "effects/dpd_thermostat.h"
 #include "physics/pair_random.h"
 #include "test_engine_common.h"
 
@@ -30,22 +34,39 @@ int main(int argc, char **argv) {
   CHECK(fabs(var - 1) < 5 * sqrt(0.8 / n), "variance %.5f", var);
   CHECK(fabs(c) < 5 / sqrt((double)n), "correlation between steps %.3e", c);
 
-  scene_t s;
-  test_scene_mdpd(&s, 5.0, 5.0, 5.0);
-  effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
-  sim_t *sim = sim_create(&s, MPI_COMM_SELF);
-  CHECK(sim, "sim_create");
-  CHECK(test_fill_random(sim, &s, 500, 0.0, 5) == 0, "fill");
-  CHECK(sim_setup(sim) == 0, "setup");
-  particles_t *p = sim_particles(sim);
-  double total[3] = {0, 0, 0}, abs_sum = 0;
-  for (int i = 0; i < p->n_local; i++)
-    for (int d = 0; d < 3; d++) total[d] += p->f[d][i], abs_sum += fabs(p->f[d][i]);
-  const double tmax = fmax(fabs(total[0]), fmax(fabs(total[1]), fabs(total[2])));
-  printf("thermostat only: |sum F| = %.3e, sum |F| = %.3e\n", tmax, abs_sum);
-  CHECK(abs_sum > 100, "forces suspiciously small: %.3e", abs_sum);
-  CHECK(tmax < 1e-12 * abs_sum, "total force %.3e not zero", tmax);
-  sim_destroy(sim);
+  double fx0[3] = {0, 0, 0};
+  for (int rng = 0; rng < PAIR_RNG_COUNT; rng++) {
+    scene_t s;
+    test_scene_mdpd(&s, 5.0, 5.0, 5.0);
+    effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
+    SCENE_EFFECT_OPTIONS(&s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = rng;
+    sim_t *sim = sim_create(&s, MPI_COMM_SELF);
+    CHECK(sim, "sim_create");
+    CHECK(test_fill_random(sim, &s, 500, 0.0, 5) == 0, "fill");
+    CHECK(sim_setup(sim) == 0, "setup");
+    particles_t *p = sim_particles(sim);
+    double total[3] = {0, 0, 0}, abs_sum = 0;
+    for (int i = 0; i < p->n_local; i++)
+      for (int d = 0; d < 3; d++) total[d] += p->f[d][i], abs_sum += fabs(p->f[d][i]);
+    const double tmax = fmax(fabs(total[0]), fmax(fabs(total[1]), fabs(total[2])));
+    printf("thermostat only, rng %s: |sum F| = %.3e, sum |F| = %.3e, f(particle 0) = (%.6f, "
+           "%.6f, %.6f)\n",
+           pair_rng_word(rng), tmax, abs_sum, p->f[0][0], p->f[1][0], p->f[2][0]);
+    CHECK(abs_sum > 100, "forces suspiciously small: %.3e", abs_sum);
+    CHECK(tmax < 1e-12 * abs_sum, "total force %.3e not zero", tmax);
+    if (rng == PAIR_RNG_PHILOX)
+      for (int d = 0; d < 3; d++) fx0[d] = p->f[d][0];
+    else
+      CHECK(fx0[0] != p->f[0][0] || fx0[1] != p->f[1][0], "rng %s gave philox's forces",
+            pair_rng_word(rng));
+    /* ids: the 2x32 counters hold one id per 32-bit word */
+    const double x[3] = {1, 1, 1}, v[3] = {0, 0, 0};
+    const int64_t big = 4294967296LL;
+    const int added = sim_add_particle(sim, big, 0, x, v);
+    CHECK((added < 0) == (rng != PAIR_RNG_PHILOX), "rng %s: id 2^32 %s", pair_rng_word(rng),
+          added < 0 ? "refused" : "accepted");
+    sim_destroy(sim);
+  }
   MPI_Finalize();
   return 0;
 }

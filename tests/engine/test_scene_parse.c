@@ -1,9 +1,11 @@
 /* The scene parser turns a full scene into the right numbers: defaults, pair overrides applied
  * symmetrically, effect options, fill regions, outputs, paths relative to the scene file. */
+#include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
 #include "effects/scene_load.h"
 #include "scene/scene.h"
 #include "physics/density_kernels.h"
+#include "physics/pair_random.h"
 
 #include <math.h>
 #include <mpi.h>
@@ -26,7 +28,7 @@ static const char *text =
     "effects:\n"
     "  mdpd_attraction: {}\n"
     "  mdpd_repulsion:\n"
-    "  dpd_thermostat: {exponent: 0.5}\n"
+    "  dpd_thermostat: {exponent: 0.5, rng: fast}\n"
     "  body_force: {liquid: [0.02, 0, 0], reverse_along: y}\n"
     "  box_walls: {}\n"
     "initial:\n"
@@ -73,6 +75,7 @@ int main(int argc, char **argv) {
   char err[512];
   CHECK(plan_build(&plan, &s, err, sizeof err) == 0);
   CHECK(plan.weight_exp == 0.5 && !plan.weight_exp_is_one);
+  CHECK(plan.pair_rng == PAIR_RNG_FAST); /* dpd_thermostat's rng */
   CHECK(fabs(plan.rcut - 1.0) < 1e-15);
   CHECK(plan.particle.on[EFFECT_BODY_FORCE] && plan.particle.body_force.centre == 5.0);
   /* The physics hash sees physics, not outputs. */
@@ -84,6 +87,21 @@ int main(int argc, char **argv) {
   t = s; /* an effect option is physics too */
   SCENE_EFFECT_OPTIONS(&t, EFFECT_BODY_FORCE, body_force_params_t)->g[0][0] = 0.03;
   CHECK(scene_physics_hash(&t) != scene_physics_hash(&s));
+  /* the generator of the random force too; the default (philox = 0) leaves the option bytes as
+   * they were before the option existed (the exponent, then zeros), so the hash of a scene without
+   * the key, and the checkpoints written for it, are unchanged */
+  t = s;
+  dpd_thermostat_options_t *th =
+      SCENE_EFFECT_OPTIONS(&t, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t);
+  CHECK(th->rng == PAIR_RNG_FAST);
+  th->rng = PAIR_RNG_PHILOX;
+  CHECK(scene_physics_hash(&t) != scene_physics_hash(&s));
+  const unsigned char *bytes = t.effect_options[EFFECT_DPD_THERMOSTAT].bytes;
+  double e;
+  memcpy(&e, bytes, sizeof e);
+  int zeros = 1;
+  for (size_t k = sizeof e; k < SCENE_EFFECT_OPTION_BYTES; k++) zeros &= bytes[k] == 0;
+  CHECK(e == 0.5 && zeros);
   remove(path);
   MPI_Finalize();
   if (failures) fprintf(stderr, "%d checks failed\n", failures);

@@ -2,7 +2,9 @@
  * (physics.md section 1, paper eq. 1):
  *   F_ij = [ A w_c + B (rho_i + rho_j) w_d ] e - gamma w_R^2 (e . v_ij) e + sigma w_R xi_ij /
  * sqrt(dt) e The term set is a compile-time constant of each specialised copy (force_loop is
- * inlined with constant flags), so unused terms cost nothing. From j's side the same pair sees
+ * inlined with constant flags), so unused terms cost nothing; so is the generator of xi_ij
+ * (plan.pair_rng, dpd_thermostat's option rng): the default Philox4x32-10 path has no test per
+ * pair. From j's side the same pair sees
  * exactly negated r_ij and v_ij and the same rho_i + rho_j, so F_ji = -F_ij bitwise and momentum is
  * conserved to rounding. */
 #include "cpu_passes.h"
@@ -19,12 +21,12 @@ typedef struct {
   int s_one;
 } force_consts_t;
 
-/* Force (and virial) on owned particle i at bin slot q. terms and per_virial are compile-time
- * constants after inlining; w accumulates this thread's global virial. */
+/* Force (and virial) on owned particle i at bin slot q. terms, per_virial and rng (enum pair_rng)
+ * are compile-time constants after inlining; w accumulates this thread's global virial. */
 static inline __attribute__((always_inline)) void
 force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_pass_args_t *a,
          const force_consts_t *k, int q, int i, const nlist_t *nl, double w[6], const int terms,
-         const int per_virial) {
+         const int per_virial, const int rng) {
   const double xi = cl->px[q], yi = cl->py[q], zi = cl->pz[q];
   const int si = p->species[i];
   const pair_coef_t *row = plan->coef[si];
@@ -45,6 +47,7 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
     wall_sqrt_ratio = plan->particle.wall_boundary.field[i].sqrt_ratio;
   }
   const int64_t id_i = p->id[i];
+  const uint64_t seed = a->seed, step = a->step; /* the generator's key: loop-invariant */
   const int m = nl->count[i], m_near = nl->count_near[i];
   const int *cand = nl->slot + (size_t)i * (size_t)nl->stride;
   double sfx = 0, sfy = 0, sfz = 0;
@@ -67,7 +70,7 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
       const double wR = pair_weight_random_inv(dist, c->inv_rc, k->s_exp, k->s_one);
       const double e_dot_v =
           (dx * (vxi - k->vx[j]) + dy * (vyi - k->vy[j]) + dz * (vzi - k->vz[j])) * inv_r;
-      const double xi_ij = pair_random_xi(a->seed, a->step, id_i, p->id[j]);
+      const double xi_ij = pair_random_xi_rng(rng, seed, step, id_i, p->id[j]);
       const int wall = (terms & PAIR_TERM_WALL_NO_SLIP) && c->wall_phi2 > 0.0;
       fp += pair_thermostat(wall ? wall_ratio * c->gamma : c->gamma,
                             wall ? wall_sqrt_ratio * c->sigma : c->sigma, wR, e_dot_v, xi_ij,
@@ -96,30 +99,47 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
   w[0] += vxx, w[1] += vyy, w[2] += vzz, w[3] += vxy, w[4] += vxz, w[5] += vyz;
 }
 
-/* One parallel loop per (term set, per-particle virial): the outlined OpenMP function of each copy
- * sees constant flags, so unused terms are compiled out. Threads add their virial in a critical
- * section (the global virial only feeds thermo output, never the dynamics). */
-#define FORCE_LOOP(T, V)                                                                           \
+/* One parallel loop per (term set, per-particle virial, generator): the outlined OpenMP function
+ * of each copy sees constant flags, so unused terms are compiled out. Threads add their virial in
+ * a critical section (the global virial only feeds thermo output, never the dynamics). */
+#define FORCE_LOOP(T, V, R)                                                                        \
   _Pragma("omp parallel") {                                                                        \
     double w[6] = {0, 0, 0, 0, 0, 0};                                                              \
     _Pragma("omp for schedule(static)") for (int q = 0; q < nslots; q++) {                         \
       const int i = cl->idx[q];                                                                    \
-      if (i < p->n_local) force_on(plan, p, cl, a, &k, q, i, nl, w, T, V);                         \
+      if (i < p->n_local) force_on(plan, p, cl, a, &k, q, i, nl, w, T, V, R);                      \
     }                                                                                              \
     _Pragma("omp critical") for (int c = 0; c < 6; c++) a->virial[c] += w[c];                      \
   }
 
+#define FORCE_VIRIAL(T, R)                                                                         \
+  if (per_virial)                                                                                  \
+    FORCE_LOOP(T, 1, R)                                                                            \
+  else                                                                                             \
+    FORCE_LOOP(T, 0, R)
+
+/* A term set without the thermostat draws no random numbers: one copy. */
 #define FORCE_CASE(T)                                                                              \
   case T:                                                                                          \
-    if (per_virial)                                                                                \
-      FORCE_LOOP(T, 1)                                                                             \
-    else                                                                                           \
-      FORCE_LOOP(T, 0)                                                                             \
+    FORCE_VIRIAL(T, PAIR_RNG_PHILOX)                                                               \
+    break;
+
+/* With the thermostat: one copy per generator. */
+#define FORCE_CASE_XI(T)                                                                           \
+  case T:                                                                                          \
+    if (rng == PAIR_RNG_FAST) {                                                                    \
+      FORCE_VIRIAL(T, PAIR_RNG_FAST)                                                               \
+    } else if (rng == PAIR_RNG_PHILOX2X32) {                                                       \
+      FORCE_VIRIAL(T, PAIR_RNG_PHILOX2X32)                                                         \
+    } else {                                                                                       \
+      FORCE_VIRIAL(T, PAIR_RNG_PHILOX)                                                             \
+    }                                                                                              \
     break;
 
 void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, const nlist_t *nl,
                     force_pass_args_t *a) {
   const int per_virial = a->per_particle_virial && p->virial != NULL;
+  const int rng = plan->pair_rng;
   force_consts_t k = {
       .inv_sqrt_dt = a->inv_sqrt_dt, .s_exp = plan->weight_exp, .s_one = plan->weight_exp_is_one};
   k.vx = p->vpred[0] ? p->vpred[0] : p->v[0];
@@ -132,13 +152,13 @@ void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, c
     FORCE_CASE(1)
     FORCE_CASE(2)
     FORCE_CASE(3)
-    FORCE_CASE(4)
-    FORCE_CASE(5)
-    FORCE_CASE(6)
-    FORCE_CASE(7)
-    FORCE_CASE(12)
-    FORCE_CASE(13)
-    FORCE_CASE(14)
-    FORCE_CASE(15)
+    FORCE_CASE_XI(4)
+    FORCE_CASE_XI(5)
+    FORCE_CASE_XI(6)
+    FORCE_CASE_XI(7)
+    FORCE_CASE_XI(12)
+    FORCE_CASE_XI(13)
+    FORCE_CASE_XI(14)
+    FORCE_CASE_XI(15)
   }
 }

@@ -101,6 +101,7 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   q->s_exp = (meso_real)plan->weight_exp;
   q->inv_sqrt_dt = (meso_real)plan->inv_sqrt_dt;
   q->seed = plan->seed;
+  q->rng = plan->pair_rng;
   q->dt = plan->dt;
   q->half_dt = plan->half_dt;
   q->max_disp = plan->max_disp;

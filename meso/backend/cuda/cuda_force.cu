@@ -6,7 +6,8 @@
  * exactly negated separation and velocity difference). Bin-relative positions and the pair math in
  * meso_real (float unless MDPORE_DOUBLE), the sum per particle in meso_real, the pair virial per
  * block in double. The term set is a template parameter, so unused terms cost nothing (as in
- * backend/cpu). */
+ * backend/cpu), and so is the generator of xi_ij (RNG, enum pair_rng: dpd_thermostat's option
+ * rng), so the default Philox4x32-10 kernel is the one it was, without a branch per pair. */
 #include "cuda_neighbours.cuh"
 #include "physics/pair_forces.h"
 #include "physics/pair_random.h"
@@ -56,9 +57,10 @@ __device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *
 /* TERMS: the pair terms; VIRIAL: per-particle virial (stress profiles); PV: block sums of the pair
  * virial (the pressure of a thermo sample; skipped on the other steps); LISTS 0: the compact memory
  * mode, partners found by scanning the bins again (the same traversal order and float operations
- * as the list build, so the same forces bitwise). With the thermostat the partner's density travels
+ * as the list build, so the same forces bitwise); RNG: the generator of xi (PAIR_RNG_PHILOX for
+ * term sets without the thermostat). With the thermostat the partner's density travels
  * in its packed velocity (vel.pad, cuda_rho_to_vel): one load less. */
-template <int TERMS, int VIRIAL, int PV, int LISTS>
+template <int TERMS, int VIRIAL, int PV, int LISTS, int RNG>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
@@ -97,7 +99,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
         const meso_real e_dot_v =
             (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
-        const meso_real xi_ij = pair_random_xi(q.seed, a.step, id_i, a.id[t]);
+        const meso_real xi_ij = pair_random_xi_rng(RNG, q.seed, a.step, id_i, a.id[t]);
         const bool wall = (TERMS & PAIR_TERM_WALL_NO_SLIP) && c.wall_phi2 > MESO_R(0.0);
         fp += pair_thermostat(wall ? wall_ratio * c.gamma : c.gamma,
                               wall ? wall_sqrt_ratio * c.sigma : c.sigma, wR, e_dot_v, xi_ij,
@@ -147,24 +149,44 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   if (PV) block_virial_sums(w, a.block_virial, a.accumulate);
 }
 
-template <int T, int LISTS>
+template <int T, int R, int LISTS>
 static void launch_mode(const struct dev_params &q, const struct force_args &a, int blocks,
                         int virial, int pv) {
   if (virial)
-    k_force<T, 1, 1, LISTS><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 1, 1, LISTS, R><<<blocks, CUDA_BLOCK>>>(q, a);
   else if (pv)
-    k_force<T, 0, 1, LISTS><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 0, 1, LISTS, R><<<blocks, CUDA_BLOCK>>>(q, a);
   else
-    k_force<T, 0, 0, LISTS><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 0, 0, LISTS, R><<<blocks, CUDA_BLOCK>>>(q, a);
 }
 
+/* The list (fast memory mode) or the bin scan (compact). */
+template <int T, int R>
+static void launch_rng(const struct dev_params &q, const struct force_args &a, int blocks,
+                       int virial, int pv) {
+  if (a.nbr)
+    launch_mode<T, R, 1>(q, a, blocks, virial, pv);
+  else
+    launch_mode<T, R, 0>(q, a, blocks, virial, pv);
+}
+
+/* One kernel per generator for the term sets with the thermostat; the others draw no random
+ * numbers and have one (R = PAIR_RNG_PHILOX for every q.rng). */
 template <int T>
 static void launch(const struct dev_params &q, const struct force_args &a, int blocks, int virial,
                    int pv) {
-  if (a.nbr)
-    launch_mode<T, 1>(q, a, blocks, virial, pv);
-  else
-    launch_mode<T, 0>(q, a, blocks, virial, pv);
+  const bool xi = (T & PAIR_TERM_THERMOSTAT) != 0;
+  switch (q.rng) {
+  case PAIR_RNG_FAST:
+    launch_rng<T, xi ? PAIR_RNG_FAST : PAIR_RNG_PHILOX>(q, a, blocks, virial, pv);
+    break;
+  case PAIR_RNG_PHILOX2X32:
+    launch_rng<T, xi ? PAIR_RNG_PHILOX2X32 : PAIR_RNG_PHILOX>(q, a, blocks, virial, pv);
+    break;
+  default:
+    launch_rng<T, PAIR_RNG_PHILOX>(q, a, blocks, virial, pv);
+    break;
+  }
 }
 
 /* part < 0: every owned particle; 1 / 0: only the interior / boundary particles (several ranks,

@@ -33,6 +33,8 @@ struct dev_params {
   int n_species, terms, density, kernel, s_one, walls, particle_forces, use_vpred;
   meso_real s_exp, inv_sqrt_dt;
   uint64_t seed;
+  int rng; /* generator of the pair random numbers (enum pair_rng): the force kernel's template
+              parameter, chosen at launch */
   double dt, half_dt, max_disp;
   double predict_c; /* (vv_lambda - 1/2) dt: v~ = v + predict_c f / m (Groot-Warren) */
   int mobile[SCENE_MAX_SPECIES];
