@@ -93,6 +93,28 @@ int cuda_halo_rho_out(cuda_sim_t *g, double *field);
 int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho);
 int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces);
 
+/* Ghosts packed on the device (cuda_halo_device.cu), used when exactly one axis is cut between
+ * ranks: only the packed boundary records cross to the host, straight into MPI from a pinned
+ * buffer, and come back as the neighbours' ghosts (no host particle arrays, no host ghost stages).
+ * In step order: select (the boundary flags of the overlap split, the sets within the cutoff of
+ * the lower and the upper face of `axis`, their sizes into n_send[0..1]; waits for the device);
+ * pack (records of both sets, the periodic shift added, downloaded into the pinned buffer
+ * asynchronously; room for n_recv records to arrive; *send and *recv point into the buffer);
+ * wait (for that download only); unpack (the n_recv arrived records to the device as ghosts,
+ * from above first, then from below: n_from_up, n_from_down). The density halo: rho_pack (the
+ * boundary densities in the records' order, downloaded asynchronously), wait, rho_unpack. Record
+ * layout: 64 bytes (id, species, pad, x[3], v[3]), as the CPU path's ghosts.c. 0 or -1. */
+#define CUDA_GHOST_RECORD_BYTES 64
+int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_hi, int n_send[2]);
+int cuda_halo_pack(cuda_sim_t *g, int axis, double shift_lo, double shift_hi, int n_from_up,
+                   int n_from_down, void **send, void **recv);
+int cuda_halo_wait_packed(cuda_sim_t *g);
+int cuda_halo_unpack(cuda_sim_t *g);
+int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv);
+int cuda_halo_rho_unpack(cuda_sim_t *g);
+/* This step's counts: sent down, sent up, received from above, received from below. */
+void cuda_halo_counts(const cuda_sim_t *g, int n[4]);
+
 /* Announce whether the next steps end in a thermo sample: only then does the force pass sum the
  * pair virial (a sample after a step without it reruns the pair pass for the virial alone). */
 void cuda_sim_want_pressure(cuda_sim_t *g, int on);

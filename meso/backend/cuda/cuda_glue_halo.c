@@ -11,6 +11,7 @@
 #include "backend/cuda/cuda_glue.h"
 #include "domain/particle_store.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -84,10 +85,98 @@ static int sort(sim_state_t *st) {
   return cuda_halo_resort(cuda_glue(st)->g);
 }
 
+/* The one axis cut between ranks when the ghosts can be packed on the device (the others wrap on
+ * the device), else -1: several axes cut (edge and corner ghosts: the CPU path's stages), or
+ * MDPORE_CUDA_HOST_HALO=1 (the host path, kept for comparison: bench/RESULTS.md). */
+static int device_halo_axis(const sim_state_t *st) {
+  const char *host = getenv("MDPORE_CUDA_HOST_HALO");
+  if (host && !strcmp(host, "1")) return -1;
+  int axis = -1, cut = 0;
+  for (int d = 0; d < 3; d++)
+    if (st->dc.dims[d] > 1) {
+      axis = d;
+      cut++;
+    }
+  return cut == 1 ? axis : -1;
+}
+
+/* Every rank's local failure, agreed (collective): all ranks skip the exchange together. */
+static int any_failed(const sim_state_t *st, int rc) {
+  int any = rc != 0;
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, st->dc.cart);
+  return any;
+}
+
+/* Send n_down items of `size` bytes from send to the rank below and receive n_up from the rank
+ * above into recv, then n_up_send from send + n_down items up and n_from_down from below after
+ * recv's first part (the CPU path's ghosts.c order: from above first). Collective over the pair. */
+static void exchange_sets(const sim_state_t *st, int axis, size_t size, const char *send,
+                          int n_down, int n_upward, char *recv, int n_from_up, int n_from_down,
+                          int tag) {
+  const int down = st->dc.nbr[axis][0], up = st->dc.nbr[axis][1];
+  MPI_Sendrecv(send, (int)(n_down * size), MPI_BYTE, down, tag, recv, (int)(n_from_up * size),
+               MPI_BYTE, up, tag, st->dc.cart, MPI_STATUS_IGNORE);
+  MPI_Sendrecv(send + n_down * size, (int)(n_upward * size), MPI_BYTE, up, tag + 1,
+               recv + n_from_up * size, (int)(n_from_down * size), MPI_BYTE, down, tag + 1,
+               st->dc.cart, MPI_STATUS_IGNORE);
+}
+
+/* Ghosts packed on the device (cuda_halo_device.cu): the sets' sizes to the neighbours, the
+ * records down (the interior densities launched meanwhile), straight through MPI, up as ghosts. */
+static int ghosts_on_device(sim_state_t *st, int axis) {
+  cuda_glue_t *c = cuda_glue(st);
+  const int down = st->dc.nbr[axis][0], up = st->dc.nbr[axis][1];
+  int n_send[2] = {0, 0}, n_recv[2] = {0, 0}; /* recv: from above, from below */
+  int rc = st->failed ||
+           cuda_halo_select(c->g, axis, down != MPI_PROC_NULL, up != MPI_PROC_NULL, n_send);
+  if (rc) n_send[0] = n_send[1] = 0;
+  MPI_Sendrecv(&n_send[0], 1, MPI_INT, down, 310, &n_recv[0], 1, MPI_INT, up, 310, st->dc.cart,
+               MPI_STATUS_IGNORE);
+  MPI_Sendrecv(&n_send[1], 1, MPI_INT, up, 311, &n_recv[1], 1, MPI_INT, down, 311, st->dc.cart,
+               MPI_STATUS_IGNORE);
+  /* crossing the periodic boundary: ghosts.c's images */
+  const double shift_lo = st->dc.coords[axis] == 0 ? st->dc.L[axis] : 0.0;
+  const double shift_hi = st->dc.coords[axis] == st->dc.dims[axis] - 1 ? -st->dc.L[axis] : 0.0;
+  void *send = NULL, *recv = NULL;
+  for (int k = 0; k < 2; k++) /* one MPI message per set: its byte count must fit an int */
+    if ((long long)(n_send[k] > n_recv[k] ? n_send[k] : n_recv[k]) * CUDA_GHOST_RECORD_BYTES >
+        INT_MAX) {
+      snprintf(st->err, sizeof st->err,
+               "%d ghost records in one message: more than MPI's int count",
+               n_send[k] > n_recv[k] ? n_send[k] : n_recv[k]);
+      rc = 1;
+    }
+  if (!rc)
+    rc = cuda_halo_pack(c->g, axis, shift_lo, shift_hi, n_recv[0], n_recv[1], &send, &recv) ||
+         cuda_halo_density_early(c->g) || cuda_halo_wait_packed(c->g);
+  if (any_failed(st, rc)) return -1;
+  exchange_sets(st, axis, CUDA_GHOST_RECORD_BYTES, send, n_send[0], n_send[1], recv, n_recv[0],
+                n_recv[1], 312);
+  return cuda_halo_unpack(c->g) ? -1 : 0;
+}
+
+/* The density halo of the device-packed ghosts: boundary densities down in the records' order (the
+ * interior forces launched meanwhile), exchanged, up into the ghosts. */
+static int rho_sync_on_device(sim_state_t *st, int axis) {
+  cuda_glue_t *c = cuda_glue(st);
+  void *send = NULL, *recv = NULL;
+  int rc = st->failed || cuda_halo_rho_pack(c->g, &send, &recv) ||
+           cuda_halo_forces_early(c->g, st->step, st->want_virial, keep_forces(st)) ||
+           cuda_halo_wait_packed(c->g);
+  if (any_failed(st, rc)) return -1;
+  int n[4];
+  cuda_halo_counts(c->g, n);
+  exchange_sets(st, axis, cuda_sim_double_precision() ? 8 : 4, send, n[0], n[1], recv, n[2], n[3],
+                320);
+  return cuda_halo_rho_unpack(c->g) ? -1 : 0;
+}
+
 /* Boundary set -> host, the CPU path's ghost stages (collective), ghosts -> device; the interior
  * densities are launched first and run meanwhile. */
 static int ghosts(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
+  const int axis = device_halo_axis(st);
+  if (axis >= 0) return ghosts_on_device(st, axis);
   particles_t *hb = &c->halo_b;
   int rc = st->failed || pstore_reserve(hb, cuda_sim_count(c->g) + 1) ||
            cuda_halo_boundary(c->g, hb) || cuda_halo_density_early(c->g);
@@ -107,6 +196,8 @@ static int neighbours(sim_state_t *st) {
  * densities in. */
 static int rho_sync(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
+  const int axis = device_halo_axis(st);
+  if (axis >= 0) return rho_sync_on_device(st, axis);
   particles_t *hb = &c->halo_b;
   int rc = st->failed;
   const int nh = hb->n_local + hb->n_ghost;
@@ -140,7 +231,9 @@ static const char *phase_note(const plan_t *plan, int phase) {
   case PHASE_MIGRATE:
     return "leavers to the host, the CPU path's migration, arrivals back to the device";
   case PHASE_GHOSTS:
-    return "boundary set to the host, the CPU path's ghost stages, ghosts to the device; the "
+    return "one axis cut: the boundary records packed on the device go through MPI from pinned "
+           "memory and come back as ghosts; several axes cut (or MDPORE_CUDA_HOST_HALO=1): the "
+           "boundary set to the host, the CPU path's ghost stages, ghosts to the device; the "
            "interior densities run meanwhile";
   case PHASE_NEIGHBOURS:
     return "boundary part of the bin scan (lists and densities)";

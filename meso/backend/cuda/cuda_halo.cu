@@ -62,7 +62,7 @@ static int down(void *dst, const void *src, size_t bytes) {
 
 /* The pinned host buffer every halo transfer goes through (DMA at full speed, several copies in
  * flight, one synchronisation per transfer set). Grows as needed. */
-static char *pinned(struct cuda_sim *g, size_t bytes) {
+char *cuda_pinned(struct cuda_sim *g, size_t bytes) {
   if (bytes <= g->pinned_bytes) return g->pinned;
   if (g->pinned) cudaFreeHost(g->pinned);
   g->pinned = NULL;
@@ -97,7 +97,7 @@ static size_t padded(size_t b) {
 static int stage_down(struct cuda_sim *g, const struct stage *st) {
   size_t total = 0;
   for (int i = 0; i < st->k; i++) total += padded(st->bytes[i]);
-  char *buf = pinned(g, total);
+  char *buf = cuda_pinned(g, total);
   if (!buf) return -1;
   int rc = 0;
   for (int i = 0, off = 0; i < st->k; off += (int)padded(st->bytes[i]), i++)
@@ -113,7 +113,7 @@ static int stage_down(struct cuda_sim *g, const struct stage *st) {
 static int stage_up(struct cuda_sim *g, const struct stage *st) {
   size_t total = 0;
   for (int i = 0; i < st->k; i++) total += padded(st->bytes[i]);
-  char *buf = pinned(g, total);
+  char *buf = cuda_pinned(g, total);
   if (!buf) return -1;
   int rc = cuda_check(cudaStreamSynchronize(0), "halo upload"); /* earlier copies are done */
   for (int i = 0, off = 0; i < st->k; off += (int)padded(st->bytes[i]), i++) {
@@ -225,7 +225,7 @@ extern "C" int cuda_halo_rho_out(cuda_sim_t *g, double *field) {
   const int nb = g->n_boundary;
   if (!g->prm.density || nb == 0) return 0;
   k_rho_gather<<<blocks_of(nb), CUDA_BLOCK>>>(nb, g->perm, g->rho, g->rho_stage);
-  meso_real *tmp = (meso_real *)pinned(g, (size_t)nb * sizeof(meso_real));
+  meso_real *tmp = (meso_real *)cuda_pinned(g, (size_t)nb * sizeof(meso_real));
   if (!tmp || down(tmp, g->rho_stage, (size_t)nb * sizeof(meso_real))) return -1;
   for (int k = 0; k < nb; k++) field[k] = (double)tmp[k];
   return 0;
@@ -236,7 +236,7 @@ extern "C" int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho) {
   if (!g->prm.density || ng == 0) return 0;
   /* The interior force kernel may still run: wait for it before the buffer is rewritten. */
   if (cuda_check(cudaStreamSynchronize(0), "rho halo")) return -1;
-  meso_real *tmp = (meso_real *)pinned(g, (size_t)ng * sizeof(meso_real));
+  meso_real *tmp = (meso_real *)cuda_pinned(g, (size_t)ng * sizeof(meso_real));
   if (!tmp) return -1;
   for (int k = 0; k < ng; k++) tmp[k] = (meso_real)ghost_rho[k];
   if (cuda_check(

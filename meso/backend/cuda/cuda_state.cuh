@@ -160,6 +160,17 @@ struct cuda_sim {
   /* Pinned host staging buffer of the halo transfers (cuda_halo.cu). */
   char *pinned;
   size_t pinned_bytes;
+  /* Ghosts packed on the device (cuda_halo_device.cu; one axis cut between ranks): the counts of
+   * this step (sent down, sent up, received from above, received from below), the records on
+   * their way out and in, the selection's scratch, and the event that ends a packed download. */
+  int halo_n[4];
+  int *halo_count_dev; /* [2] */
+  char *ghost_send_dev, *ghost_recv_dev;
+  size_t ghost_send_cap, ghost_recv_cap, pinned_send_bytes;
+  void *select_tmp;
+  size_t select_tmp_bytes;
+  cudaEvent_t packed;
+  int packed_made;
   /* This step's passes were split in an interior and a boundary part (key holds the flags). */
   int split_passes;
   /* One rank with a skin: the sort phase left the choice (keep the lists or sort and rebuild) to
@@ -205,6 +216,10 @@ int cuda_nbr_reserve(struct cuda_sim *g, int stride);
 /* Switch to the compact mode (lists, and on one rank the sort's second field set, freed; the
  * particles kept). 0 or -1. */
 int cuda_go_compact(struct cuda_sim *g, const char *why);
+
+/* cuda_halo.cu: the pinned host buffer of the halo transfers, grown to at least bytes (contents
+ * not kept; the caller makes sure no copy from or to it is in flight). NULL on failure. */
+char *cuda_pinned(struct cuda_sim *g, size_t bytes);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 /* with_f: carry the forces along (they are needed after the sort only when kept from a checkpoint

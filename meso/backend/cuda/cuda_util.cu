@@ -270,22 +270,39 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
   if (!g) return;
   free_fields(g, &g->a);
   free_fields(g, &g->b);
-  void **ptrs[] = {(void **)&g->rho,          (void **)&g->virial,
-                   (void **)&g->key,          (void **)&g->key_sorted,
-                   (void **)&g->iota,         (void **)&g->perm,
-                   (void **)&g->cell_start,   &g->sort_tmp,
-                   (void **)&g->block_virial, (void **)&g->thermo_part,
-                   (void **)&g->problem,      (void **)&g->pos,
-                   (void **)&g->vel,          (void **)&g->nbr,
-                   (void **)&g->nbr_count,    (void **)&g->nbr_most,
-                   (void **)&g->gcell_start,  (void **)&g->counter,
-                   (void **)&g->rho_stage,    (void **)&g->pos0,
-                   (void **)&g->rebuild,      (void **)&g->wall_field,
-                   (void **)&g->rho_static,   (void **)&g->cell_dynamic,
-                   (void **)&g->sort_scratch};
+  void **ptrs[] = {(void **)&g->rho,
+                   (void **)&g->virial,
+                   (void **)&g->key,
+                   (void **)&g->key_sorted,
+                   (void **)&g->iota,
+                   (void **)&g->perm,
+                   (void **)&g->cell_start,
+                   &g->sort_tmp,
+                   (void **)&g->block_virial,
+                   (void **)&g->thermo_part,
+                   (void **)&g->problem,
+                   (void **)&g->pos,
+                   (void **)&g->vel,
+                   (void **)&g->nbr,
+                   (void **)&g->nbr_count,
+                   (void **)&g->nbr_most,
+                   (void **)&g->gcell_start,
+                   (void **)&g->counter,
+                   (void **)&g->rho_stage,
+                   (void **)&g->pos0,
+                   (void **)&g->rebuild,
+                   (void **)&g->wall_field,
+                   (void **)&g->rho_static,
+                   (void **)&g->cell_dynamic,
+                   (void **)&g->sort_scratch,
+                   (void **)&g->halo_count_dev,
+                   (void **)&g->ghost_send_dev,
+                   (void **)&g->ghost_recv_dev,
+                   &g->select_tmp};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
+  if (g->packed_made) cudaEventDestroy(g->packed);
   free(g);
 }
 

@@ -1,0 +1,249 @@
+/* Ghosts packed on the device (issue 15, item 1), for the usual cut: one axis split between ranks,
+ * the other axes wrapping on the device. The host path (cuda_halo.cu + the CPU path's ghosts.c)
+ * copies the boundary set into host particle arrays, selects and packs it again there, exchanges,
+ * unpacks into host arrays and copies the ghosts up: ~9 ms per step for 173k boundary particles on
+ * the 2 x H200 machine (bench/RESULTS.md). Here the device selects the two sets (within the cutoff
+ * of the lower and of the upper face), writes their 64-byte records (ghosts.c's layout, the
+ * periodic shift added by the sender as ghosts.c does) in slot order, and one asynchronous copy
+ * puts them in a pinned buffer that MPI sends as it is; the records that arrive go up in one copy
+ * and are unpacked into ghost slots by a kernel. The ghost order (from above, then from below, each
+ * in the sender's slot order) and the density halo's order are those of the host path, so the two
+ * paths give the same ghosts in the same order. */
+#include "cuda_state.cuh"
+
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
+
+struct __align__(8) ghost_record {
+  long long id;
+  int species, pad;
+  double x[3], v[3];
+};
+static_assert(sizeof(struct ghost_record) == CUDA_GHOST_RECORD_BYTES, "ghosts.c's record");
+
+static int blocks_for(int n) {
+  return (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+}
+
+/* Boundary flags of the overlap split (key 0: within the cutoff of a face between ranks, as
+ * k_boundary_keys) and the two send sets' flags (ghosts.c's tests: x < lo + rcut, x >= hi - rcut,
+ * each only towards an existing neighbour). */
+__global__ void k_ghost_flags(const struct dev_params q, int n, const double *__restrict__ x,
+                              int axis, int send_lo, int send_hi, uint32_t *key, int *flag_lo,
+                              int *flag_hi) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const double lo = q.sub_lo[axis] + q.rcut, hi = q.sub_hi[axis] - q.rcut;
+  const int below = x[i] < lo, above = x[i] >= hi;
+  key[i] = below || above ? 0u : 1u;
+  flag_lo[i] = send_lo && below;
+  flag_hi[i] = send_hi && above;
+}
+
+/* Records of the n_lo + n_hi selected slots (perm), the first n_lo shifted by shift_lo along the
+ * axis, the others by shift_hi. */
+__global__ void k_ghost_pack(int n_lo, int n_all, const int *__restrict__ perm, struct dev_fields p,
+                             int use_vpred, int axis, double shift_lo, double shift_hi,
+                             struct ghost_record *out) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n_all) return;
+  const int i = perm[k];
+  struct ghost_record r;
+  r.id = (long long)p.id[i];
+  r.species = p.species[i];
+  r.pad = 0;
+  for (int d = 0; d < 3; d++) {
+    r.x[d] = p.x[d][i];
+    r.v[d] = use_vpred ? p.vpred[d][i] : p.v[d][i];
+  }
+  r.x[axis] += k < n_lo ? shift_lo : shift_hi;
+  out[k] = r;
+}
+
+/* Arrived records into ghost slots [n0, n0 + ng) of the field set (then sorted by bin). */
+__global__ void k_ghost_unpack(int n0, int ng, const struct ghost_record *__restrict__ in,
+                               struct dev_fields p, int use_vpred) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= ng) return;
+  const struct ghost_record r = in[k];
+  const int j = n0 + k;
+  p.id[j] = (int64_t)r.id;
+  p.species[j] = r.species;
+  double *const *v = use_vpred ? p.vpred : p.v;
+  for (int d = 0; d < 3; d++) {
+    p.x[d][j] = r.x[d];
+    v[d][j] = r.v[d];
+  }
+}
+
+__global__ void k_rho_take(int n, const int *__restrict__ perm, const meso_real *__restrict__ rho,
+                           meso_real *out) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k < n) out[k] = rho[perm[k]];
+}
+
+__global__ void k_rho_put(int n0, int ng, const int *__restrict__ perm,
+                          const meso_real *__restrict__ in, meso_real *rho) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k < ng) rho[n0 + k] = in[perm[n0 + k]];
+}
+
+/* Device room of at least bytes in *buf (contents not kept). */
+static int dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes) {
+  if (bytes <= *cap) return 0;
+  cuda_free_ptr(g, (void **)buf);
+  *cap = 0;
+  const size_t want = bytes + bytes / 4 + 4096;
+  if (cuda_alloc(g, (void **)buf, want)) return -1;
+  *cap = want;
+  return 0;
+}
+
+extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_hi, int n_send[2]) {
+  const int n = g->n;
+  n_send[0] = n_send[1] = 0;
+  g->n_ghost = 0;
+  g->n_boundary = 0;
+  if (n == 0) return 0;
+  if (!g->halo_count_dev && cuda_alloc(g, (void **)&g->halo_count_dev, 2 * sizeof(int))) return -1;
+  /* iota and nbr_count are free here (the sort used iota; the density pass rewrites the counts) */
+  int *flag_lo = g->iota, *flag_hi = g->nbr_count;
+  k_ghost_flags<<<blocks_for(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[axis], axis, send_lo, send_hi,
+                                               g->key, flag_lo, flag_hi);
+  thrust::counting_iterator<int> slots(0);
+  size_t need = 0;
+  cub::DeviceSelect::Flagged(NULL, need, slots, flag_lo, g->perm, g->halo_count_dev, n);
+  if (need > g->select_tmp_bytes) {
+    cuda_free_ptr(g, &g->select_tmp);
+    g->select_tmp_bytes = 0;
+    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
+    g->select_tmp_bytes = need;
+  }
+  /* the lower set into perm[0, n_lo), then the upper set after it (slot order in each) */
+  size_t tmp = g->select_tmp_bytes;
+  if (cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag_lo, g->perm,
+                                            g->halo_count_dev, n),
+                 "ghost selection"))
+    return -1;
+  int counts[2] = {0, 0};
+  if (cuda_check(cudaMemcpy(counts, g->halo_count_dev, sizeof(int), cudaMemcpyDeviceToHost),
+                 "ghost selection"))
+    return -1;
+  tmp = g->select_tmp_bytes;
+  if (cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag_hi, g->perm + counts[0],
+                                            g->halo_count_dev + 1, n),
+                 "ghost selection") ||
+      cuda_check(cudaMemcpy(counts + 1, g->halo_count_dev + 1, sizeof(int), cudaMemcpyDeviceToHost),
+                 "ghost selection"))
+    return -1;
+  if ((long long)counts[0] + counts[1] > (long long)g->cap) {
+    fprintf(stderr, "mdpore: CUDA backend: %d + %d boundary particles exceed the %d slots\n",
+            counts[0], counts[1], g->cap);
+    return -1;
+  }
+  g->halo_n[0] = n_send[0] = counts[0];
+  g->halo_n[1] = n_send[1] = counts[1];
+  g->n_boundary = counts[0] + counts[1]; /* perm[0, n_boundary): kept by cuda_grow */
+  return 0;
+}
+
+/* The pinned buffer as [send | receive], each part 16-byte aligned; waits for the copies in flight
+ * when it must grow. */
+static int pinned_parts(struct cuda_sim *g, size_t send_bytes, size_t recv_bytes, void **send,
+                        void **recv) {
+  const size_t s = (send_bytes + 15) & ~(size_t)15, total = s + recv_bytes + 16;
+  if (total > g->pinned_bytes && cuda_check(cudaStreamSynchronize(0), "halo buffer")) return -1;
+  char *buf = cuda_pinned(g, total);
+  if (!buf) return -1;
+  *send = buf;
+  *recv = buf + s;
+  g->pinned_send_bytes = s;
+  return 0;
+}
+
+static int record_packed(struct cuda_sim *g) {
+  if (!g->packed_made) {
+    if (cuda_check(cudaEventCreateWithFlags(&g->packed, cudaEventDisableTiming), "halo event"))
+      return -1;
+    g->packed_made = 1;
+  }
+  return cuda_check(cudaEventRecord(g->packed, 0), "halo event");
+}
+
+extern "C" int cuda_halo_pack(cuda_sim_t *g, int axis, double shift_lo, double shift_hi,
+                              int n_from_up, int n_from_down, void **send, void **recv) {
+  const int n_all = g->halo_n[0] + g->halo_n[1];
+  g->halo_n[2] = n_from_up;
+  g->halo_n[3] = n_from_down;
+  const size_t out_bytes = (size_t)n_all * sizeof(struct ghost_record);
+  const size_t in_bytes = (size_t)(n_from_up + n_from_down) * sizeof(struct ghost_record);
+  if (pinned_parts(g, out_bytes, in_bytes, send, recv) ||
+      dev_room(g, &g->ghost_send_dev, &g->ghost_send_cap, out_bytes + 1))
+    return -1;
+  if (n_all > 0) {
+    k_ghost_pack<<<blocks_for(n_all), CUDA_BLOCK>>>(g->halo_n[0], n_all, g->perm, g->a,
+                                                    g->prm.use_vpred, axis, shift_lo, shift_hi,
+                                                    (struct ghost_record *)g->ghost_send_dev);
+    if (cuda_check(cudaMemcpyAsync(*send, g->ghost_send_dev, out_bytes, cudaMemcpyDeviceToHost),
+                   "ghost records down"))
+      return -1;
+  }
+  return record_packed(g);
+}
+
+extern "C" int cuda_halo_wait_packed(cuda_sim_t *g) {
+  return g->packed_made ? cuda_check(cudaEventSynchronize(g->packed), "halo download") : 0;
+}
+
+extern "C" int cuda_halo_unpack(cuda_sim_t *g) {
+  const int ng = g->halo_n[2] + g->halo_n[3], n0 = g->n;
+  g->n_ghost = 0;
+  if (n0 + ng > g->cap) {
+    /* More ghosts than room: grow (after the interior pass in flight) and run this step's pair
+     * passes in one part, since the interior lists went with the old arrays. */
+    g->split_passes = 0;
+    if (cuda_grow(g, n0 + ng)) return -1;
+  }
+  const size_t bytes = (size_t)ng * sizeof(struct ghost_record);
+  if (dev_room(g, &g->ghost_recv_dev, &g->ghost_recv_cap, bytes + 1)) return -1;
+  if (ng > 0) {
+    if (cuda_check(cudaMemcpyAsync(g->ghost_recv_dev, g->pinned + g->pinned_send_bytes, bytes,
+                                   cudaMemcpyHostToDevice),
+                   "ghost records up"))
+      return -1;
+    k_ghost_unpack<<<blocks_for(ng), CUDA_BLOCK>>>(
+        n0, ng, (const struct ghost_record *)g->ghost_recv_dev, g->b, g->prm.use_vpred);
+  }
+  g->n_ghost = ng;
+  return cuda_sort_ghosts(g);
+}
+
+extern "C" int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv) {
+  const int n_all = g->halo_n[0] + g->halo_n[1], ng = g->halo_n[2] + g->halo_n[3];
+  const size_t w = sizeof(meso_real);
+  /* the ghost records' upload of this step was queued before anything that follows: the pinned
+   * buffer is free once the stream reaches this point, which pinned_parts waits for if it grows */
+  if (pinned_parts(g, (size_t)n_all * w, (size_t)ng * w, send, recv)) return -1;
+  if (g->prm.density && n_all > 0) {
+    k_rho_take<<<blocks_for(n_all), CUDA_BLOCK>>>(n_all, g->perm, g->rho, g->rho_stage);
+    if (cuda_check(cudaMemcpyAsync(*send, g->rho_stage, (size_t)n_all * w, cudaMemcpyDeviceToHost),
+                   "density halo down"))
+      return -1;
+  }
+  return record_packed(g);
+}
+
+extern "C" int cuda_halo_rho_unpack(cuda_sim_t *g) {
+  const int ng = g->n_ghost;
+  if (!g->prm.density || ng == 0) return 0;
+  if (cuda_check(cudaMemcpyAsync(g->rho_stage, g->pinned + g->pinned_send_bytes,
+                                 (size_t)ng * sizeof(meso_real), cudaMemcpyHostToDevice),
+                 "density halo up"))
+    return -1;
+  k_rho_put<<<blocks_for(ng), CUDA_BLOCK>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
+  return cuda_check(cudaGetLastError(), "density halo");
+}
+
+extern "C" void cuda_halo_counts(const cuda_sim_t *g, int n[4]) {
+  for (int k = 0; k < 4; k++) n[k] = g->halo_n[k];
+}
