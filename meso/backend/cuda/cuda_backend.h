@@ -69,15 +69,16 @@ int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_for
 int cuda_sim_finish(cuda_sim_t *g, int add_particle, int kick);
 int cuda_sim_fetch_problems(cuda_sim_t *g, cuda_problem_t *pr);
 
-/* Several ranks (one GPU each; cuda_halo.cu, cuda_step.cu), in step order: kick-drift; sort the
- * owned particles by bin with the leavers last (*n_stay = first leaver); take the leavers out into
- * `out` (host); add the arrivals; sort again; predict; boundary set into hb (host: id, species, x,
+/* Several ranks (one GPU each; cuda_halo.cu, cuda_step.cu), in step order: kick-drift; find the
+ * leavers (outside the subdomain; *m of them, left in their slots); copy them into `out` (host); add
+ * the arrivals after the owned slots; sort by bin, the leavers last and dropped (the step's one
+ * sort of the owned particles); predict; boundary set into hb (host: id, species, x,
  * thermostat velocity in v); ghosts of hb (after ghosts_build) to the device; densities; boundary
  * densities out (field[0..n_boundary)), ghost densities in (host ghost order); forces (then
  * cuda_sim_finish and cuda_sim_fetch_problems as on one rank). */
 int cuda_halo_kick_drift(cuda_sim_t *g);
-int cuda_halo_sort_owned(cuda_sim_t *g, int *n_stay);
-int cuda_halo_take_leavers(cuda_sim_t *g, int n_stay, particles_t *out);
+int cuda_halo_find_leavers(cuda_sim_t *g, int *m);
+int cuda_halo_take_leavers(cuda_sim_t *g, int m, particles_t *out);
 int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in);
 int cuda_halo_resort(cuda_sim_t *g);
 int cuda_halo_predict(cuda_sim_t *g, int setup);

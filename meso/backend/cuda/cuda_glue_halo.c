@@ -71,10 +71,9 @@ static int setup_begin(sim_state_t *st) {
 static int migrate(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
   particles_t *m = &c->halo_m;
-  int n_stay = 0;
-  int rc = st->failed || cuda_halo_sort_owned(c->g, &n_stay) ||
-           pstore_reserve(m, cuda_sim_count(c->g) - n_stay + 1) ||
-           cuda_halo_take_leavers(c->g, n_stay, m);
+  int n_leave = 0;
+  int rc = st->failed || cuda_halo_find_leavers(c->g, &n_leave) || pstore_reserve(m, n_leave + 1) ||
+           cuda_halo_take_leavers(c->g, n_leave, m);
   if (rc) m->n_local = 0;
   migrate_particles(&st->dc, m, &st->sbuf, &st->rbuf, &c->mr); /* collective */
   return rc || c->mr.out_of_memory || cuda_halo_add_owned(c->g, m) ? -1 : 0;

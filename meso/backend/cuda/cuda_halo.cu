@@ -6,6 +6,9 @@
  * ghosts in bin order (their own bin starts, gcell_start). */
 #include "cuda_state.cuh"
 
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -139,21 +142,67 @@ static int fields_down(struct cuda_sim *g, const struct dev_fields *f, int off, 
   return stage_down(g, &st);
 }
 
-extern "C" int cuda_halo_sort_owned(cuda_sim_t *g, int *n_stay) {
-  if (cuda_sort_cells(g, 1)) return -1;
-  *n_stay = g->n;
-  if (g->n == 0) return 0;
-  return down(n_stay, g->cell_start + g->prm.ncell, sizeof(int));
+/* Leavers: owned particles outside this rank's subdomain (k_cell_keys' sentinel test, so the sort
+ * phase puts exactly these last). */
+__global__ void k_leaver_flags(const struct dev_params q, int n, const double *__restrict__ x,
+                               const double *__restrict__ y, const double *__restrict__ z,
+                               int *flag) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  flag[i] = !(x[i] >= q.sub_lo[0] && x[i] < q.sub_hi[0] && y[i] >= q.sub_lo[1] &&
+              y[i] < q.sub_hi[1] && z[i] >= q.sub_lo[2] && z[i] < q.sub_hi[2]);
 }
 
-/* out must have room for n - n_stay particles. */
-extern "C" int cuda_halo_take_leavers(cuda_sim_t *g, int n_stay, particles_t *out) {
-  const int m = g->n - n_stay;
+/* dst[k] = the particle perm[k], every field with the forces (the leavers' staging). */
+__global__ void k_leaver_gather(int m, const int *__restrict__ perm, struct dev_fields src,
+                                struct dev_fields dst) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= m) return;
+  const int i = perm[k];
+  dst.id[k] = src.id[i];
+  dst.species[k] = src.species[i];
+  for (int d = 0; d < 3; d++) {
+    dst.x[d][k] = src.x[d][i];
+    dst.v[d][k] = src.v[d][i];
+    dst.f[d][k] = src.f[d][i];
+  }
+}
+
+/* The leavers' slots (slot order) into perm[0, *m) without moving anyone: they stay in their slots,
+ * counted in n, until the sort phase puts them last and drops them (cuda_halo_resort), so a step
+ * sorts the owned particles once. */
+extern "C" int cuda_halo_find_leavers(cuda_sim_t *g, int *m) {
+  const int n = g->n;
+  *m = 0;
+  g->n_leaving = 0;
+  if (n == 0) return 0;
+  k_leaver_flags<<<blocks_of(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[0], g->a.x[1], g->a.x[2], g->iota);
+  thrust::counting_iterator<int> slots(0);
+  size_t need = 0;
+  cub::DeviceSelect::Flagged(NULL, need, slots, g->iota, g->perm, g->counter, n);
+  if (need > g->select_tmp_bytes) {
+    cuda_free_ptr(g, &g->select_tmp);
+    g->select_tmp_bytes = 0;
+    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
+    g->select_tmp_bytes = need;
+  }
+  size_t tmp = g->select_tmp_bytes;
+  if (cuda_check(
+          cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, g->iota, g->perm, g->counter, n),
+          "leaver selection") ||
+      down(m, g->counter, sizeof(int)))
+    return -1;
+  g->n_leaving = *m;
+  return 0;
+}
+
+/* out must have room for m particles. */
+extern "C" int cuda_halo_take_leavers(cuda_sim_t *g, int m, particles_t *out) {
   out->n_local = m;
   out->n_ghost = 0;
-  if (m > 0 && fields_down(g, &g->a, n_stay, m, out, 0, 1)) return -1;
-  g->n = n_stay;
-  return 0;
+  if (m == 0) return 0;
+  k_leaver_gather<<<blocks_of(m), CUDA_BLOCK>>>(m, g->perm, g->a, g->b);
+  return fields_down(g, &g->b, 0, m, out, 0, 1);
 }
 
 extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
@@ -172,8 +221,13 @@ extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
   return rc ? -1 : 0;
 }
 
+/* The one sort of the owned particles in a step: by bin, the leavers (outside the subdomain:
+ * sentinel bin) last, then dropped. */
 extern "C" int cuda_halo_resort(cuda_sim_t *g) {
-  return cuda_sort_cells(g, 1);
+  if (cuda_sort_cells(g, 1)) return -1;
+  g->n -= g->n_leaving;
+  g->n_leaving = 0;
+  return 0;
 }
 
 extern "C" int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb) {

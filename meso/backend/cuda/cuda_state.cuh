@@ -133,6 +133,7 @@ struct cuda_sim {
   int *gcell_start;     /* [ncell + 1] ghosts (multi), slots relative to n */
   int n_ghost;          /* ghosts after the n owned particles (multi) */
   int n_boundary;       /* owned particles sent out as ghosts: slots perm[0..n_boundary) (multi) */
+  int n_leaving;        /* leavers still counted in n until the sort phase drops them (multi) */
   int *counter;         /* [1] device counter (boundary selection) */
   meso_real *rho_stage; /* [cap] densities on their way to or from the host (multi) */
   struct dev_pos *pos;  /* [cap] packed positions (cell order) */
