@@ -49,8 +49,12 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
     if (q.box_periodic[d] && isfinite(x[d]) && fabs(x[d] - q.box_lo[d]) > 2.0 * q.box_len[d])
       far = 1;
   if (far) dev_note(pb, CUDA_LOST, 1, p.id[i], x[0], x[1], x[2], 1.0);
+  /* Along an axis cut between ranks the host migration wraps (migrate.c sends a leaver the way it
+   * moved and wraps it while crossing the periodic face): wrapped here, a leaver of the last
+   * subdomain would look like one of the first and go the wrong way on 3 or more ranks. */
   for (int d = 0; d < 3; d++)
-    if (q.box_periodic[d]) x[d] = box_wrap(x[d], q.box_lo[d], q.box_hi[d], q.box_len[d]);
+    if (q.box_periodic[d] && !q.split[d])
+      x[d] = box_wrap(x[d], q.box_lo[d], q.box_hi[d], q.box_len[d]);
   for (int d = 0; d < 3; d++) {
     p.x[d][i] = x[d];
     p.v[d][i] = v[d];
