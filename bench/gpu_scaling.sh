@@ -15,10 +15,11 @@ while [ "$n" -le "$G" ]; do nps="$nps $n"; n=$((n * 2)); done
 mpi() { # mpi NP STRONG(0|1) ARGS...: gpu_bench on NP ranks
   np=$1; strong=$2; shift 2
   if [ "$np" = 1 ]; then
-    GPU_BENCH_STRONG=$strong "$B/bin/gpu_bench" "$@"
+    GPU_BENCH_STRONG=$strong "$B/bin/gpu_bench" "$@" < /dev/null
   else
     GPU_BENCH_STRONG=$strong mpiexec --allow-run-as-root --oversubscribe --bind-to none -n "$np" \
-      -x GPU_BENCH_PHASES -x GPU_BENCH_STRONG "$B/bin/gpu_bench" "$@"
+      -x GPU_BENCH_PHASES -x GPU_BENCH_STRONG "$B/bin/gpu_bench" "$@" < /dev/null # (mpiexec
+    # would read the case list from stdin)
   fi
 }
 echo "$CASES" | tr '|' '\n' | while read -r case; do
