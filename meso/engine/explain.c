@@ -171,7 +171,7 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
     fprintf(out,
             "load balancing: cuts placed by particle weight before the set-up (frozen particle "
             "weight %g; a restart keeps its checkpoint's cuts)",
-            s->balance.frozen_weight);
+            scene_frozen_weight(s));
     if (s->balance.every > 0)
       fprintf(out,
               "; every %ld steps the busy-time imbalance is measured and the cuts move above %g%s",

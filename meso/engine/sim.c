@@ -25,7 +25,9 @@ sim_t *sim_create(const scene_t *scene, MPI_Comm comm) {
   st->scene = *scene;
   st->dc.cart = MPI_COMM_NULL;
   st->hist.dt = scene->dt;
-  st->frozen_weight = scene->balance.frozen_weight;
+  /* the cost cuts' frozen weight: the scene's, else the backend's default */
+  st->scene.balance.frozen_weight = scene_frozen_weight(scene);
+  st->frozen_weight = st->scene.balance.frozen_weight;
   if (plan_build(&st->plan, scene, st->err, sizeof st->err) ||
       decomp_create(&st->dc, scene, comm, st->plan.rcut, st->err, sizeof st->err)) {
     report(comm, st->err);

@@ -135,11 +135,18 @@ typedef struct {
 /* Where the cuts between the ranks' subdomains go (`balance:`, docs/scene-format.md "Load
  * balancing"; meso/domain/balance.c). */
 enum scene_cuts { SCENE_CUTS_UNIFORM = 0, SCENE_CUTS_COST = 1 };
+/* Default weight of a frozen particle for the cost cuts, per backend (bench/RESULTS.md): fitted on
+ * the CPU (0.41 on 16 ranks of the H100 host); on the GPU a thread per particle scans the bins for
+ * a wall particle as for a fluid one, and 1.0 beat 0.7 and 0.4 there (2 and 4 H200s). */
+#define SCENE_FROZEN_WEIGHT_CPU 0.4
+#define SCENE_FROZEN_WEIGHT_GPU 1.0
 typedef struct {
   int cuts;             /* enum scene_cuts                                                      */
   double frozen_weight; /* cost of a frozen (wall) particle relative to a mobile one            */
-  long every;           /* steps between checks of the measured imbalance (0: cuts fixed)      */
-  double threshold;     /* move the cuts when max / mean busy time over the ranks exceeds it    */
+  int frozen_weight_given; /* 1: set in the scene; else the backend's default (engine/sim.c:
+                              SCENE_FROZEN_WEIGHT_CPU or _GPU)                                 */
+  long every;              /* steps between checks of the measured imbalance (0: cuts fixed)      */
+  double threshold; /* move the cuts when max / mean busy time over the ranks exceeds it    */
 } scene_balance_t;
 
 /* Engine backends (meso/backend/<name>). */
@@ -197,6 +204,12 @@ typedef struct {
   int gpu_memory;        /* enum scene_gpu_memory, set by --gpu-memory (0 = auto): the CUDA path's
                      neighbour lists (fast) or none (compact); the same forces either way */
 } scene_t;
+
+/* The cost cuts' weight of a frozen particle: the scene's, else the backend's default. */
+static inline double scene_frozen_weight(const scene_t *s) {
+  if (s->balance.frozen_weight_given) return s->balance.frozen_weight;
+  return s->backend == SCENE_BACKEND_CUDA ? SCENE_FROZEN_WEIGHT_GPU : SCENE_FROZEN_WEIGHT_CPU;
+}
 
 /* Parse and validate a scene file with the effects of `catalog` (meso/effects: scene_load() in
  * effects/scene_load.h passes the registry). On error prints "FILE:LINE: key 'K': expected ..." to

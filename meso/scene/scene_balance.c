@@ -8,7 +8,8 @@
 
 void scene_balance_defaults(scene_t *s) {
   s->balance.cuts = SCENE_CUTS_UNIFORM;
-  s->balance.frozen_weight = 0.4; /* fitted on the H100 host: 0.41 (16 ranks, bench/balance.py) */
+  s->balance.frozen_weight = SCENE_FROZEN_WEIGHT_CPU; /* the GPU's: engine/sim.c */
+  s->balance.frozen_weight_given = 0;
   s->balance.every = 0;
   s->balance.threshold = 1.05;
 }
@@ -26,6 +27,7 @@ int scene_parse_balance(ytree_t *t, yaml_node_t *n, scene_t *s) {
   }
   if ((v = yt_get(t, n, "frozen_weight"))) {
     TRY(yt_double(t, v, "balance.frozen_weight", &b->frozen_weight));
+    b->frozen_weight_given = 1;
     if (!(b->frozen_weight >= 0 && b->frozen_weight <= 10))
       return yt_error(t, v, "balance.frozen_weight",
                       "expected the cost of a frozen (wall) particle relative to a mobile one, "

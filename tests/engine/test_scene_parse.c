@@ -103,6 +103,23 @@ int main(int argc, char **argv) {
   for (size_t k = sizeof e; k < SCENE_EFFECT_OPTION_BYTES; k++) zeros &= bytes[k] == 0;
   CHECK(e == 0.5 && zeros);
   remove(path);
+  /* The cost cuts' frozen weight: the backend's default when the scene names none (CPU 0.4, GPU
+   * 1.0: bench/RESULTS.md), the scene's when it does, on either backend. */
+  CHECK(!s.balance.frozen_weight_given);
+  s.backend = SCENE_BACKEND_CPU;
+  CHECK(scene_frozen_weight(&s) == SCENE_FROZEN_WEIGHT_CPU && SCENE_FROZEN_WEIGHT_CPU == 0.4);
+  s.backend = SCENE_BACKEND_CUDA;
+  CHECK(scene_frozen_weight(&s) == SCENE_FROZEN_WEIGHT_GPU && SCENE_FROZEN_WEIGHT_GPU == 1.0);
+  f = fopen(path, "w");
+  fputs(text, f);
+  fputs("balance: {cuts: cost, frozen_weight: 0.7}\n", f);
+  fclose(f);
+  CHECK(scene_load(path, &s) == 0);
+  CHECK(s.balance.frozen_weight_given && s.balance.cuts == SCENE_CUTS_COST);
+  s.backend = SCENE_BACKEND_CUDA;
+  CHECK(scene_frozen_weight(&s) == 0.7);
+  s.backend = SCENE_BACKEND_CPU;
+  CHECK(scene_frozen_weight(&s) == 0.7);
   MPI_Finalize();
   if (failures) fprintf(stderr, "%d checks failed\n", failures);
   return failures ? 1 : 0;
