@@ -6,9 +6,6 @@
  * ghosts in bin order (their own bin starts, gcell_start). */
 #include "cuda_state.cuh"
 
-#include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
-
 #include <stdlib.h>
 #include <string.h>
 
@@ -177,19 +174,7 @@ extern "C" int cuda_halo_find_leavers(cuda_sim_t *g, int *m) {
   g->n_leaving = 0;
   if (n == 0) return 0;
   k_leaver_flags<<<blocks_of(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[0], g->a.x[1], g->a.x[2], g->iota);
-  thrust::counting_iterator<int> slots(0);
-  size_t need = 0;
-  cub::DeviceSelect::Flagged(NULL, need, slots, g->iota, g->perm, g->counter, n);
-  if (need > g->select_tmp_bytes) {
-    cuda_free_ptr(g, &g->select_tmp);
-    g->select_tmp_bytes = 0;
-    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
-    g->select_tmp_bytes = need;
-  }
-  size_t tmp = g->select_tmp_bytes;
-  if (cuda_check(
-          cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, g->iota, g->perm, g->counter, n),
-          "leaver selection") ||
+  if (cuda_select_slots(g, g->iota, g->perm, g->counter, n, "leaver selection") ||
       down(m, g->counter, sizeof(int)))
     return -1;
   g->n_leaving = *m;

@@ -11,9 +11,6 @@
  * paths give the same ghosts in the same order. */
 #include "cuda_state.cuh"
 
-#include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
-
 struct __align__(8) ghost_record {
   long long id;
   int species, pad;
@@ -110,29 +107,13 @@ extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_h
   int *flag_lo = g->iota, *flag_hi = g->nbr_count;
   k_ghost_flags<<<blocks_for(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[axis], axis, send_lo, send_hi,
                                                g->key, flag_lo, flag_hi);
-  thrust::counting_iterator<int> slots(0);
-  size_t need = 0;
-  cub::DeviceSelect::Flagged(NULL, need, slots, flag_lo, g->perm, g->halo_count_dev, n);
-  if (need > g->select_tmp_bytes) {
-    cuda_free_ptr(g, &g->select_tmp);
-    g->select_tmp_bytes = 0;
-    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
-    g->select_tmp_bytes = need;
-  }
   /* the lower set into perm[0, n_lo), then the upper set after it (slot order in each) */
-  size_t tmp = g->select_tmp_bytes;
-  if (cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag_lo, g->perm,
-                                            g->halo_count_dev, n),
-                 "ghost selection"))
-    return -1;
   int counts[2] = {0, 0};
-  if (cuda_check(cudaMemcpy(counts, g->halo_count_dev, sizeof(int), cudaMemcpyDeviceToHost),
-                 "ghost selection"))
-    return -1;
-  tmp = g->select_tmp_bytes;
-  if (cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag_hi, g->perm + counts[0],
-                                            g->halo_count_dev + 1, n),
+  if (cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
+      cuda_check(cudaMemcpy(counts, g->halo_count_dev, sizeof(int), cudaMemcpyDeviceToHost),
                  "ghost selection") ||
+      cuda_select_slots(g, flag_hi, g->perm + counts[0], g->halo_count_dev + 1, n,
+                        "ghost selection") ||
       cuda_check(cudaMemcpy(counts + 1, g->halo_count_dev + 1, sizeof(int), cudaMemcpyDeviceToHost),
                  "ghost selection"))
     return -1;

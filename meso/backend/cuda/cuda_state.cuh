@@ -214,6 +214,10 @@ int cuda_reserve(struct cuda_sim *g, int n);
 int cuda_grow(struct cuda_sim *g, int need);
 int cuda_set_virial(struct cuda_sim *g, int on);
 int cuda_nbr_reserve(struct cuda_sim *g, int stride);
+/* The slots i < n with flag[i] != 0, in slot order, into out; their count into *count_dev (device).
+ * Queued on the default stream (cub select; scratch grown as needed). 0 or -1. */
+int cuda_select_slots(struct cuda_sim *g, const int *flag, int *out, int *count_dev, int n,
+                      const char *what);
 /* Switch to the compact mode (lists, and on one rank the sort's second field set, freed; the
  * particles kept). 0 or -1. */
 int cuda_go_compact(struct cuda_sim *g, const char *why);

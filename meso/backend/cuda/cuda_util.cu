@@ -2,6 +2,8 @@
 #include "cuda_state.cuh"
 
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -217,6 +219,22 @@ static int realloc_keep(struct cuda_sim *g, int need) {
   cuda_free_ptr(g, (void **)&operm);
   if (rc) fprintf(stderr, "mdpore: CUDA backend: cannot grow from %d to %d slots\n", cap_was, need);
   return rc ? -1 : 0;
+}
+
+int cuda_select_slots(struct cuda_sim *g, const int *flag, int *out, int *count_dev, int n,
+                      const char *what) {
+  thrust::counting_iterator<int> slots(0);
+  size_t need = 0;
+  cub::DeviceSelect::Flagged(NULL, need, slots, flag, out, count_dev, n);
+  if (need > g->select_tmp_bytes) {
+    cuda_free_ptr(g, &g->select_tmp);
+    g->select_tmp_bytes = 0;
+    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
+    g->select_tmp_bytes = need;
+  }
+  size_t tmp = g->select_tmp_bytes;
+  return cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag, out, count_dev, n),
+                    what);
 }
 
 /* Neighbour-list room for stride entries per particle. When the device has no room for it, the
