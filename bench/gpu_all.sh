@@ -28,6 +28,13 @@ if has ncu && command -v ncu > /dev/null; then
       --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,sm__throughput.avg.pct_of_peak_sustained_elapsed,gpu__compute_memory_throughput.avg.pct_of_peak_sustained_elapsed,l1tex__throughput.avg.pct_of_peak_sustained_active,lts__throughput.avg.pct_of_peak_sustained_elapsed,sm__inst_executed_pipe_fma.avg.pct_of_peak_sustained_active,sm__inst_executed_pipe_alu.avg.pct_of_peak_sustained_active,sm__pipe_fma_cycles_active.avg.pct_of_peak_sustained_active,sm__sass_thread_inst_executed_op_ffma_pred_on.sum,sm__sass_thread_inst_executed_op_fadd_pred_on.sum,sm__sass_thread_inst_executed_op_fmul_pred_on.sum,sm__warps_active.avg.pct_of_peak_sustained_active,smsp__thread_inst_executed_per_inst_executed.ratio \
       --csv "$B/bin/gpu_bench" porous 33 30 20 cuda -1 > "$O/ncu.csv" 2> "$O/ncu.err"
   echo "ncu: $(wc -l < "$O/ncu.csv") lines in $O/ncu.csv"
+  # NCU_FAST=1: the same step with the fast pair generator (dpd_thermostat rng: fast)
+  if [ "${NCU_FAST:-0}" = 1 ]; then
+    MDPORE_BENCH_RNG=fast ncu --clock-control none --launch-skip 400 --launch-count 40 \
+      --metrics gpu__time_duration.sum,dram__bytes_read.sum,dram__bytes_write.sum,sm__throughput.avg.pct_of_peak_sustained_elapsed,sm__inst_executed_pipe_alu.avg.pct_of_peak_sustained_active,sm__pipe_fma_cycles_active.avg.pct_of_peak_sustained_active,smsp__thread_inst_executed_per_inst_executed.ratio \
+      --csv "$B/bin/gpu_bench" porous 33 30 20 cuda -1 > "$O/ncu_fast.csv" 2> "$O/ncu_fast.err"
+    echo "ncu (rng fast): $(wc -l < "$O/ncu_fast.csv") lines"
+  fi
 fi
 if has slab; then
   # The CI slab (tests/engine/scenes/ci_slab.yaml) on 1 GPU and on every GPU (auto backend).
