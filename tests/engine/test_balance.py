@@ -105,8 +105,11 @@ def max_abs_diff(a, b):
 
 
 results = {}
-for name, bal in [("uniform", None), ("cost", {"cuts": "cost"}),
-                  ("moving", {"cuts": "cost", "every": 5, "threshold": 1.0})]:
+# The frozen weight is named (0.4, the CPU's default), so that both backends test the same cuts; the
+# backend's own default is checked after.
+FW = {"frozen_weight": 0.4}
+for name, bal in [("uniform", dict(FW)), ("cost", {"cuts": "cost", **FW}),
+                  ("moving", {"cuts": "cost", "every": 5, "threshold": 1.0, **FW})]:
     p, wd = run(name, bal)
     if p.returncode:
         print(p.stdout[-2000:], p.stderr[-2000:])
@@ -141,6 +144,13 @@ else:
     check(lm["rebalances"] == 3, f"balance.every 5 with threshold 1: 3 rebalancings in 20 steps, none at the last (got {lm['rebalances']})")
     check(lu["imbalance_busy"] > 0, "CPU: the busy-time imbalance is measured")
 check("cuts placed by cost" in results["cost"][2], "the run says where the cuts went")
+
+# 2b. without balance.frozen_weight: the backend's default (CPU 0.4, GPU 1.0: bench/RESULTS.md)
+p, wd = run("cost_default", {"cuts": "cost"}, steps=2)
+want = 1.0 if GPU else 0.4
+got = json.load(open(os.path.join(wd, "summary.json")))["load_balance"]["frozen_weight"] if not p.returncode else None
+check(got == want, f"default frozen weight on the {BACKEND} backend: {got} (expected {want})")
+check(f"frozen particle weight {want:g})" in p.stdout, "the run names the weight it used")
 
 # 3. a cost-cut run of 10 steps, restarted from its checkpoint for 10 more: bitwise at step 20
 p1, wd1 = run("cost_first", {"cuts": "cost"}, steps=10)
