@@ -128,12 +128,12 @@ extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_h
   return 0;
 }
 
-/* The pinned buffer as [send | receive], each part 16-byte aligned; waits for the copies in flight
- * when it must grow. */
+/* The pinned buffer as [send | receive], each part 16-byte aligned; waits for every copy in flight
+ * (both streams) when it must grow. */
 static int pinned_parts(struct cuda_sim *g, size_t send_bytes, size_t recv_bytes, void **send,
                         void **recv) {
   const size_t s = (send_bytes + 15) & ~(size_t)15, total = s + recv_bytes + 16;
-  if (total > g->pinned_bytes && cuda_check(cudaStreamSynchronize(0), "halo buffer")) return -1;
+  if (total > g->pinned_bytes && cuda_check(cudaDeviceSynchronize(), "halo buffer")) return -1;
   char *buf = cuda_pinned(g, total);
   if (!buf) return -1;
   *send = buf;
@@ -142,13 +142,39 @@ static int pinned_parts(struct cuda_sim *g, size_t send_bytes, size_t recv_bytes
   return 0;
 }
 
-static int record_packed(struct cuda_sim *g) {
-  if (!g->packed_made) {
-    if (cuda_check(cudaEventCreateWithFlags(&g->packed, cudaEventDisableTiming), "halo event"))
-      return -1;
-    g->packed_made = 1;
-  }
-  return cuda_check(cudaEventRecord(g->packed, 0), "halo event");
+/* The copy stream and its events (made once). */
+static int copy_stream(struct cuda_sim *g) {
+  if (g->packed_made) return 0;
+  if (cuda_check(cudaStreamCreateWithFlags(&g->copies, cudaStreamNonBlocking), "halo stream") ||
+      cuda_check(cudaEventCreateWithFlags(&g->packed, cudaEventDisableTiming), "halo event") ||
+      cuda_check(cudaEventCreateWithFlags(&g->ready, cudaEventDisableTiming), "halo event") ||
+      cuda_check(cudaEventCreateWithFlags(&g->copied, cudaEventDisableTiming), "halo event"))
+    return -1;
+  g->packed_made = 1;
+  return 0;
+}
+
+/* Device -> pinned on the copy stream once the default stream has written the data; `packed` marks
+ * the end (cuda_halo_wait_packed). The default stream goes on meanwhile. */
+static int copy_down(struct cuda_sim *g, void *host, const void *dev, size_t bytes,
+                     const char *what) {
+  if (copy_stream(g) || cuda_check(cudaEventRecord(g->ready, 0), what) ||
+      cuda_check(cudaStreamWaitEvent(g->copies, g->ready, 0), what) ||
+      (bytes &&
+       cuda_check(cudaMemcpyAsync(host, dev, bytes, cudaMemcpyDeviceToHost, g->copies), what)))
+    return -1;
+  return cuda_check(cudaEventRecord(g->packed, g->copies), what);
+}
+
+/* Pinned -> device on the copy stream; the default stream waits for it before its next launch
+ * (the kernel that reads the data), not the host. */
+static int copy_up(struct cuda_sim *g, void *dev, const void *host, size_t bytes,
+                   const char *what) {
+  if (copy_stream(g) ||
+      cuda_check(cudaMemcpyAsync(dev, host, bytes, cudaMemcpyHostToDevice, g->copies), what) ||
+      cuda_check(cudaEventRecord(g->copied, g->copies), what))
+    return -1;
+  return cuda_check(cudaStreamWaitEvent(0, g->copied, 0), what);
 }
 
 extern "C" int cuda_halo_pack(cuda_sim_t *g, int axis, double shift_lo, double shift_hi,
@@ -161,15 +187,11 @@ extern "C" int cuda_halo_pack(cuda_sim_t *g, int axis, double shift_lo, double s
   if (pinned_parts(g, out_bytes, in_bytes, send, recv) ||
       dev_room(g, &g->ghost_send_dev, &g->ghost_send_cap, out_bytes + 1))
     return -1;
-  if (n_all > 0) {
+  if (n_all > 0)
     k_ghost_pack<<<blocks_for(n_all), CUDA_BLOCK>>>(g->halo_n[0], n_all, g->perm, g->a,
                                                     g->prm.use_vpred, axis, shift_lo, shift_hi,
                                                     (struct ghost_record *)g->ghost_send_dev);
-    if (cuda_check(cudaMemcpyAsync(*send, g->ghost_send_dev, out_bytes, cudaMemcpyDeviceToHost),
-                   "ghost records down"))
-      return -1;
-  }
-  return record_packed(g);
+  return copy_down(g, *send, g->ghost_send_dev, out_bytes, "ghost records down");
 }
 
 extern "C" int cuda_halo_wait_packed(cuda_sim_t *g) {
@@ -188,9 +210,7 @@ extern "C" int cuda_halo_unpack(cuda_sim_t *g) {
   const size_t bytes = (size_t)ng * sizeof(struct ghost_record);
   if (dev_room(g, &g->ghost_recv_dev, &g->ghost_recv_cap, bytes + 1)) return -1;
   if (ng > 0) {
-    if (cuda_check(cudaMemcpyAsync(g->ghost_recv_dev, g->pinned + g->pinned_send_bytes, bytes,
-                                   cudaMemcpyHostToDevice),
-                   "ghost records up"))
+    if (copy_up(g, g->ghost_recv_dev, g->pinned + g->pinned_send_bytes, bytes, "ghost records up"))
       return -1;
     k_ghost_unpack<<<blocks_for(ng), CUDA_BLOCK>>>(
         n0, ng, (const struct ghost_record *)g->ghost_recv_dev, g->b, g->prm.use_vpred);
@@ -202,24 +222,19 @@ extern "C" int cuda_halo_unpack(cuda_sim_t *g) {
 extern "C" int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv) {
   const int n_all = g->halo_n[0] + g->halo_n[1], ng = g->halo_n[2] + g->halo_n[3];
   const size_t w = sizeof(meso_real);
-  /* the ghost records' upload of this step was queued before anything that follows: the pinned
-   * buffer is free once the stream reaches this point, which pinned_parts waits for if it grows */
+  /* the ghost records' upload of this step was queued on the copy stream before this download: the
+   * receive part is free once `packed` is reached (pinned_parts waits for everything if it grows) */
   if (pinned_parts(g, (size_t)n_all * w, (size_t)ng * w, send, recv)) return -1;
-  if (g->prm.density && n_all > 0) {
-    k_rho_take<<<blocks_for(n_all), CUDA_BLOCK>>>(n_all, g->perm, g->rho, g->rho_stage);
-    if (cuda_check(cudaMemcpyAsync(*send, g->rho_stage, (size_t)n_all * w, cudaMemcpyDeviceToHost),
-                   "density halo down"))
-      return -1;
-  }
-  return record_packed(g);
+  const int take = g->prm.density && n_all > 0;
+  if (take) k_rho_take<<<blocks_for(n_all), CUDA_BLOCK>>>(n_all, g->perm, g->rho, g->rho_stage);
+  return copy_down(g, *send, g->rho_stage, take ? (size_t)n_all * w : 0, "density halo down");
 }
 
 extern "C" int cuda_halo_rho_unpack(cuda_sim_t *g) {
   const int ng = g->n_ghost;
   if (!g->prm.density || ng == 0) return 0;
-  if (cuda_check(cudaMemcpyAsync(g->rho_stage, g->pinned + g->pinned_send_bytes,
-                                 (size_t)ng * sizeof(meso_real), cudaMemcpyHostToDevice),
-                 "density halo up"))
+  if (copy_up(g, g->rho_stage, g->pinned + g->pinned_send_bytes, (size_t)ng * sizeof(meso_real),
+              "density halo up"))
     return -1;
   k_rho_put<<<blocks_for(ng), CUDA_BLOCK>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
   return cuda_check(cudaGetLastError(), "density halo");

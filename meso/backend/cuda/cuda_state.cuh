@@ -172,6 +172,11 @@ struct cuda_sim {
   size_t select_tmp_bytes;
   cudaEvent_t packed;
   int packed_made;
+  /* The halo copies run on their own stream, so that the interior passes on the default stream do
+   * not wait for them (and they not for the interior passes): ready (default -> copies: the data
+   * to copy is written), copied (copies -> default: the data arrived). */
+  cudaStream_t copies;
+  cudaEvent_t ready, copied;
   /* This step's passes were split in an interior and a boundary part (key holds the flags). */
   int split_passes;
   /* One rank with a skin: the sort phase left the choice (keep the lists or sort and rebuild) to

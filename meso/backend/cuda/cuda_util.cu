@@ -320,7 +320,12 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
-  if (g->packed_made) cudaEventDestroy(g->packed);
+  if (g->packed_made) {
+    cudaEventDestroy(g->packed);
+    cudaEventDestroy(g->ready);
+    cudaEventDestroy(g->copied);
+    cudaStreamDestroy(g->copies);
+  }
   free(g);
 }
 
