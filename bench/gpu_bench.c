@@ -18,6 +18,7 @@
  * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps.
  * MDPORE_BENCH_RNG=philox|philox2x32|fast: the generator of the pair random numbers
  * (dpd_thermostat's rng; default philox), printed as rng=... */
+#include "bench_scene.h"
 #include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
 #include "engine/sim.h"
@@ -44,29 +45,8 @@ static double uniform(void) {
 }
 
 static void scene_base(scene_t *s, double lx, double ly, double lz, int n_species) {
-  memset(s, 0, sizeof *s);
-  snprintf(s->file, sizeof s->file, "(gpu_bench)");
-  snprintf(s->name, sizeof s->name, "gpu_bench");
   const double L[3] = {lx, ly, lz};
-  for (int d = 0; d < 3; d++) {
-    s->box_hi[d] = L[d];
-    s->periodic[d] = 1;
-  }
-  s->n_species = n_species;
-  snprintf(s->species[0].name, SCENE_NAME_LEN, "fluid");
-  snprintf(s->species[1].name, SCENE_NAME_LEN, "wall");
-  s->species[0].mass = s->species[1].mass = 1.0;
-  s->species[1].frozen = 1;
-  for (int a = 0; a < SCENE_MAX_SPECIES; a++)
-    for (int b = 0; b < SCENE_MAX_SPECIES; b++)
-      s->pair[a][b] = (scene_pair_t){.A = -40, .B = 25, .gamma = 4.5, .rc = 1.0, .rd = 0.75};
-  s->kT = 1.0;
-  s->vv_lambda = 0.5;
-  s->dt = 0.01;
-  s->seed = 7;
-  effect_name_in_scene(s, EFFECT_MDPD_ATTRACTION);
-  effect_name_in_scene(s, EFFECT_MDPD_REPULSION);
-  effect_name_in_scene(s, EFFECT_DPD_THERMOSTAT);
+  bench_scene_mdpd(s, "gpu_bench", L, n_species);
   const char *rng = getenv("MDPORE_BENCH_RNG");
   for (int r = 0; rng && r < PAIR_RNG_COUNT; r++)
     if (!strcmp(rng, pair_rng_word(r)))

@@ -9,6 +9,7 @@
  *     best of `passes` calls of the backend's pair-force phase on the same configuration.
  * usage: pair_rng_bench [L (12)] [passes (20)]   (OMP_NUM_THREADS sets the force pass's threads) */
 #include "backend/backend.h"
+#include "bench_scene.h"
 #include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
 #include "engine/sim.h"
@@ -61,23 +62,8 @@ static double uniform(void) {
 static double force_pass_ms(int rng, double L, int passes, long *n_out) {
   scene_t *s = calloc(1, sizeof *s);
   if (!s) return -1;
-  snprintf(s->file, sizeof s->file, "(pair_rng_bench)");
-  snprintf(s->name, sizeof s->name, "pair_rng_bench");
-  s->neighbour_skin = -1.0;
-  for (int d = 0; d < 3; d++) s->box_hi[d] = L, s->periodic[d] = 1;
-  s->n_species = 1;
-  snprintf(s->species[0].name, SCENE_NAME_LEN, "liquid");
-  s->species[0].mass = 1.0;
-  for (int a = 0; a < SCENE_MAX_SPECIES; a++)
-    for (int b = 0; b < SCENE_MAX_SPECIES; b++)
-      s->pair[a][b] = (scene_pair_t){.A = -40, .B = 25, .gamma = 4.5, .rc = 1.0, .rd = 0.75};
-  s->kT = 1.0;
-  s->vv_lambda = 0.5;
-  s->dt = 0.01;
-  s->seed = 7;
-  effect_name_in_scene(s, EFFECT_MDPD_ATTRACTION);
-  effect_name_in_scene(s, EFFECT_MDPD_REPULSION);
-  effect_name_in_scene(s, EFFECT_DPD_THERMOSTAT);
+  const double box[3] = {L, L, L};
+  bench_scene_mdpd(s, "pair_rng_bench", box, 1);
   SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = rng;
   sim_t *sim = sim_create(s, MPI_COMM_SELF);
   const long n = lround(6.2 * L * L * L);
