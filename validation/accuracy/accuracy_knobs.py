@@ -47,14 +47,15 @@ SOLID_FRACTION = 0.125
 ZICK_HOMSY_KAPPA = 0.03985  # k / a^2, Stokes flow through the SC array at c = 0.125 (validation/foam)
 FLUID_DENSITY = 6.2  # geometry.fluid_density default (docs/scene-format.md)
 KNOBS = ("dt", "precision", "resolution", "window", "skin", "wall_density", "boundary", "forcing",
-         "cells")
+         "cells", "rng")
 
 # Base: the production defaults (campaign template: dt 0.01, bounce_back, wall density 8, no skin).
 # Times are in reduced units tau: equil = time given to the flow to develop before the averaging
 # window (MSER-5 cuts the transient anyway; the window is what is left after it).
 FULL = {
     "base": {"L": 16, "h": 0.4, "cells": 4, "dt": 0.01, "t_equil": 10.0, "t_window": 160.0, "g": 0.02,
-             "boundary": "bounce_back", "wall_density": 8.0, "skin": 0.0, "precision": "default"},
+             "boundary": "bounce_back", "wall_density": 8.0, "skin": 0.0, "precision": "default",
+             "rng": "philox"},
     "reference": {"dt": 0.005, "t_window": 2400.0},
     "ladders": {
         "dt": [0.002, 0.003, 0.005, 0.0075, 0.01, 0.015, 0.02, 0.03],
@@ -66,11 +67,15 @@ FULL = {
                      ("wall_boundary+bounce_back", 0.0025), ("wall_boundary+bounce_back", 0.01)],
         "forcing": [0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16],
         "cells": [1, 2, 3, 4],
+        # the pair random numbers' generator (dpd_thermostat rng): a different stream, the same
+        # statistics; its cost is the point
+        "rng": ["philox", "philox2x32", "fast"],
     },
 }
 QUICK = {
     "base": {"L": 8, "h": 0.5, "cells": 2, "dt": 0.01, "t_equil": 2.0, "t_window": 8.0, "g": 0.05,
-             "boundary": "bounce_back", "wall_density": 8.0, "skin": 0.0, "precision": "default"},
+             "boundary": "bounce_back", "wall_density": 8.0, "skin": 0.0, "precision": "default",
+             "rng": "philox"},
     "reference": {"dt": 0.005, "t_window": 16.0},
     "ladders": {
         "dt": [0.005, 0.01, 0.03],
@@ -81,6 +86,7 @@ QUICK = {
         "boundary": [("bounce_back", 0.01), ("wall_boundary+bounce_back", 0.005)],
         "forcing": [0.025, 0.05],
         "cells": [1, 2],
+        "rng": ["philox", "fast"],
     },
 }
 
@@ -124,6 +130,9 @@ def ladder_params(cfg, knob, precisions):
     elif knob == "cells":
         for n in lad["cells"]:
             add(f"cells={n}^3", cells=n)
+    elif knob == "rng":  # every point its own run, philox too: the times compare within one call
+        for r in lad["rng"]:
+            add(f"rng={r}", rng=r, rng_ladder=True)
     return out
 
 
@@ -131,6 +140,7 @@ def run_key(p, ranks):
     """The record key: every parameter that changes what is run (and the ranks: they change the time)."""
     return (f"L{p['L']}_h{p['h']:.6g}_n{p['cells']}_dt{p['dt']:g}_te{p['t_equil']:g}_tw{p['t_window']:g}"
             f"_g{p['g']:g}_{p['boundary']}_wd{p['wall_density']:g}_skin{p['skin']:g}_{p['precision']}"
+            f"{'_rng' + p['rng'] if p.get('rng_ladder') or p.get('rng', 'philox') != 'philox' else ''}"
             f"_np{ranks}")
 
 
@@ -217,6 +227,8 @@ class Runner:
         sc["geometry"]["fluid_density"] = FLUID_DENSITY
         sc["run"]["dt"] = float(p["dt"])
         sc["output"]["flux"] = {"axis": "x", "every": flux_every(p), "file": "flux.csv"}
+        if p.get("rng", "philox") != "philox":
+            sc["effects"]["dpd_thermostat"] = dict(sc["effects"].get("dpd_thermostat") or {}, rng=p["rng"])
         return sc
 
     def measure(self, p, what):
