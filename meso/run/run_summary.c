@@ -1,7 +1,10 @@
 /* Final summary of a run: human-readable lines on stdout and summary.json (atomic), with
  * block-averaged standard errors (Flyvbjerg-Petersen, analysis/block_average.c). */
 #include "common/atomic_file.h"
+#include "effects/dpd_thermostat.h"
+#include "effects/effect.h"
 #include "physics/density_kernels.h"
+#include "physics/pair_random.h"
 #include "run/run_flux.h"
 #include "run/run_stats.h"
 
@@ -327,6 +330,13 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
           "{\n  \"scene\": \"%s\",\n  \"scene_file\": \"%s\",\n  \"kernel\": \"%s\",\n  \"ranks\": "
           "%d,\n",
           s->name, s->file, s->density_kernel == MESO_KERNEL_LUCY ? "lucy" : "warren", st->nranks);
+  /* where it ran and which random stream it drew (runs are comparable number for number only
+   * with the same generator) */
+  fprintf(fp, "  \"backend\": \"%s\",\n", s->backend == SCENE_BACKEND_CUDA ? "cuda" : "cpu");
+  if (s->effect[EFFECT_DPD_THERMOSTAT])
+    fprintf(fp, "  \"pair_rng\": \"%s\",\n",
+            pair_rng_word(
+                SCENE_EFFECT_OPTIONS(s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng));
   fprintf(fp, "  \"box\": [%.10g, %.10g, %.10g],\n", s->box_hi[0] - s->box_lo[0],
           s->box_hi[1] - s->box_lo[1], s->box_hi[2] - s->box_lo[2]);
   fprintf(

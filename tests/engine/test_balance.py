@@ -133,6 +133,9 @@ lm = results["moving"][1]["load_balance"]
 print(f"weight imbalance: uniform {lu['imbalance_weight']:.3f}, cost {lc['imbalance_weight']:.3f}; "
       f"busy: uniform {lu['imbalance_busy']}, cost {lc['imbalance_busy']}; moving: {lm['rebalances']} rebalancings")
 check(lu["cuts"] == "uniform" and lc["cuts"] == "cost", "summary names the cuts")
+su = results["uniform"][1]
+check(su.get("backend") == BACKEND and su.get("pair_rng") == "philox",
+      f"summary names the backend and the pair generator ({su.get('backend')}, {su.get('pair_rng')})")
 check(lu["imbalance_weight"] > 1.1, f"uniform cuts are imbalanced on this image ({lu['imbalance_weight']:.3f} > 1.1)")
 check(lc["imbalance_weight"] <= 1.05, f"cost cuts: weight imbalance {lc['imbalance_weight']:.3f} <= 1.05")
 check(abs(lc["imbalance_weight_uniform_cuts"] - lu["imbalance_weight"]) < 0.05,
