@@ -53,6 +53,8 @@ typedef struct {
   int viscosity_given;
   double wall_density; /* image input: geometry.wall_density of the template */
   int wall_density_given;
+  char rng[16]; /* image input: dpd_thermostat rng of the template (philox, philox2x32, fast) */
+  int rng_given;
   double temperature_K;  /* units: kT of the reduced units */
   int temperature_given; /* --temperature was given (it wins over a scene's units block) */
   long long seed;
@@ -94,6 +96,7 @@ typedef struct {
   double viscosity;      /* mu, reduced */
   char viscosity_source[256];
   double wall_density;  /* wall particles per rc^3 of the template (NAN: a scene's own) */
+  char pair_rng[16];    /* the template's pair random numbers' generator ("": a scene's own) */
   double length_unit_m; /* metres per rc */
   char length_source[256];
   double temperature_K;

@@ -42,6 +42,9 @@ const char *camp_usage =
     "                      gamma=4.5 rd=0.75, validation/engine/viscosity.py)\n"
     "  --wall-density W    image: wall patch density, particles per rc^3 "
     "(default " CAMP_WALL_DENSITY_TEXT ": no slip on slits, docs/walls.md section 16)\n"
+    "  --rng R             image: generator of the pair random numbers, philox (default),\n"
+    "                      philox2x32 or fast (dpd_thermostat rng; the same statistics, a cheaper\n"
+    "                      step: docs/accuracy.md)\n"
     "  --temperature K     temperature of kT for the SI units (default 298.15)\n"
     "  --seed S            base seed (default 12345; each gradient gets its own)\n"
     "  --flux-every N      flux sample interval in steps (default 10)\n"
@@ -119,6 +122,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->rc_per_voxel = 0.5;
   o->viscosity = 5.41;
   o->wall_density = CAMP_DEFAULT_WALL_DENSITY;
+  snprintf(o->rng, sizeof o->rng, "philox");
   o->temperature_K = 298.15;
   o->seed = 12345;
   o->flux_every = 10;
@@ -190,6 +194,14 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
                        &o->wall_density))
         return -1;
       o->wall_density_given = 1;
+    } else if (!strcmp(s, "--rng")) {
+      if (strcmp(v, "philox") && strcmp(v, "philox2x32") && strcmp(v, "fast")) {
+        fprintf(stderr,
+                "mdpore permeability: --rng: expected philox, philox2x32 or fast (got '%s')\n", v);
+        return -1;
+      }
+      snprintf(o->rng, sizeof o->rng, "%s", v);
+      o->rng_given = 1;
     } else if (!strcmp(s, "--viscosity")) {
       if (parse_double(s, v, 0, HUGE_VAL, "a viscosity > 0 (reduced units)", &o->viscosity))
         return -1;
@@ -258,6 +270,13 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     fprintf(stderr,
             "mdpore permeability: --wall-density: applies to an IMAGE input only (got the scene "
             "%s: set geometry.wall_density in it)\n",
+            input);
+    return -1;
+  }
+  if (o->input_is_scene && o->rng_given) {
+    fprintf(stderr,
+            "mdpore permeability: --rng: applies to an IMAGE input only (got the scene %s: set "
+            "effects.dpd_thermostat.rng in it)\n",
             input);
     return -1;
   }

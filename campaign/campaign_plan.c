@@ -110,6 +110,7 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   fprintf(f, "fluid_density: %.17g\nviscosity: %.17g\nviscosity_source: %s\n", c->fluid_density,
           c->viscosity, c->viscosity_source);
   if (isfinite(c->wall_density)) fprintf(f, "wall_density: %.17g\n", c->wall_density);
+  if (c->pair_rng[0]) fprintf(f, "pair_rng: %s\n", c->pair_rng);
   fprintf(f, "length_unit_m: %.17g\nlength_source: %s\n", c->length_unit_m, c->length_source);
   fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
           c->target_error, c->np);
@@ -170,6 +171,8 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       snprintf(c->viscosity_source, sizeof c->viscosity_source, "%s", v);
     else if (!strcmp(k, "length_source"))
       snprintf(c->length_source, sizeof c->length_source, "%s", v);
+    else if (!strcmp(k, "pair_rng"))
+      snprintf(c->pair_rng, sizeof c->pair_rng, "%s", v);
     else if (!strcmp(k, "drive")) {
       c->drive = !strcmp(v, "pressure") ? CAMP_DRIVE_PRESSURE : CAMP_DRIVE_BODY;
       if (strcmp(v, "pressure") && strcmp(v, "body")) {

@@ -112,8 +112,14 @@ static int write_image_template(const camp_opts *o, const mdp_image_t *img, cons
   if (n_org) fprintf(f, "  - {name: kerogen, mass: 1.0, frozen: true}\n");
   fprintf(f, "pairs: {default: {A: -40.0, B: 25.0, gamma: 4.5, rc: 1.0, rd: 0.75}}\n");
   fprintf(f, "density_kernel: warren\nkT: 1.0\n");
-  fprintf(f, "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}, "
-             "body_force: {liquid: [0.0, 0.0, 0.0]}, bounce_back: {}}\n");
+  /* philox (the default) leaves the thermostat's options empty: the template, and so the run
+   * hashes of earlier campaigns, stay as they were */
+  char thermostat[48] = "{}";
+  if (strcmp(o->rng, "philox")) snprintf(thermostat, sizeof thermostat, "{rng: %s}", o->rng);
+  fprintf(f,
+          "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: %s, "
+          "body_force: {liquid: [0.0, 0.0, 0.0]}, bounce_back: {}}\n",
+          thermostat);
   fprintf(f, "geometry:\n  image: \"%s\"\n  rc_per_voxel: %.17g\n  flow_axis: x\n", o->input, a);
   fprintf(f, "  fluid_density: %g\n  wall_density: %.17g\n  species: {fluid: liquid",
           DEFAULT_FLUID_DENSITY, o->wall_density);
@@ -346,6 +352,7 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
                               : "mDPD A=-40 B=25 gamma=4.5 rd=0.75 at n=6.07 "
                                 "(validation/engine/viscosity.py, reverse Poiseuille)");
   c->wall_density = o->input_is_scene ? NAN : o->wall_density;
+  snprintf(c->pair_rng, sizeof c->pair_rng, "%s", o->input_is_scene ? "" : o->rng);
   c->temperature_K = o->temperature_K;
   c->energy_J = c->particle_mass_kg = NAN;
   c->target_error = o->target_error;

@@ -129,6 +129,19 @@ def main():
     expect_error(["permeability", "with_wd.yaml", "--axis", "x", "--wall-density", "6"], "geometry.wall_density",
                  "--wall-density with a SCENE input")
 
+    # --rng: the template's thermostat generator, in the manifest; the default leaves the template as it was
+    p = mdpore("permeability", "slit.h5", "--axis", "x", "--rng", "fast", "--emit-scenes", "emitted_rng")
+    tmpl = open(os.path.join(OUT, "emitted_rng", "template.yaml")).read() if p.returncode == 0 else ""
+    man = open(os.path.join(OUT, "emitted_rng", "campaign.txt")).read() if p.returncode == 0 else ""
+    man0 = open(os.path.join(OUT, "emitted", "campaign.txt")).read()
+    check(p.returncode == 0 and "dpd_thermostat: {rng: fast}" in tmpl and "pair_rng: fast" in man,
+          "--rng fast reaches the template's thermostat and the manifest")
+    check("dpd_thermostat: {}" in tmpl0 and "pair_rng: philox" in man0,
+          "default: philox, the thermostat's options empty (earlier runs' hashes unchanged)")
+    expect_error(["permeability", "slit.h5", "--axis", "x", "--rng", "xorshift"], "--rng", "unknown generator")
+    expect_error(["permeability", "with_wd.yaml", "--axis", "x", "--rng", "fast"], "dpd_thermostat.rng",
+                 "--rng with a SCENE input")
+
     # 3. a campaign killed during its second run
     wd = os.path.join(OUT, "camp")
     first = ["permeability", "slit.h5", "--axis", "x", "--gradients", "0.1,0.22,0.14", "--workdir", wd, *common]
@@ -194,6 +207,7 @@ def main():
     res = json.load(open(os.path.join(wd, "permeability.json"))) if os.path.exists(os.path.join(wd, "permeability.json")) else {}
     k = res.get("axes", {}).get("x", {}).get("k_rc2") or float("nan")
     k_err = res.get("axes", {}).get("x", {}).get("k_rc2_err") or float("nan")
+    check(res.get("pair_rng") == "philox", f"permeability.json names the pair generator ({res.get('pair_rng')})")
     h, H = 4.0, 8.0
     k_noslip = h ** 3 / (12 * H)
     print(f"k = {k:.4f} +- {k_err:.4f} rc^2; k_noslip = h^3/(12 H) = {k_noslip:.4f}; k / k_noslip = "
