@@ -8,8 +8,18 @@
 #include "effects/effect.h"
 #include "scene/scene.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
+
+/* U[0, 1) from a SplitMix64 stream (Steele, Lea & Flood 2014) advanced in *state: the benchmarks'
+ * random start configurations (not the physics' random numbers). */
+static inline double bench_uniform(uint64_t *state) {
+  uint64_t z = (*state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return (double)((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+}
 
 static inline void bench_scene_mdpd(scene_t *s, const char *name, const double L[3],
                                     int n_species) {

@@ -38,10 +38,7 @@
 
 static uint64_t rng_state = 2024;
 static double uniform(void) {
-  uint64_t z = (rng_state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return ((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  return bench_uniform(&rng_state);
 }
 
 static void scene_base(scene_t *s, double lx, double ly, double lz, int n_species) {

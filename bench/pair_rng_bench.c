@@ -52,10 +52,7 @@ static __attribute__((noinline)) double draws_fast(uint64_t seed, uint64_t step,
 
 static uint64_t state = 99;
 static double uniform(void) {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return ((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  return bench_uniform(&state);
 }
 
 /* Best ms of `passes` pair-force passes with generator rng; -1 on failure. */

@@ -171,9 +171,17 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       snprintf(c->viscosity_source, sizeof c->viscosity_source, "%s", v);
     else if (!strcmp(k, "length_source"))
       snprintf(c->length_source, sizeof c->length_source, "%s", v);
-    else if (!strcmp(k, "pair_rng"))
-      snprintf(c->pair_rng, sizeof c->pair_rng, "%s", v);
-    else if (!strcmp(k, "drive")) {
+    else if (!strcmp(k, "pair_rng")) {
+      if (strcmp(v, "philox") && strcmp(v, "philox2x32") && strcmp(v, "fast")) {
+        fprintf(stderr,
+                "mdpore permeability: %s:%d: key 'pair_rng': expected philox, philox2x32 or fast "
+                "(got '%.40s')\n",
+                path, ln, v);
+        rc = -1;
+      } else {
+        snprintf(c->pair_rng, sizeof c->pair_rng, "%s", v);
+      }
+    } else if (!strcmp(k, "drive")) {
       c->drive = !strcmp(v, "pressure") ? CAMP_DRIVE_PRESSURE : CAMP_DRIVE_BODY;
       if (strcmp(v, "pressure") && strcmp(v, "body")) {
         fprintf(stderr, "mdpore permeability: %s:%d: key 'drive': expected body or pressure\n",

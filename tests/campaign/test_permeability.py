@@ -139,6 +139,11 @@ def main():
     check("dpd_thermostat: {}" in tmpl0 and "pair_rng: philox" in man0,
           "default: philox, the thermostat's options empty (earlier runs' hashes unchanged)")
     expect_error(["permeability", "slit.h5", "--axis", "x", "--rng", "xorshift"], "--rng", "unknown generator")
+    bad_man = os.path.join(OUT, "emitted_rng_bad")
+    shutil.copytree(os.path.join(OUT, "emitted_rng"), bad_man)
+    with open(os.path.join(bad_man, "campaign.txt"), "w") as f:
+        f.write(man.replace("pair_rng: fast", "pair_rng: bogus"))
+    expect_error(["permeability", "--collect", bad_man], "key 'pair_rng'", "a manifest naming an unknown generator")
     expect_error(["permeability", "with_wd.yaml", "--axis", "x", "--rng", "fast"], "dpd_thermostat.rng",
                  "--rng with a SCENE input")
 
