@@ -4,7 +4,8 @@
 # .carry/debs (here: `mkdir -p .carry/debs && cd .carry/debs && apt-get download libyaml-0-2
 # libyaml-dev librandom123-dev`) and unpacked under /opt/deps, not into /.
 # usage: . bench/device_build.sh [BUILD_DIR]   (sourced: exports the paths the binaries need)
-#        sets DEVICE_BUILD_OK=1 when bin/mdpore and bin/gpu_bench exist.
+#        sets DEVICE_BUILD_OK=1 when bin/mdpore and bin/gpu_bench exist. DEVICE_TARGETS="a b ...":
+#        build only those targets (include mdpore and gpu_bench).
 DB_DIR=${1:-/tmp/build}
 DB_SRC=$(pwd)
 mkdir -p /opt/deps
@@ -17,7 +18,7 @@ sed -i 's|^prefix=.*|prefix=/opt/deps/usr|' /opt/deps/usr/lib/x86_64-linux-gnu/p
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 cmake -S "$DB_SRC" -B "$DB_DIR" -DCMAKE_BUILD_TYPE=Release -DMDPORE_CUDA=ON -DMDPORE_PETSC=OFF \
   -DMDPORE_TIFF=OFF -DMDPORE_OPENFOAM_TESTS=OFF ${DEVICE_CMAKE_FLAGS:-} > "$DB_DIR.configure.log" 2>&1 &&
-  cmake --build "$DB_DIR" -j 16 > "$DB_DIR.build.log" 2>&1
+  cmake --build "$DB_DIR" -j 16 ${DEVICE_TARGETS:+--target $DEVICE_TARGETS} > "$DB_DIR.build.log" 2>&1
 DEVICE_BUILD_OK=0
 if [ -x "$DB_DIR/bin/mdpore" ] && [ -x "$DB_DIR/bin/gpu_bench" ]; then
   DEVICE_BUILD_OK=1

@@ -115,6 +115,12 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int grow, int rank
     if (sim_step(sim)) return 1;
   MPI_Barrier(MPI_COMM_WORLD);
   sim_phase_seconds_reset(sim);
+#ifdef MDPORE_HAVE_CUDA
+  cuda_sim_t *gpu_dev = cuda_backend_device(sim_state(sim), sim_backend_name(sim));
+  double idle_ms[CUDA_IDLE_SECTIONS];
+  long idle_n[CUDA_IDLE_SECTIONS];
+  if (gpu_dev) cuda_idle_read(gpu_dev, idle_ms, idle_n, 1); /* the warm-up's: dropped */
+#endif
   const double t0 = MPI_Wtime();
   for (int i = 0; i < steps; i++)
     if (sim_step(sim)) return 1;
@@ -129,6 +135,22 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int grow, int rank
       if (ph[k] > 0) printf(" %s %.3f", step_phase_names[k], 1e3 * ph[k] / steps);
     printf("\n");
   }
+#ifdef MDPORE_HAVE_CUDA
+  /* MDPORE_CUDA_IDLE=1: device time between the probes' marks (cuda_backend.h), ms per step, max
+   * over the ranks: the host's exchanges and waits as the GPU sees them */
+  if (gpu_dev && getenv("MDPORE_CUDA_IDLE")) {
+    cuda_idle_read(gpu_dev, idle_ms, idle_n, 1);
+    double per[CUDA_IDLE_SECTIONS], per_max[CUDA_IDLE_SECTIONS];
+    for (int k = 0; k < CUDA_IDLE_SECTIONS; k++)
+      per[k] = idle_n[k] > 0 ? idle_ms[k] / (double)idle_n[k] : 0.0;
+    MPI_Reduce(per, per_max, CUDA_IDLE_SECTIONS, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+    if (rank == 0)
+      printf(
+          "gpu_idle (ms per step, max over %d rank(s)): migrate %.3f select %.3f step_end %.3f\n",
+          nranks, per_max[CUDA_IDLE_MIGRATE], per_max[CUDA_IDLE_SELECT],
+          per_max[CUDA_IDLE_STEP_END]);
+  }
+#endif
   long builds = 0, nsteps = 0;
   double skin = 0;
   const char *device = "cpu", *memory = "-";

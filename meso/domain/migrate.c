@@ -128,3 +128,75 @@ void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t 
     }
   }
 }
+
+/* The leavers' records: along the uncut axes wrapped in place (wrap_axis_in_place's test), then
+ * sorted into the stay, down and up lists of sbuf / out as migrate_particles' cut-axis stage. */
+static void sort_records(const decomp_t *dc, int d, const migrant_t *leavers, int m,
+                         migrant_t *down, migrant_t *up, migrant_t *stay, int n_out[2], int *n_stay,
+                         migrate_report_t *rep) {
+  for (int i = 0; i < m; i++) {
+    migrant_t r = leavers[i];
+    int through = 0; /* left through a non-periodic face (or too far): lost */
+    for (int e = 0; e < 3; e++) {
+      if (e == d || (r.x[e] >= dc->box_lo[e] && r.x[e] < dc->box_hi[e])) continue;
+      if (!dc->periodic[e] || !isfinite(r.x[e]) || fabs(r.x[e] - dc->box_lo[e]) > 2.0 * dc->L[e])
+        through = 1;
+      else
+        r.x[e] =
+            clamp_into_box(dc, e, r.x[e] < dc->box_lo[e] ? r.x[e] + dc->L[e] : r.x[e] - dc->L[e]);
+    }
+    const double xi = r.x[d];
+    if (through || !isfinite(xi)) { /* kept, as migrate_particles keeps it (the check stops) */
+      note_lost(rep, r.id, r.x);
+      stay[(*n_stay)++] = r;
+      continue;
+    }
+    const int dir = xi < dc->lo[d] ? 0 : (xi >= dc->hi[d] ? 1 : -1);
+    if (dir < 0) {
+      stay[(*n_stay)++] = r;
+      continue;
+    }
+    if (dc->nbr[d][dir] == MPI_PROC_NULL) { /* through a non-periodic face: dropped */
+      note_lost(rep, r.id, r.x);
+      continue;
+    }
+    if (dir == 0 && dc->coords[d] == 0) r.x[d] = clamp_into_box(dc, d, r.x[d] + dc->L[d]);
+    if (dir == 1 && dc->coords[d] == dc->dims[d] - 1)
+      r.x[d] = clamp_into_box(dc, d, r.x[d] - dc->L[d]);
+    (dir ? up : down)[n_out[dir]++] = r;
+  }
+}
+
+int migrate_records(const decomp_t *dc, int d, const migrant_t *leavers, int m, xbuf_t *sbuf,
+                    xbuf_t *rbuf, xbuf_t *out, migrate_report_t *rep) {
+  const size_t rec = sizeof(migrant_t);
+  int n_out[2] = {0, 0}, n = 0;
+  if (m < 0 || xbuf_reserve(sbuf, 2 * (size_t)m * rec + 1) ||
+      xbuf_reserve(out, (size_t)m * rec + 1)) {
+    rep->out_of_memory = 1;
+    m = 0; /* still enter the exchanges below (collective) */
+  }
+  migrant_t *down = (migrant_t *)sbuf->data, *up = down + m;
+  sort_records(dc, d, leavers, m, down, up, (migrant_t *)out->data, n_out, &n, rep);
+  for (int k = 0; k < 2; k++) {
+    if (exchange_bytes(dc->cart, dc->rank, dc->nbr[d][k], dc->nbr[d][1 - k],
+                       n_out[k] ? (k ? (const void *)up : (const void *)down) : NULL,
+                       (size_t)n_out[k] * rec, rbuf, 300 + 4 * d + 2 * k)) {
+      rep->out_of_memory = 1;
+      continue;
+    }
+    const int a = (int)(rbuf->size / rec);
+    if (xbuf_reserve(out, (size_t)(n + a) * rec + 1)) {
+      rep->out_of_memory = 1;
+      continue;
+    }
+    const migrant_t *in = (const migrant_t *)rbuf->data;
+    migrant_t *dst = (migrant_t *)out->data;
+    for (int s = 0; s < a; s++) {
+      /* A particle that moved farther than one subdomain cannot be placed correctly. */
+      if (!(in[s].x[d] >= dc->lo[d] && in[s].x[d] < dc->hi[d])) note_lost(rep, in[s].id, in[s].x);
+      dst[n++] = in[s];
+    }
+  }
+  return n;
+}

@@ -34,4 +34,13 @@ typedef struct {
 void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t *rbuf,
                        migrate_report_t *rep);
 
+/* One axis (d) cut between ranks, the other axes wrapped where the particles live (the CUDA
+ * backend's device): the m leavers, already packed as records (in slot order), go to the neighbour
+ * below or above along d, wrapped across periodic faces as migrate_particles does. *out receives,
+ * in migrate_particles' order, the records that stay here (out only along an uncut axis and
+ * wrapped back, or not finite: noted as lost and kept, as there) and then the arrivals (from above,
+ * then from below). Returns their count. Collective; problems in *rep as migrate_particles. */
+int migrate_records(const decomp_t *dc, int d, const migrant_t *leavers, int m, xbuf_t *sbuf,
+                    xbuf_t *rbuf, xbuf_t *out, migrate_report_t *rep);
+
 #endif

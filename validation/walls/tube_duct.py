@@ -247,7 +247,8 @@ def main():
     sides = args.sides if args.sides is not None else ([4.0] if q else [4.0, 6.0, 8.0])
     steps = args.steps or (8000 if q else 40000)
     tag = "tube_duct" + ("_quick" if q else "") + ("" if args.boundary == "bounce_back" else "_" + args.boundary) + \
-        ("" if args.wall_density == 8.0 else f"_wd{args.wall_density:g}")
+        ("" if args.wall_density == 8.0 else f"_wd{args.wall_density:g}") + \
+        ("" if args.length == 4.0 else f"_L{args.length:g}") + ("" if args.patch_seed == 1 else f"_ps{args.patch_seed}")
     outdir = args.outdir or mdval.out_dir("walls")
     os.makedirs(outdir, exist_ok=True)
     base = os.environ.get("MDPORE_VALIDATION_OUT") or tempfile.gettempdir()

@@ -80,7 +80,7 @@ int cuda_halo_kick_drift(cuda_sim_t *g);
 int cuda_halo_find_leavers(cuda_sim_t *g, int *m);
 int cuda_halo_take_leavers(cuda_sim_t *g, int m, particles_t *out);
 int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in);
-int cuda_halo_resort(cuda_sim_t *g);
+int cuda_halo_resort(cuda_sim_t *g, int keep_forces);
 int cuda_halo_predict(cuda_sim_t *g, int setup);
 int cuda_halo_boundary(cuda_sim_t *g, particles_t *hb);
 int cuda_halo_set_ghosts(cuda_sim_t *g, const particles_t *hb);
@@ -115,6 +115,20 @@ int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv);
 int cuda_halo_rho_unpack(cuda_sim_t *g);
 /* This step's counts: sent down, sent up, received from above, received from below. */
 void cuda_halo_counts(const cuda_sim_t *g, int n[4]);
+/* Migration as records (one axis cut): the m leavers found by cuda_halo_find_leavers packed as
+ * migrant_t records (slot order) and downloaded in one copy; *out points at them (pinned, valid
+ * until the next call). Then the m records in (stayers and arrivals, host order) appended after
+ * the owned slots in one upload, as cuda_halo_add_owned does with host arrays. 0 or -1. */
+int cuda_halo_take_migrants(cuda_sim_t *g, int m, const void **out);
+int cuda_halo_add_migrants(cuda_sim_t *g, const void *in, int m);
+
+/* GPU idle probes (MDPORE_CUDA_IDLE=1, else no-ops): open (end 0) and close (end 1) section s on
+ * the default stream; the device time between the two marks, summed over the steps, is read (ms)
+ * and reset by cuda_idle_read. Sections: */
+enum { CUDA_IDLE_MIGRATE, CUDA_IDLE_SELECT, CUDA_IDLE_STEP_END, CUDA_IDLE_SECTIONS };
+void cuda_idle_mark(cuda_sim_t *g, int s, int end);
+void cuda_idle_read(cuda_sim_t *g, double ms[CUDA_IDLE_SECTIONS], long n[CUDA_IDLE_SECTIONS],
+                    int reset);
 
 /* Announce whether the next steps end in a thermo sample: only then does the force pass sum the
  * pair virial (a sample after a step without it reruns the pair pass for the virial alone). */

@@ -69,7 +69,27 @@ static struct dev_fields shifted(struct dev_fields f, int off) {
   return f;
 }
 
-/* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start. */
+/* The same starts by a binary search per bin: for a sparse set (the ghosts: a few bins of every
+ * row), where one thread per particle would fill the long runs of empty bins between two
+ * particles (and the last thread every bin after the last particle) alone. */
+__global__ void k_cell_start_search(int n, int ncell, const uint32_t *__restrict__ key,
+                                    int *start) {
+  const int c = blockIdx.x * blockDim.x + threadIdx.x;
+  if (c > ncell) return;
+  int lo = 0, hi = n; /* first k with key[k] >= c */
+  while (lo < hi) {
+    const int mid = (lo + hi) >> 1;
+    if ((int)key[mid] < c)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  start[c] = lo;
+}
+
+/* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start.
+ * The owned particles of several ranks (sentinel) skip the predicted velocities: the prediction
+ * follows the sort there and rewrites them. */
 static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct dev_fields src,
                       struct dev_fields dst, int *start, int with_f) {
   const struct dev_params *q = &g->prm;
@@ -86,8 +106,13 @@ static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct d
                                                  n, 0, end_bit),
                  "cell sort"))
     return -1;
-  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off), q->use_vpred, with_f);
-  k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted + off, start);
+  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off),
+                                   q->use_vpred && !sentinel, with_f);
+  if ((long long)n * 4 < (long long)q->ncell)
+    k_cell_start_search<<<(q->ncell + CUDA_BLOCK) / CUDA_BLOCK, CUDA_BLOCK>>>(
+        n, q->ncell, g->key_sorted + off, start);
+  else
+    k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted + off, start);
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
 

@@ -190,5 +190,16 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
     cuda_sim_destroy(g);
     return NULL;
   }
+  /* MDPORE_CUDA_IDLE=1: the GPU idle probes (cuda_idle_mark; measuring only, off by default) */
+  const char *idle = getenv("MDPORE_CUDA_IDLE");
+  if (idle && !strcmp(idle, "1")) {
+    int made = 0;
+    while (made < 2 * CUDA_IDLE_SECTIONS && cudaEventCreate(&g->idle_ev[made]) == cudaSuccess)
+      made++;
+    if (made == 2 * CUDA_IDLE_SECTIONS)
+      g->idle_on = 1;
+    else
+      while (made > 0) cudaEventDestroy(g->idle_ev[--made]);
+  }
   return g;
 }

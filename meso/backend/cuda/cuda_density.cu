@@ -110,13 +110,16 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
               uint32_t *__restrict__ nbr, int *__restrict__ count, int *most,
               const uint32_t *__restrict__ part, uint32_t part_flag, struct dev_vel *vel,
-              const struct density_cache_args dc) {
+              const struct density_cache_args dc, const int *__restrict__ slots, int n_slots) {
   /* Each thread gathers NBR_CHUNK entries in its own shared-memory slots (padded: no bank
    * conflicts), then stores them as one chunk (no barrier: no thread reads another's slots). */
   __shared__ uint32_t chunk_buf[CUDA_BLOCK * (NBR_CHUNK + 1)];
   uint32_t *mine = chunk_buf + threadIdx.x * (NBR_CHUNK + 1);
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n || (part && part[i] != part_flag)) return;
+  /* slots (the boundary part of several ranks): thread t_id computes slot slots[t_id] */
+  const int t_id = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t_id >= (slots ? n_slots : n)) return;
+  const int i = slots ? slots[t_id] : t_id;
+  if (part && part[i] != part_flag) return;
   const auto flush = [&](int c) {
     uint4 *dst = (uint4 *)(nbr + nbr_index(i, c * NBR_CHUNK, cap));
     dst[0] = make_uint4(mine[0], mine[1], mine[2], mine[3]);
@@ -163,10 +166,11 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   if (m > stride) atomicMax(most, m);
 }
 
-/* With one rank and the thermostat the density passes also store rho in vel.pad (several ranks
- * copy it there once the ghost densities have arrived: cuda_rho_to_vel). */
+/* With the thermostat the density passes also store rho in vel.pad, where the force pass reads
+ * a partner's density (several ranks: the owned slots here, the ghosts' once their densities
+ * have arrived, cuda_rho_to_vel). */
 static struct dev_vel *rho_vel(struct cuda_sim *g) {
-  return g->prm.multi || !(g->prm.terms & PAIR_TERM_THERMOSTAT) ? NULL : g->vel;
+  return !(g->prm.terms & PAIR_TERM_THERMOSTAT) ? NULL : g->vel;
 }
 
 /* The cache's arguments, table off (NULL) when the cache is not in use. */
@@ -223,19 +227,24 @@ static int cache_prepare(struct cuda_sim *g) {
 }
 
 template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim *g, int part) {
-  const int blocks = (g->n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  /* the boundary part over its slot list when the ghost selection made one (cuda_halo_device.cu),
+   * else over every slot, the others leaving at once */
+  const int *slots = part == 0 ? g->boundary_slots : NULL;
+  const int threads = slots ? g->n_bslots : g->n;
+  if (slots && threads == 0) return;
+  const int blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (g->compact) {
     k_density<KERNEL, DENSITY, CACHE, 0><<<blocks, CUDA_BLOCK>>>(
         g->prm, g->n, g->cap, 0, g->cell_start, g->prm.multi && part != 1 ? g->gcell_start : NULL,
         g->pos, g->key_sorted, g->rho, NULL, NULL, NULL, part >= 0 ? g->key : NULL,
-        (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g));
+        (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads);
     return;
   }
   k_density<KERNEL, DENSITY, CACHE, 1><<<blocks, CUDA_BLOCK>>>(
       g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
       g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,
-      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g));
+      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads);
 }
 
 static void launch_part(struct cuda_sim *g, int part) {
@@ -348,9 +357,10 @@ __global__ void k_rho_to_vel(int i0, int n, const meso_real *__restrict__ rho,
   if (i < n) vel[i].pad = rho[i];
 }
 
-void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1) {
+void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1, cudaStream_t stream) {
   if (!g->prm.density || !g->vel || i1 <= i0) return;
-  k_rho_to_vel<<<(i1 - i0 + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(i0, i1, g->rho, g->vel);
+  k_rho_to_vel<<<(i1 - i0 + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK, 0, stream>>>(i0, i1, g->rho,
+                                                                                   g->vel);
 }
 
 /* Densities and lists; a list longer than the room it had grows the room and runs the pass again

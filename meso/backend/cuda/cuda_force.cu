@@ -35,6 +35,10 @@ struct force_args {
    * interior part) and each slot's bin. */
   const int *start, *gstart;
   const uint32_t *key;
+  /* The boundary part's slot list (several ranks, ghosts selected on the device): thread t
+   * computes slot slots[t], t < n_slots; NULL: thread i computes slot i. */
+  const int *slots;
+  int n_slots;
 };
 
 /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
@@ -63,7 +67,8 @@ __device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *
 template <int TERMS, int VIRIAL, int PV, int LISTS, int RNG>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  const int t_id = blockIdx.x * blockDim.x + threadIdx.x;
+  const int i = !a.slots ? t_id : (t_id < a.n_slots ? a.slots[t_id] : a.n);
   meso_real w[6] = {0, 0, 0, 0, 0, 0};
   if (i < a.n && (!a.part || a.part[i] == a.part_flag)) {
     const struct dev_pos pi = a.pos[i];
@@ -151,54 +156,61 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
 
 template <int T, int R, int LISTS>
 static void launch_mode(const struct dev_params &q, const struct force_args &a, int blocks,
-                        int virial, int pv) {
+                        int virial, int pv, cudaStream_t stream) {
   if (virial)
-    k_force<T, 1, 1, LISTS, R><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 1, 1, LISTS, R><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
   else if (pv)
-    k_force<T, 0, 1, LISTS, R><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 0, 1, LISTS, R><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
   else
-    k_force<T, 0, 0, LISTS, R><<<blocks, CUDA_BLOCK>>>(q, a);
+    k_force<T, 0, 0, LISTS, R><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
 }
 
 /* The list (fast memory mode) or the bin scan (compact). */
 template <int T, int R>
 static void launch_rng(const struct dev_params &q, const struct force_args &a, int blocks,
-                       int virial, int pv) {
+                       int virial, int pv, cudaStream_t stream) {
   if (a.nbr)
-    launch_mode<T, R, 1>(q, a, blocks, virial, pv);
+    launch_mode<T, R, 1>(q, a, blocks, virial, pv, stream);
   else
-    launch_mode<T, R, 0>(q, a, blocks, virial, pv);
+    launch_mode<T, R, 0>(q, a, blocks, virial, pv, stream);
 }
 
 /* One kernel per generator for the term sets with the thermostat; the others draw no random
  * numbers and have one (R = PAIR_RNG_PHILOX for every q.rng). */
 template <int T>
 static void launch(const struct dev_params &q, const struct force_args &a, int blocks, int virial,
-                   int pv) {
+                   int pv, cudaStream_t stream) {
   const bool xi = (T & PAIR_TERM_THERMOSTAT) != 0;
   switch (q.rng) {
   case PAIR_RNG_FAST:
-    launch_rng<T, xi ? PAIR_RNG_FAST : PAIR_RNG_PHILOX>(q, a, blocks, virial, pv);
+    launch_rng<T, xi ? PAIR_RNG_FAST : PAIR_RNG_PHILOX>(q, a, blocks, virial, pv, stream);
     break;
   case PAIR_RNG_PHILOX2X32:
-    launch_rng<T, xi ? PAIR_RNG_PHILOX2X32 : PAIR_RNG_PHILOX>(q, a, blocks, virial, pv);
+    launch_rng<T, xi ? PAIR_RNG_PHILOX2X32 : PAIR_RNG_PHILOX>(q, a, blocks, virial, pv, stream);
     break;
   default:
-    launch_rng<T, PAIR_RNG_PHILOX>(q, a, blocks, virial, pv);
+    launch_rng<T, PAIR_RNG_PHILOX>(q, a, blocks, virial, pv, stream);
     break;
   }
 }
 
 /* part < 0: every owned particle; 1 / 0: only the interior / boundary particles (several ranks,
- * overlap: cuda_halo.cu), the boundary part second. */
+ * overlap: cuda_halo.cu), the boundary part second. The boundary part over its slot list when
+ * there is one; on `stream` (not the default stream: concurrent with the interior part) its
+ * virial rows follow the interior part's, else they add to the interior part's first rows. */
 void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
-                          int part) {
-  const int n = g->n, blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  g->n_force_blocks = n > 0 ? blocks : 0;
+                          int part, cudaStream_t stream) {
+  const int n = g->n;
+  const int *slots = part == 0 ? g->boundary_slots : NULL;
+  const int threads = slots ? g->n_bslots : n, blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  const int own_rows = part == 0 && stream != 0;
+  double *rows = own_rows ? g->block_virial + 6 * (size_t)g->n_force_blocks : g->block_virial;
+  if (part != 0) g->n_force_blocks = n > 0 ? blocks : 0;
   const int pv = g->want_pressure || want_virial;
   g->pressure_valid = pv;
   g->last_force_step = step;
-  if (n == 0) return;
+  if (n == 0 || threads == 0) return;
+  if (own_rows) g->n_force_blocks += blocks; /* (room: cuda_force_boundary_rows_fit) */
   struct force_args a = {g->compact ? NULL : g->nbr,
                          g->nbr_count,
                          g->cap,
@@ -210,60 +222,68 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                          g->a.f[1],
                          g->a.f[2],
                          g->virial,
-                         g->block_virial,
+                         rows,
                          step,
                          n,
                          !keep_forces,
                          part >= 0 ? g->key : NULL,
                          (uint32_t)(part > 0 ? 1 : 0),
-                         part == 0,
+                         part == 0 && !own_rows,
                          g->cell_start,
                          g->prm.multi && part != 1 ? g->gcell_start : NULL,
-                         g->key_sorted};
+                         g->key_sorted,
+                         slots,
+                         threads};
   const int virial = want_virial && g->virial != NULL;
   switch (g->prm.terms & 15) { /* 8 (wall no slip) comes with 4 (its check) */
   case 0:
-    launch<0>(g->prm, a, blocks, virial, pv);
+    launch<0>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 1:
-    launch<1>(g->prm, a, blocks, virial, pv);
+    launch<1>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 2:
-    launch<2>(g->prm, a, blocks, virial, pv);
+    launch<2>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 3:
-    launch<3>(g->prm, a, blocks, virial, pv);
+    launch<3>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 4:
-    launch<4>(g->prm, a, blocks, virial, pv);
+    launch<4>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 5:
-    launch<5>(g->prm, a, blocks, virial, pv);
+    launch<5>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 6:
-    launch<6>(g->prm, a, blocks, virial, pv);
+    launch<6>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 7:
-    launch<7>(g->prm, a, blocks, virial, pv);
+    launch<7>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 12:
-    launch<12>(g->prm, a, blocks, virial, pv);
+    launch<12>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 13:
-    launch<13>(g->prm, a, blocks, virial, pv);
+    launch<13>(g->prm, a, blocks, virial, pv, stream);
     break;
   case 14:
-    launch<14>(g->prm, a, blocks, virial, pv);
+    launch<14>(g->prm, a, blocks, virial, pv, stream);
     break;
   default:
-    launch<15>(g->prm, a, blocks, virial, pv);
+    launch<15>(g->prm, a, blocks, virial, pv, stream);
     break;
   }
 }
 
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
-  /* One rank: the density pass stored rho in vel.pad already. */
+  /* The density pass stored the owned densities in vel.pad already; the ghosts' arrived since. */
   if (g->n > 0 && g->prm.multi && (g->prm.terms & PAIR_TERM_THERMOSTAT))
-    cuda_rho_to_vel(g, 0, g->n + g->n_ghost);
-  cuda_force_pass_part(g, step, want_virial, keep_forces, -1);
+    cuda_rho_to_vel(g, g->n, g->n + g->n_ghost, 0);
+  cuda_force_pass_part(g, step, want_virial, keep_forces, -1, 0);
+}
+
+/* Whether the boundary part's virial rows fit after the interior part's (block_virial_cap). */
+int cuda_force_boundary_rows_fit(const struct cuda_sim *g) {
+  const int b = (g->n_bslots + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  return g->boundary_slots && g->n_force_blocks + b <= g->block_virial_cap;
 }

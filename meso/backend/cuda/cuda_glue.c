@@ -69,6 +69,7 @@ int cuda_glue_kick_drift(sim_state_t *st) {
   memset(&c->mr, 0, sizeof c->mr);
   c->finished = 0;
   st->host_stale = 1;
+  cuda_idle_mark(c->g, CUDA_IDLE_STEP_END, 1); /* the step's first pass follows */
   if (st->dc.nranks > 1) return cuda_halo_kick_drift(c->g);
   return cuda_sim_kick_drift(c->g, st->want_virial);
 }
@@ -92,6 +93,7 @@ int cuda_glue_kick(sim_state_t *st) {
  * over the ranks. */
 int cuda_glue_check(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
+  cuda_idle_mark(c->g, CUDA_IDLE_STEP_END, 0); /* closed by the next kick-drift */
   int rc = st->failed;
   if (!rc && !c->finished) rc = cuda_sim_finish(c->g, !st->forces_loaded || !st->in_setup, 0);
   if (!rc) rc = cuda_sim_fetch_problems(c->g, &c->cp);

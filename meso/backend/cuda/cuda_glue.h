@@ -16,6 +16,7 @@ typedef struct {
    * densities of the boundary set + ghosts (cuda_glue_halo.c). */
   particles_t halo_b, halo_m;
   decomp_t halo_dc; /* dc without the self-exchange along axes not cut between ranks */
+  xbuf_t mig_in;    /* one axis cut: the records that stay and arrive (migrate_records) */
   double *halo_rho;
   int halo_rho_cap, halo_ready;
   int mode_told; /* the memory mode was printed (after the first upload) */

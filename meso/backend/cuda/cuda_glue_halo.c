@@ -52,6 +52,7 @@ static void destroy(sim_state_t *st) {
   if (c && c->halo_ready) {
     pstore_free(&c->halo_b);
     pstore_free(&c->halo_m);
+    xbuf_free(&c->mig_in);
     free(c->halo_rho);
     c->halo_rho = NULL;
     c->halo_ready = 0;
@@ -67,9 +68,30 @@ static int setup_begin(sim_state_t *st) {
   return ready(st) || cuda_glue_setup_begin(st) ? -1 : 0;
 }
 
+static int device_halo_axis(const sim_state_t *st);
+
+/* One axis cut: the leavers as records in one download, migrate_records (collective: the CPU
+ * path's directions, wraps and loss tests), the records that stay and arrive in one upload. */
+static int migrate_on_device(sim_state_t *st, int axis) {
+  cuda_glue_t *c = cuda_glue(st);
+  int m = 0;
+  const void *out = NULL;
+  cuda_idle_mark(c->g, CUDA_IDLE_MIGRATE, 0);
+  int rc = st->failed || cuda_halo_find_leavers(c->g, &m) || cuda_halo_take_migrants(c->g, m, &out);
+  if (rc) m = 0;
+  const int n_in = migrate_records(&st->dc, axis, out, m, &st->sbuf, &st->rbuf, &c->mig_in, &c->mr);
+  rc = rc || c->mr.out_of_memory || cuda_halo_add_migrants(c->g, c->mig_in.data, n_in);
+  cuda_idle_mark(c->g, CUDA_IDLE_MIGRATE, 1);
+  return rc ? -1 : 0;
+}
+
 /* Leavers out of the device, through the CPU path's migration (collective), arrivals in. */
 static int migrate(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
+  /* MDPORE_CUDA_HOST_MIGRATE=1: the host arrays' path even with one axis cut (for comparison) */
+  const char *host = getenv("MDPORE_CUDA_HOST_MIGRATE");
+  const int axis = host && !strcmp(host, "1") ? -1 : device_halo_axis(st);
+  if (axis >= 0) return migrate_on_device(st, axis);
   particles_t *m = &c->halo_m;
   int n_leave = 0;
   int rc = st->failed || cuda_halo_find_leavers(c->g, &n_leave) || pstore_reserve(m, n_leave + 1) ||
@@ -81,7 +103,7 @@ static int migrate(sim_state_t *st) {
 
 static int sort(sim_state_t *st) {
   if (st->failed) return 0;
-  return cuda_halo_resort(cuda_glue(st)->g);
+  return cuda_halo_resort(cuda_glue(st)->g, keep_forces(st));
 }
 
 /* The one axis cut between ranks when the ghosts can be packed on the device (the others wrap on
@@ -126,6 +148,7 @@ static int ghosts_on_device(sim_state_t *st, int axis) {
   cuda_glue_t *c = cuda_glue(st);
   const int down = st->dc.nbr[axis][0], up = st->dc.nbr[axis][1];
   int n_send[2] = {0, 0}, n_recv[2] = {0, 0}; /* recv: from above, from below */
+  cuda_idle_mark(c->g, CUDA_IDLE_SELECT, 0);
   int rc = st->failed ||
            cuda_halo_select(c->g, axis, down != MPI_PROC_NULL, up != MPI_PROC_NULL, n_send);
   if (rc) n_send[0] = n_send[1] = 0;
@@ -145,9 +168,9 @@ static int ghosts_on_device(sim_state_t *st, int axis) {
                n_send[k] > n_recv[k] ? n_send[k] : n_recv[k]);
       rc = 1;
     }
-  if (!rc)
-    rc = cuda_halo_pack(c->g, axis, shift_lo, shift_hi, n_recv[0], n_recv[1], &send, &recv) ||
-         cuda_halo_density_early(c->g) || cuda_halo_wait_packed(c->g);
+  if (!rc) rc = cuda_halo_pack(c->g, axis, shift_lo, shift_hi, n_recv[0], n_recv[1], &send, &recv);
+  cuda_idle_mark(c->g, CUDA_IDLE_SELECT, 1); /* before the interior densities */
+  if (!rc) rc = cuda_halo_density_early(c->g) || cuda_halo_wait_packed(c->g);
   if (any_failed(st, rc)) return -1;
   exchange_sets(st, axis, CUDA_GHOST_RECORD_BYTES, send, n_send[0], n_send[1], recv, n_recv[0],
                 n_recv[1], 312);

@@ -173,7 +173,10 @@ extern "C" int cuda_halo_find_leavers(cuda_sim_t *g, int *m) {
   *m = 0;
   g->n_leaving = 0;
   if (n == 0) return 0;
-  k_leaver_flags<<<blocks_of(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[0], g->a.x[1], g->a.x[2], g->iota);
+  if (!g->leaver_flags_ready) /* (set-up: no kick-drift before this migration) */
+    k_leaver_flags<<<blocks_of(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[0], g->a.x[1], g->a.x[2],
+                                                 g->iota);
+  g->leaver_flags_ready = 0;
   if (cuda_select_slots(g, g->iota, g->perm, g->counter, n, "leaver selection") ||
       down(m, g->counter, sizeof(int)))
     return -1;
@@ -207,9 +210,11 @@ extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
 }
 
 /* The one sort of the owned particles in a step: by bin, the leavers (outside the subdomain:
- * sentinel bin) last, then dropped. */
-extern "C" int cuda_halo_resort(cuda_sim_t *g) {
-  if (cuda_sort_cells(g, 1)) return -1;
+ * sentinel bin) last, then dropped. The forces move with the particles only where they are read
+ * before the force pass rewrites them: by the prediction (Groot-Warren lambda != 1/2), or kept
+ * from a checkpoint at set-up (keep_forces). */
+extern "C" int cuda_halo_resort(cuda_sim_t *g, int keep_forces) {
+  if (cuda_sort_cells(g, g->prm.use_vpred || keep_forces)) return -1;
   g->n -= g->n_leaving;
   g->n_leaving = 0;
   return 0;

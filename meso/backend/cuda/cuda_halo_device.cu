@@ -10,6 +10,12 @@
  * in the sender's slot order) and the density halo's order are those of the host path, so the two
  * paths give the same ghosts in the same order. */
 #include "cuda_state.cuh"
+#include "domain/migrate.h"
+
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
+
+#include <string.h>
 
 struct __align__(8) ghost_record {
   long long id;
@@ -96,27 +102,63 @@ static int dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes) {
   return 0;
 }
 
+/* Whether slot i is in the boundary part (key 0: k_ghost_flags). */
+struct is_boundary {
+  const uint32_t *key;
+  __device__ __forceinline__ bool operator()(int i) const { return key[i] == 0u; }
+};
+
+/* The boundary slots (slot order) into g->bslots, their count into count_dev. */
+static int select_boundary(struct cuda_sim *g, int *count_dev) {
+  const int n = g->n;
+  if (dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int))) return -1;
+  thrust::counting_iterator<int> slots(0);
+  const struct is_boundary pred = {g->key};
+  size_t need = 0;
+  cub::DeviceSelect::If(NULL, need, slots, g->bslots, count_dev, n, pred);
+  if (need > g->select_tmp_bytes) {
+    cuda_free_ptr(g, &g->select_tmp);
+    g->select_tmp_bytes = 0;
+    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
+    g->select_tmp_bytes = need;
+  }
+  size_t tmp = g->select_tmp_bytes;
+  return cuda_check(cub::DeviceSelect::If(g->select_tmp, tmp, slots, g->bslots, count_dev, n, pred),
+                    "boundary slots");
+}
+
 extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_hi, int n_send[2]) {
   const int n = g->n;
   n_send[0] = n_send[1] = 0;
   g->n_ghost = 0;
   g->n_boundary = 0;
+  g->n_bslots = 0;
+  g->boundary_slots = NULL;
   if (n == 0) return 0;
-  if (!g->halo_count_dev && cuda_alloc(g, (void **)&g->halo_count_dev, 2 * sizeof(int))) return -1;
+  if (!g->halo_count_dev && cuda_alloc(g, (void **)&g->halo_count_dev, 3 * sizeof(int))) return -1;
   /* iota and nbr_count are free here (the sort used iota; the density pass rewrites the counts) */
   int *flag_lo = g->iota, *flag_hi = g->nbr_count;
   k_ghost_flags<<<blocks_for(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[axis], axis, send_lo, send_hi,
                                                g->key, flag_lo, flag_hi);
   /* the lower set into perm[0, n_lo), then the upper set after it (slot order in each) */
-  int counts[2] = {0, 0};
+  int counts[3] = {0, 0, 0};
+  /* Both sets sent and the subdomain at least two cutoffs wide (no slot in both): the sets are
+   * exactly the boundary part (k_ghost_flags' tests), so no third selection is needed. */
+  const int sets_cover =
+      send_lo && send_hi && g->prm.sub_lo[axis] + g->prm.rcut <= g->prm.sub_hi[axis] - g->prm.rcut;
   if (cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
       cuda_check(cudaMemcpy(counts, g->halo_count_dev, sizeof(int), cudaMemcpyDeviceToHost),
                  "ghost selection") ||
       cuda_select_slots(g, flag_hi, g->perm + counts[0], g->halo_count_dev + 1, n,
                         "ghost selection") ||
-      cuda_check(cudaMemcpy(counts + 1, g->halo_count_dev + 1, sizeof(int), cudaMemcpyDeviceToHost),
+      (!sets_cover && select_boundary(g, g->halo_count_dev + 2)) ||
+      cuda_check(cudaMemcpy(counts + 1, g->halo_count_dev + 1, (sets_cover ? 1 : 2) * sizeof(int),
+                            cudaMemcpyDeviceToHost),
                  "ghost selection"))
     return -1;
+  /* the two sets are the boundary part when they cover it: both sent, disjoint */
+  g->boundary_slots = sets_cover ? g->perm : g->bslots;
+  g->n_bslots = sets_cover ? counts[0] + counts[1] : counts[2];
   if ((long long)counts[0] + counts[1] > (long long)g->cap) {
     fprintf(stderr, "mdpore: CUDA backend: %d + %d boundary particles exceed the %d slots\n",
             counts[0], counts[1], g->cap);
@@ -205,6 +247,7 @@ extern "C" int cuda_halo_unpack(cuda_sim_t *g) {
     /* More ghosts than room: grow (after the interior pass in flight) and run this step's pair
      * passes in one part, since the interior lists went with the old arrays. */
     g->split_passes = 0;
+    g->boundary_slots = NULL; /* (perm moves with the arrays) */
     if (cuda_grow(g, n0 + ng)) return -1;
   }
   const size_t bytes = (size_t)ng * sizeof(struct ghost_record);
@@ -233,13 +276,98 @@ extern "C" int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv) {
 extern "C" int cuda_halo_rho_unpack(cuda_sim_t *g) {
   const int ng = g->n_ghost;
   if (!g->prm.density || ng == 0) return 0;
-  if (copy_up(g, g->rho_stage, g->pinned + g->pinned_send_bytes, (size_t)ng * sizeof(meso_real),
-              "density halo up"))
+  /* Up and into the ghost slots on the copy stream, not waited for by the default stream (the
+   * interior forces there read no ghost density): cuda_halo_forces puts the boundary forces after
+   * them on the same stream and joins the two streams. */
+  if (cuda_check(cudaMemcpyAsync(g->rho_stage, g->pinned + g->pinned_send_bytes,
+                                 (size_t)ng * sizeof(meso_real), cudaMemcpyHostToDevice, g->copies),
+                 "density halo up"))
     return -1;
-  k_rho_put<<<blocks_for(ng), CUDA_BLOCK>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
+  k_rho_put<<<blocks_for(ng), CUDA_BLOCK, 0, g->copies>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
+  g->rho_on_copies = 1;
   return cuda_check(cudaGetLastError(), "density halo");
 }
 
 extern "C" void cuda_halo_counts(const cuda_sim_t *g, int n[4]) {
   for (int k = 0; k < 4; k++) n[k] = g->halo_n[k];
+}
+
+/* Migration as records (one axis cut): the leavers' records from their slots perm[0, m), every
+ * field with the forces (migrate.c's migrant_t, the CPU path's wire format). */
+__global__ void k_migrant_pack(int m, const int *__restrict__ perm, struct dev_fields p,
+                               migrant_t *out) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= m) return;
+  const int i = perm[k];
+  migrant_t r;
+  r.id = p.id[i];
+  r.species = p.species[i];
+  r.pad = 0;
+  for (int d = 0; d < 3; d++) {
+    r.x[d] = p.x[d][i];
+    r.v[d] = p.v[d][i];
+    r.f[d] = p.f[d][i];
+  }
+  out[k] = r;
+}
+
+/* Records into the owned slots [n0, n0 + m). */
+__global__ void k_migrant_unpack(int n0, int m, const migrant_t *__restrict__ in,
+                                 struct dev_fields p) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= m) return;
+  const migrant_t r = in[k];
+  const int j = n0 + k;
+  p.id[j] = r.id;
+  p.species[j] = r.species;
+  for (int d = 0; d < 3; d++) {
+    p.x[d][j] = r.x[d];
+    p.v[d][j] = r.v[d];
+    p.f[d][j] = r.f[d];
+  }
+}
+
+/* The migration's pinned buffer, at least bytes (no copy from it is in flight when it grows: the
+ * last upload from it was followed by synchronising copies). */
+static char *mig_pinned(struct cuda_sim *g, size_t bytes) {
+  if (bytes <= g->mig_pinned_bytes) return g->mig_pinned;
+  if (g->mig_pinned) cudaFreeHost(g->mig_pinned);
+  g->mig_pinned = NULL;
+  g->mig_pinned_bytes = 0;
+  const size_t want = bytes + bytes / 4 + 4096;
+  if (cuda_check(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocDefault),
+                 "migration buffer"))
+    return NULL;
+  g->mig_pinned_bytes = want;
+  return g->mig_pinned;
+}
+
+extern "C" int cuda_halo_take_migrants(cuda_sim_t *g, int m, const void **out) {
+  *out = NULL;
+  if (m <= 0) return 0;
+  const size_t bytes = (size_t)m * sizeof(migrant_t);
+  char *host = mig_pinned(g, bytes);
+  if (!host || dev_room(g, &g->mig_dev, &g->mig_dev_cap, bytes)) return -1;
+  k_migrant_pack<<<blocks_for(m), CUDA_BLOCK>>>(m, g->perm, g->a, (migrant_t *)g->mig_dev);
+  if (cuda_check(cudaMemcpy(host, g->mig_dev, bytes, cudaMemcpyDeviceToHost), "migration"))
+    return -1;
+  *out = host;
+  return 0;
+}
+
+extern "C" int cuda_halo_add_migrants(cuda_sim_t *g, const void *in, int m) {
+  const int n0 = g->n;
+  if (m <= 0) return 0;
+  if (cuda_grow(g, n0 + m)) return -1;
+  const size_t bytes = (size_t)m * sizeof(migrant_t);
+  char *host = mig_pinned(g, bytes);
+  if (!host || dev_room(g, &g->mig_dev, &g->mig_dev_cap, bytes)) return -1;
+  memcpy(host, in, bytes);
+  /* asynchronous: the next synchronising copy (the ghost selection's counts) comes before this
+   * buffer is written again */
+  if (cuda_check(cudaMemcpyAsync(g->mig_dev, host, bytes, cudaMemcpyHostToDevice, 0), "migration"))
+    return -1;
+  k_migrant_unpack<<<blocks_for(m), CUDA_BLOCK>>>(n0, m, (const migrant_t *)g->mig_dev, g->a);
+  g->n = n0 + m;
+  return cuda_check(cudaGetLastError(), "migration");
 }

@@ -8,8 +8,10 @@
 
 #include <string.h>
 
+/* leaver (several ranks, else NULL): 1 for a particle outside this rank's subdomain after the
+ * drift, k_leaver_flags' test (cuda_halo.cu) folded in here: no second pass over x. */
 __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields p,
-                             struct dev_problem *pb) {
+                             struct dev_problem *pb, int *leaver) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const int s = p.species[i];
@@ -59,6 +61,9 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
     p.x[d][i] = x[d];
     p.v[d][i] = v[d];
   }
+  if (leaver)
+    leaver[i] = !(x[0] >= q.sub_lo[0] && x[0] < q.sub_hi[0] && x[1] >= q.sub_lo[1] &&
+                  x[1] < q.sub_hi[1] && x[2] >= q.sub_lo[2] && x[2] < q.sub_hi[2]);
 }
 
 __global__ void k_predict(const struct dev_params q, int n, struct dev_fields p, int setup) {
@@ -108,7 +113,10 @@ static int blocks_of(int n) {
 }
 
 void cuda_kick_drift(struct cuda_sim *g) {
-  if (g->n) k_kick_drift<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem);
+  /* several ranks: the leavers' flags into iota, for cuda_halo_find_leavers */
+  int *leaver = g->prm.multi ? g->iota : NULL;
+  if (g->n) k_kick_drift<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, leaver);
+  g->leaver_flags_ready = leaver != NULL;
 }
 
 void cuda_predict(struct cuda_sim *g, int setup) {

@@ -129,15 +129,16 @@ struct cuda_sim {
   int virial_cap;
   uint32_t *key, *key_sorted; /* cell of each particle */
   int *iota, *perm;
-  int *cell_start;      /* [ncell + 1] */
-  int *gcell_start;     /* [ncell + 1] ghosts (multi), slots relative to n */
-  int n_ghost;          /* ghosts after the n owned particles (multi) */
-  int n_boundary;       /* owned particles sent out as ghosts: slots perm[0..n_boundary) (multi) */
-  int n_leaving;        /* leavers still counted in n until the sort phase drops them (multi) */
-  int *counter;         /* [1] device counter (boundary selection) */
-  meso_real *rho_stage; /* [cap] densities on their way to or from the host (multi) */
-  struct dev_pos *pos;  /* [cap] packed positions (cell order) */
-  struct dev_vel *vel;  /* [cap] packed thermostat velocities (thermostat only) */
+  int *cell_start;  /* [ncell + 1] */
+  int *gcell_start; /* [ncell + 1] ghosts (multi), slots relative to n */
+  int n_ghost;      /* ghosts after the n owned particles (multi) */
+  int n_boundary;   /* owned particles sent out as ghosts: slots perm[0..n_boundary) (multi) */
+  int n_leaving;    /* leavers still counted in n until the sort phase drops them (multi) */
+  int leaver_flags_ready; /* the kick-drift flagged the leavers in iota (multi) */
+  int *counter;           /* [1] device counter (boundary selection) */
+  meso_real *rho_stage;   /* [cap] densities on their way to or from the host (multi) */
+  struct dev_pos *pos;    /* [cap] packed positions (cell order) */
+  struct dev_vel *vel;    /* [cap] packed thermostat velocities (thermostat only) */
   /* Per-step neighbour lists written by the density pass (cuda_density.cu): entry k of particle i
    * at nbr[nbr_index(i, k, cap)], slot | bin-offset code << NBR_SLOT_BITS, partners within the
    * largest cutoff in traversal order. */
@@ -165,7 +166,13 @@ struct cuda_sim {
    * this step (sent down, sent up, received from above, received from below), the records on
    * their way out and in, the selection's scratch, and the event that ends a packed download. */
   int halo_n[4];
-  int *halo_count_dev; /* [2] */
+  int *halo_count_dev; /* [3]: the two sets' sizes, the boundary slots' count */
+  /* The boundary slots (key 0) of this step, for the boundary parts of the split passes (NULL
+   * until the device selection made them: the passes then run over every slot). */
+  int *bslots;               /* storage of the selected list */
+  const int *boundary_slots; /* the list in use: bslots, or perm when the send sets cover it */
+  int n_bslots;
+  size_t bslots_cap;
   char *ghost_send_dev, *ghost_recv_dev;
   size_t ghost_send_cap, ghost_recv_cap, pinned_send_bytes;
   void *select_tmp;
@@ -177,6 +184,20 @@ struct cuda_sim {
    * to copy is written), copied (copies -> default: the data arrived). */
   cudaStream_t copies;
   cudaEvent_t ready, copied;
+  /* The ghost densities were put on the copy stream (cuda_halo_rho_unpack): the boundary forces
+   * follow them there, concurrent with the interior forces (cuda_halo_forces). */
+  int rho_on_copies;
+  /* Migration as records (cuda_halo_device.cu, one axis cut): the leavers' and arrivals' records
+   * on the device and in a pinned buffer of their own. */
+  char *mig_dev, *mig_pinned;
+  size_t mig_dev_cap, mig_pinned_bytes;
+  /* GPU idle probes (MDPORE_CUDA_IDLE=1; cuda_util.cu): per section, the events that open and
+   * close it, its state (0 none, 1 opened, 2 closed) and the device time between them. */
+  int idle_on;
+  cudaEvent_t idle_ev[2 * CUDA_IDLE_SECTIONS];
+  int idle_state[CUDA_IDLE_SECTIONS];
+  double idle_ms[CUDA_IDLE_SECTIONS];
+  long idle_n[CUDA_IDLE_SECTIONS];
   /* This step's passes were split in an interior and a boundary part (key holds the flags). */
   int split_passes;
   /* One rank with a skin: the sort phase left the choice (keep the lists or sort and rebuild) to
@@ -250,12 +271,13 @@ int cuda_density_pass(struct cuda_sim *g);
 void cuda_density_from_lists(struct cuda_sim *g);
 /* Copy rho of slots [i0, i1) into the thermostat velocity's spare lane (vel.pad) for the force
  * pass. */
-void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1);
+void cuda_rho_to_vel(struct cuda_sim *g, int i0, int i1, cudaStream_t stream);
 /* Several ranks with overlap: interior part first (no ghosts needed), then the boundary part. */
 int cuda_density_pass_interior(struct cuda_sim *g);
 int cuda_density_pass_rest(struct cuda_sim *g);
 void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
-                          int part);
+                          int part, cudaStream_t stream);
+int cuda_force_boundary_rows_fit(const struct cuda_sim *g);
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
 /* cuda_wall_field.cu: the wall field of every owned particle from the lists of this step. */
 void cuda_wall_field(struct cuda_sim *g);

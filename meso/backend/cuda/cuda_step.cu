@@ -118,19 +118,36 @@ extern "C" int cuda_halo_density(cuda_sim_t *g) {
 extern "C" int cuda_halo_forces_early(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
   if (!g->split_passes) return 0;
   if (cuda_set_virial(g, want_virial)) return -1;
-  if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g, 0, g->n);
-  cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 1);
+  /* (the density passes stored the owned densities in vel.pad already) */
+  cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 1, 0);
   return cuda_check(cudaGetLastError(), "interior forces");
+}
+
+/* Joins the copy stream into the default stream (its ghost densities, or boundary forces). */
+static int join_copies(cuda_sim_t *g) {
+  return cuda_check(cudaEventRecord(g->copied, g->copies), "density halo") ||
+                 cuda_check(cudaStreamWaitEvent(0, g->copied, 0), "density halo")
+             ? -1
+             : 0;
 }
 
 extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
   if (cuda_set_virial(g, want_virial)) return -1;
+  /* The ghost densities were put on the copy stream (cuda_halo_rho_unpack): the boundary forces
+   * follow them there, concurrent with the interior forces on the default stream, which then
+   * waits for both before the finishing kernel. Otherwise (no room for the boundary part's own
+   * virial rows, one-part passes, the host halo path) the default stream waits first. */
+  const int concurrent = g->split_passes && g->rho_on_copies && cuda_force_boundary_rows_fit(g);
+  if (g->rho_on_copies && !concurrent && join_copies(g)) return -1;
+  g->rho_on_copies = 0;
   if (g->split_passes) {
-    if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g, g->n, g->n + g->n_ghost);
-    cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 0);
+    const cudaStream_t s = concurrent ? g->copies : 0;
+    if (g->prm.terms & PAIR_TERM_THERMOSTAT) cuda_rho_to_vel(g, g->n, g->n + g->n_ghost, s);
+    cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 0, s);
+    if (concurrent && join_copies(g)) return -1;
   } else {
     cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
   }
   g->split_passes = 0;
-  return 0;
+  return cuda_check(cudaGetLastError(), "forces");
 }

@@ -316,10 +316,15 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->halo_count_dev,
                    (void **)&g->ghost_send_dev,
                    (void **)&g->ghost_recv_dev,
+                   (void **)&g->mig_dev,
+                   (void **)&g->bslots,
                    &g->select_tmp};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
+  if (g->mig_pinned) cudaFreeHost(g->mig_pinned);
+  if (g->idle_on)
+    for (int k = 0; k < 2 * CUDA_IDLE_SECTIONS; k++) cudaEventDestroy(g->idle_ev[k]);
   if (g->packed_made) {
     cudaEventDestroy(g->packed);
     cudaEventDestroy(g->ready);
@@ -351,4 +356,36 @@ extern "C" const char *cuda_sim_device_name(const cuda_sim_t *g) {
 
 extern "C" int cuda_sim_double_precision(void) {
   return sizeof(meso_real) == sizeof(double);
+}
+
+/* GPU idle probes: the device time between a section's two marks is the GPU work queued between
+ * them plus the time the device waited for the host (a section opened while the device is busy
+ * and closed before the host queues the next large pass: what the host's exchanges cost the
+ * device). A closed pair is read when the section opens again, by then long completed. */
+extern "C" void cuda_idle_mark(cuda_sim_t *g, int s, int end) {
+  if (!g->idle_on || s < 0 || s >= CUDA_IDLE_SECTIONS) return;
+  cudaEvent_t a = g->idle_ev[2 * s], b = g->idle_ev[2 * s + 1];
+  if (end) {
+    if (g->idle_state[s] == 1 && cudaEventRecord(b, 0) == cudaSuccess) g->idle_state[s] = 2;
+    return;
+  }
+  float ms = 0.0f;
+  if (g->idle_state[s] == 2 && cudaEventSynchronize(b) == cudaSuccess &&
+      cudaEventElapsedTime(&ms, a, b) == cudaSuccess) {
+    g->idle_ms[s] += ms;
+    g->idle_n[s]++;
+  }
+  g->idle_state[s] = cudaEventRecord(a, 0) == cudaSuccess ? 1 : 0;
+}
+
+extern "C" void cuda_idle_read(cuda_sim_t *g, double ms[CUDA_IDLE_SECTIONS],
+                               long n[CUDA_IDLE_SECTIONS], int reset) {
+  for (int s = 0; s < CUDA_IDLE_SECTIONS; s++) {
+    ms[s] = g->idle_ms[s];
+    n[s] = g->idle_n[s];
+    if (reset) {
+      g->idle_ms[s] = 0.0;
+      g->idle_n[s] = 0;
+    }
+  }
 }
