@@ -36,13 +36,15 @@ import yaml  # noqa: E402
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--backend", choices=("cpu", "cuda"), default="cpu",
+                    help="the engine backend of every run (cuda: all ranks share the visible GPUs)")
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--ladder", default="0.005,0.01,0.02,0.03,0.04,0.06")
     ap.add_argument("--time", type=float, default=None, help="simulated time per run (tau)")
     ap.add_argument("--t-tol", type=float, default=0.1, help="stable runs: |T - kT| <= t_tol kT")
     ap.add_argument("--out", default=os.environ.get("MDPORE_VALIDATION_OUT", os.path.join(HERE, "results")))
     args = ap.parse_args()
-    tag = "dt_ladder_quick" if args.quick else "dt_ladder"
+    tag = ("dt_ladder_quick" if args.quick else "dt_ladder") + ("_cuda" if args.backend == "cuda" else "")
     work = os.path.join(args.out, tag)
     os.makedirs(work, exist_ok=True)
     sim_time = args.time or (10.0 if args.quick else 50.0)
@@ -71,7 +73,7 @@ def main():
         os.makedirs(wd, exist_ok=True)
         with open(os.path.join(wd, "scene.yaml"), "w") as f:
             yaml.safe_dump(scene, f, sort_keys=False)
-        cmd = [exe, "run", "scene.yaml"]
+        cmd = [exe, "run", "scene.yaml", "--backend", args.backend]
         if args.np > 1:
             cmd = ["mpiexec", "-n", str(args.np), "--oversubscribe"] + cmd
         t0 = time.time()
@@ -111,7 +113,7 @@ def main():
            "failures": failures}
     mdval.write_json(os.path.join(args.out, tag + ".json"), res)
     with open(os.path.join(args.out, tag + ".md"), "w") as f:
-        f.write(f"# dt ladder on a porous image ({res['image']}, g = 0.05, {sim_time:g} tau per run, "
+        f.write(f"# dt ladder on a porous image ({res['image']}, backend {args.backend}, g = 0.05, {sim_time:g} tau per run, "
                 f"{args.np} ranks)\n\n| dt | steps | state | T or stop | seconds |\n|---|---|---|---|---|\n")
         for r in rows:
             what = f"T = {r['T']:.4f}, {r['penetrations']} penetrations" if r["state"] == "stable" else \

@@ -74,6 +74,8 @@ def make_images(work, exe):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--backend", choices=("cpu", "cuda"), default="cpu",
+                    help="the engine backend of every run (cuda: all ranks share the visible GPUs)")
     ap.add_argument("--ranks", default="1,2,4")
     ap.add_argument("--steps", type=int, default=None)
     ap.add_argument("--t-tol", type=float, default=0.5,
@@ -81,7 +83,7 @@ def main():
                          "temperature guard's own tolerance, docs/scene-format.md)")
     ap.add_argument("--out", default=os.environ.get("MDPORE_VALIDATION_OUT", os.path.join(HERE, "results")))
     args = ap.parse_args()
-    tag = "hard_cases_quick" if args.quick else "hard_cases"
+    tag = ("hard_cases_quick" if args.quick else "hard_cases") + ("_cuda" if args.backend == "cuda" else "")
     work = os.path.join(args.out, tag)
     os.makedirs(work, exist_ok=True)
     steps = args.steps or (1500 if args.quick else 20000)  # > the temperature guard's 1000-step window
@@ -105,7 +107,7 @@ def main():
             os.makedirs(wd, exist_ok=True)
             with open(os.path.join(wd, "scene.yaml"), "w") as f:
                 yaml.safe_dump(scene, f, sort_keys=False)
-            cmd = [exe, "run", "scene.yaml"]
+            cmd = [exe, "run", "scene.yaml", "--backend", args.backend]
             if np_ranks > 1:
                 cmd = ["mpiexec", "-n", str(np_ranks), "--oversubscribe"] + cmd
             t0 = time.time()
@@ -150,7 +152,7 @@ def main():
     print("counts: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
     mdval.write_json(os.path.join(args.out, tag + ".json"), {"steps": steps, "counts": counts, "rows": rows})
     with open(os.path.join(args.out, tag + ".md"), "w") as f:
-        f.write(f"# Hard cases ({steps} steps, dt 0.01, ranks {args.ranks})\n\n| case | ranks | result | s |\n"
+        f.write(f"# Hard cases ({steps} steps, dt 0.01, ranks {args.ranks}, backend {args.backend})\n\n| case | ranks | result | s |\n"
                 "|---|---|---|---|\n")
         for r in rows:
             what = (f"ran, T = {r['T']:.4f}, {r['penetrations']} penetrations" if r["state"] == "ran"
