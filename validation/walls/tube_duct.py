@@ -123,9 +123,9 @@ def mu_line(rows):
 
 # ---- geometry ----------------------------------------------------------------------------------------
 
-def make_geometry(kind, size, wall_vox, length, img_dir):
-    """The image (raw + sidecar), the box, the pore mask of the cross-section and its area."""
-    h = RC_PER_VOXEL
+def make_geometry(kind, size, wall_vox, length, img_dir, h=RC_PER_VOXEL):
+    """The image (raw + sidecar) at h rc per voxel, the box, the pore mask of the cross-section and
+    its area."""
     across = 2 * size if kind == "tube" else size
     m = across / h
     if abs(m - round(m)) > 1e-9:
@@ -136,7 +136,7 @@ def make_geometry(kind, size, wall_vox, length, img_dir):
     Y, Z = np.meshgrid(c, c, indexing="ij")
     pore = (Y ** 2 + Z ** 2 < size ** 2) if kind == "tube" else (np.maximum(abs(Y), abs(Z)) < size / 2)
     labels = np.broadcast_to(np.where(pore, 0, 1).astype(np.uint8)[None, :, :], (nx, nc, nc))
-    path = os.path.join(img_dir, f"{kind}_{size:g}_l{nx}_w{wall_vox}.raw")
+    path = os.path.join(img_dir, f"{kind}_{size:g}_l{nx}_w{wall_vox}" + ("" if h == RC_PER_VOXEL else f"_v{h:g}") + ".raw")
     write_raw_image(path, labels)
     box = [nx * h, nc * h, nc * h]
     return path, box, pore, float(pore.sum()) * h * h
@@ -225,7 +225,9 @@ def main():
     ap.add_argument("--g", type=float, help="body force (default: no-slip centre velocity --u-target, at most 0.3)")
     ap.add_argument("--u-target", type=float, default=0.4)
     ap.add_argument("--length", type=float, default=4.0, help="box length along the flow, rc (default 4)")
-    ap.add_argument("--wall-voxels", type=int, default=4, help="solid voxels on each side (default 4 = 2 rc)")
+    ap.add_argument("--wall-voxels", type=int, help="solid voxels on each side (default: 2 rc of them)")
+    ap.add_argument("--rc-per-voxel", type=float, default=RC_PER_VOXEL,
+                    help=f"voxel edge in rc (default {RC_PER_VOXEL}; 0.25 halves the tube's staircase steps)")
     ap.add_argument("--every", type=int, default=100, help="snapshot interval (steps)")
     ap.add_argument("--tol", type=float, default=0.03, help="allowed |Q / Q_ana - 1| (default 0.03)")
     ap.add_argument("--slip", type=float, help="slip length b for the corrected size (default: the slit validation's)")
@@ -248,14 +250,17 @@ def main():
     steps = args.steps or (8000 if q else 40000)
     tag = "tube_duct" + ("_quick" if q else "") + ("" if args.boundary == "bounce_back" else "_" + args.boundary) + \
         ("" if args.wall_density == 8.0 else f"_wd{args.wall_density:g}") + \
-        ("" if args.length == 4.0 else f"_L{args.length:g}") + ("" if args.patch_seed == 1 else f"_ps{args.patch_seed}")
+        ("" if args.length == 4.0 else f"_L{args.length:g}") + ("" if args.patch_seed == 1 else f"_ps{args.patch_seed}") + \
+        ("" if args.rc_per_voxel == RC_PER_VOXEL else f"_v{args.rc_per_voxel:g}")
+    if args.wall_voxels is None:
+        args.wall_voxels = int(round(2.0 / args.rc_per_voxel))
     outdir = args.outdir or mdval.out_dir("walls")
     os.makedirs(outdir, exist_ok=True)
     base = os.environ.get("MDPORE_VALIDATION_OUT") or tempfile.gettempdir()
     workdir = os.path.abspath(args.workdir or os.path.join(base, tag + "_runs"))
     img_dir = os.path.join(workdir, "images")
     os.makedirs(img_dir, exist_ok=True)
-    patches = os.path.join(workdir, f"patches-e{RC_PER_VOXEL:g}-d{args.wall_density:g}-s{args.patch_seed}.h5")
+    patches = os.path.join(workdir, f"patches-e{args.rc_per_voxel:g}-d{args.wall_density:g}-s{args.patch_seed}.h5")
     mu_ref, mu_ref_err, mu_src = mu_reference()
     if args.slip is not None:
         b, b_spread, b_src = args.slip, 0.0, "--slip"
@@ -272,7 +277,8 @@ def main():
     cases = [("tube", r) for r in radii] + [("duct", a) for a in sides]
     results, t_all = [], time.time()
     for kind, size in cases:
-        image, box, pore, area = make_geometry(kind, size, args.wall_voxels, args.length, img_dir)
+        image, box, pore, area = make_geometry(kind, size, args.wall_voxels, args.length, img_dir,
+                                               args.rc_per_voxel)
         g = args.g if args.g is not None else default_g(kind, size, args.u_target)
         half = size if kind == "tube" else size / 2
         tau = (half / 2.405) ** 2 * 6.2 / mu_ref
@@ -283,7 +289,7 @@ def main():
         scene = image_scene(name, box, image, patches, steps=equil + steps, seed=args.seed,
                             patch_seed=args.patch_seed, g=[g, 0.0, 0.0], boundary=args.boundary,
                             wall_density=None if args.wall_density == 8.0 else args.wall_density,
-                            snapshot=args.every, thermo_every=100)
+                            snapshot=args.every, thermo_every=100, rc_per_voxel=args.rc_per_voxel)
         print(f"{name}: box {box}, pore area {area:g} rc^2, g = {g}, {equil} + {steps} steps ...", flush=True)
         wall_s = run_or_reuse(scene, wd, args.np, args.reuse)
         r = analyse(wd, kind, size, box, equil, g)
@@ -352,7 +358,7 @@ def write_table(outdir, tag, results, args, b, b_spread, b_src, mu_ref, mu_ref_e
             w.writerow([f"{vals[c]:.6g}" if isinstance(vals[c], float) else vals[c] for c in cols])
     L = [f"# Body-force flow in an image tube and square duct, boundary `{args.boundary}` "
          f"({'--quick' if args.quick else 'full run'})\n",
-         f"Images written from numpy (raw + sidecar) at rc_per_voxel {RC_PER_VOXEL}, flow along x, box length "
+         f"Images written from numpy (raw + sidecar) at rc_per_voxel {args.rc_per_voxel:g}, flow along x, box length "
          f"{args.length:g} rc, {args.wall_voxels} solid voxels on each side; builder defaults (walls rc + rd thick, "
          "patches at density 8, fluid 6.2 per rc^3 of pore); mDPD A = -40 (fluid-fluid and fluid-wall), B = 25, "
          f"rd = 0.75, gamma = 4.5, kT = 1, dt = 0.01; effects mdpd_attraction, mdpd_repulsion, dpd_thermostat, "
@@ -389,6 +395,11 @@ def write_table(outdir, tag, results, args, b, b_spread, b_src, mu_ref, mu_ref_e
                 f"{' '.join(f'{a:g}' for a in args.sides or [4, 6, 8])} --steps {results[0]['steps']}")
     if args.boundary != "bounce_back":
         cmd += f" --boundary {args.boundary}"
+    for flag, val, default in (("--wall-density", args.wall_density, 8.0), ("--slip", args.slip, None),
+                               ("--length", args.length, 4.0), ("--patch-seed", args.patch_seed, 1),
+                               ("--rc-per-voxel", args.rc_per_voxel, RC_PER_VOXEL)):
+        if val is not None and val != default:
+            cmd += f" {flag} {val:g}"
     L.append(f"\nTolerance {100 * args.tol:g}%. Run time {sum(r['wall_s'] for r in results):.0f} s "
              f"({args.np} ranks, shared 2-core machine). Command: `{cmd}`\n")
     text = "\n".join(L)
