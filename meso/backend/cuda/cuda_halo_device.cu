@@ -116,12 +116,7 @@ static int select_boundary(struct cuda_sim *g, int *count_dev) {
   const struct is_boundary pred = {g->key};
   size_t need = 0;
   cub::DeviceSelect::If(NULL, need, slots, g->bslots, count_dev, n, pred);
-  if (need > g->select_tmp_bytes) {
-    cuda_free_ptr(g, &g->select_tmp);
-    g->select_tmp_bytes = 0;
-    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
-    g->select_tmp_bytes = need;
-  }
+  if (cuda_select_room(g, need)) return -1;
   size_t tmp = g->select_tmp_bytes;
   return cuda_check(cub::DeviceSelect::If(g->select_tmp, tmp, slots, g->bslots, count_dev, n, pred),
                     "boundary slots");

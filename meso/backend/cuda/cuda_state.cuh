@@ -240,6 +240,8 @@ int cuda_reserve(struct cuda_sim *g, int n);
 int cuda_grow(struct cuda_sim *g, int need);
 int cuda_set_virial(struct cuda_sim *g, int on);
 int cuda_nbr_reserve(struct cuda_sim *g, int stride);
+/* The cub selections' temporary storage, at least need bytes (g->select_tmp). 0 or -1. */
+int cuda_select_room(struct cuda_sim *g, size_t need);
 /* The slots i < n with flag[i] != 0, in slot order, into out; their count into *count_dev (device).
  * Queued on the default stream (cub select; scratch grown as needed). 0 or -1. */
 int cuda_select_slots(struct cuda_sim *g, const int *flag, int *out, int *count_dev, int n,

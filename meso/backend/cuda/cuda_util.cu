@@ -221,17 +221,21 @@ static int realloc_keep(struct cuda_sim *g, int need) {
   return rc ? -1 : 0;
 }
 
+int cuda_select_room(struct cuda_sim *g, size_t need) {
+  if (need <= g->select_tmp_bytes) return 0;
+  cuda_free_ptr(g, &g->select_tmp);
+  g->select_tmp_bytes = 0;
+  if (cuda_alloc(g, &g->select_tmp, need)) return -1;
+  g->select_tmp_bytes = need;
+  return 0;
+}
+
 int cuda_select_slots(struct cuda_sim *g, const int *flag, int *out, int *count_dev, int n,
                       const char *what) {
   thrust::counting_iterator<int> slots(0);
   size_t need = 0;
   cub::DeviceSelect::Flagged(NULL, need, slots, flag, out, count_dev, n);
-  if (need > g->select_tmp_bytes) {
-    cuda_free_ptr(g, &g->select_tmp);
-    g->select_tmp_bytes = 0;
-    if (cuda_alloc(g, &g->select_tmp, need)) return -1;
-    g->select_tmp_bytes = need;
-  }
+  if (cuda_select_room(g, need)) return -1;
   size_t tmp = g->select_tmp_bytes;
   return cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag, out, count_dev, n),
                     what);
