@@ -20,19 +20,28 @@ static double clamp_into_box(const decomp_t *dc, int d, double x) {
   return x;
 }
 
-/* Along an axis with a single subdomain: periodic wrap in place, or a loss on a non-periodic axis.
- */
+/* Along an axis with a single subdomain: *x wrapped back into the box (periodic), or 1 for a loss
+ * (a non-periodic axis, not finite, or farther than two box lengths), *x left as it is. */
+static int wrap_uncut(const decomp_t *dc, int d, double *x) {
+  if (*x >= dc->box_lo[d] && *x < dc->box_hi[d]) return 0;
+  if (!dc->periodic[d] || !isfinite(*x) || fabs(*x - dc->box_lo[d]) > 2.0 * dc->L[d]) return 1;
+  *x = clamp_into_box(dc, d, *x < dc->box_lo[d] ? *x + dc->L[d] : *x - dc->L[d]);
+  return 0;
+}
+
+/* A leaver along the cut axis d going down (dir 0) or up (1): across the periodic face it takes
+ * the image on the other side. */
+static void wrap_crossing(const decomp_t *dc, int d, int dir, double x[3]) {
+  if (dir == 0 && dc->coords[d] == 0) x[d] = clamp_into_box(dc, d, x[d] + dc->L[d]);
+  if (dir == 1 && dc->coords[d] == dc->dims[d] - 1) x[d] = clamp_into_box(dc, d, x[d] - dc->L[d]);
+}
+
 static void wrap_axis_in_place(const decomp_t *dc, particles_t *p, int d, migrate_report_t *rep) {
-  double *x = p->x[d];
-  for (int i = 0; i < p->n_local; i++) {
-    if (x[i] >= dc->box_lo[d] && x[i] < dc->box_hi[d]) continue;
-    if (!dc->periodic[d] || !isfinite(x[i]) || fabs(x[i] - dc->box_lo[d]) > 2.0 * dc->L[d]) {
+  for (int i = 0; i < p->n_local; i++)
+    if (wrap_uncut(dc, d, &p->x[d][i])) {
       double pos[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
       note_lost(rep, p->id[i], pos);
-      continue;
     }
-    x[i] = clamp_into_box(dc, d, x[i] < dc->box_lo[d] ? x[i] + dc->L[d] : x[i] - dc->L[d]);
-  }
 }
 
 void migrant_pack(const particles_t *p, int i, migrant_t *m) {
@@ -99,10 +108,7 @@ void migrate_particles(const decomp_t *dc, particles_t *p, xbuf_t *sbuf, xbuf_t 
       migrant_t *m =
           (migrant_t *)sbuf->data + (size_t)dir * (size_t)p->n_local + (size_t)n_out[dir]++;
       migrant_pack(p, i, m);
-      /* Crossing a periodic face: wrap to the image on the other side. */
-      if (dir == 0 && dc->coords[d] == 0) m->x[d] = clamp_into_box(dc, d, m->x[d] + dc->L[d]);
-      if (dir == 1 && dc->coords[d] == dc->dims[d] - 1)
-        m->x[d] = clamp_into_box(dc, d, m->x[d] - dc->L[d]);
+      wrap_crossing(dc, d, dir, m->x); /* across a periodic face: the image on the other side */
     }
     const int n_before = p->n_local;
     p->n_local = keep;
@@ -137,14 +143,8 @@ static void sort_records(const decomp_t *dc, int d, const migrant_t *leavers, in
   for (int i = 0; i < m; i++) {
     migrant_t r = leavers[i];
     int through = 0; /* left through a non-periodic face (or too far): lost */
-    for (int e = 0; e < 3; e++) {
-      if (e == d || (r.x[e] >= dc->box_lo[e] && r.x[e] < dc->box_hi[e])) continue;
-      if (!dc->periodic[e] || !isfinite(r.x[e]) || fabs(r.x[e] - dc->box_lo[e]) > 2.0 * dc->L[e])
-        through = 1;
-      else
-        r.x[e] =
-            clamp_into_box(dc, e, r.x[e] < dc->box_lo[e] ? r.x[e] + dc->L[e] : r.x[e] - dc->L[e]);
-    }
+    for (int e = 0; e < 3; e++)
+      if (e != d) through |= wrap_uncut(dc, e, &r.x[e]);
     const double xi = r.x[d];
     if (through || !isfinite(xi)) { /* kept, as migrate_particles keeps it (the check stops) */
       note_lost(rep, r.id, r.x);
@@ -160,9 +160,7 @@ static void sort_records(const decomp_t *dc, int d, const migrant_t *leavers, in
       note_lost(rep, r.id, r.x);
       continue;
     }
-    if (dir == 0 && dc->coords[d] == 0) r.x[d] = clamp_into_box(dc, d, r.x[d] + dc->L[d]);
-    if (dir == 1 && dc->coords[d] == dc->dims[d] - 1)
-      r.x[d] = clamp_into_box(dc, d, r.x[d] - dc->L[d]);
+    wrap_crossing(dc, d, dir, r.x);
     (dir ? up : down)[n_out[dir]++] = r;
   }
 }

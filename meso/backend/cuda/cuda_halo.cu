@@ -56,6 +56,16 @@ static int blocks_of(int n) {
   return (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
 }
 
+void cuda_rho_gather(int n, const int *perm, const meso_real *rho, meso_real *out,
+                     cudaStream_t stream) {
+  if (n > 0) k_rho_gather<<<blocks_of(n), CUDA_BLOCK, 0, stream>>>(n, perm, rho, out);
+}
+
+void cuda_rho_scatter(int n0, int ng, const int *perm, const meso_real *in, meso_real *rho,
+                      cudaStream_t stream) {
+  if (ng > 0) k_rho_scatter<<<blocks_of(ng), CUDA_BLOCK, 0, stream>>>(n0, ng, perm, in, rho);
+}
+
 static int down(void *dst, const void *src, size_t bytes) {
   return cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost), "halo download");
 }
@@ -268,7 +278,7 @@ extern "C" int cuda_halo_set_ghosts(cuda_sim_t *g, const particles_t *hb) {
 extern "C" int cuda_halo_rho_out(cuda_sim_t *g, double *field) {
   const int nb = g->n_boundary;
   if (!g->prm.density || nb == 0) return 0;
-  k_rho_gather<<<blocks_of(nb), CUDA_BLOCK>>>(nb, g->perm, g->rho, g->rho_stage);
+  cuda_rho_gather(nb, g->perm, g->rho, g->rho_stage, 0);
   meso_real *tmp = (meso_real *)cuda_pinned(g, (size_t)nb * sizeof(meso_real));
   if (!tmp || down(tmp, g->rho_stage, (size_t)nb * sizeof(meso_real))) return -1;
   for (int k = 0; k < nb; k++) field[k] = (double)tmp[k];
@@ -287,6 +297,6 @@ extern "C" int cuda_halo_rho_in(cuda_sim_t *g, const double *ghost_rho) {
           cudaMemcpy(g->rho_stage, tmp, (size_t)ng * sizeof(meso_real), cudaMemcpyHostToDevice),
           "rho halo"))
     return -1;
-  k_rho_scatter<<<blocks_of(ng), CUDA_BLOCK>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
+  cuda_rho_scatter(g->n, ng, g->perm, g->rho_stage, g->rho, 0);
   return cuda_check(cudaGetLastError(), "rho halo");
 }

@@ -79,18 +79,6 @@ __global__ void k_ghost_unpack(int n0, int ng, const struct ghost_record *__rest
   }
 }
 
-__global__ void k_rho_take(int n, const int *__restrict__ perm, const meso_real *__restrict__ rho,
-                           meso_real *out) {
-  const int k = blockIdx.x * blockDim.x + threadIdx.x;
-  if (k < n) out[k] = rho[perm[k]];
-}
-
-__global__ void k_rho_put(int n0, int ng, const int *__restrict__ perm,
-                          const meso_real *__restrict__ in, meso_real *rho) {
-  const int k = blockIdx.x * blockDim.x + threadIdx.x;
-  if (k < ng) rho[n0 + k] = in[perm[n0 + k]];
-}
-
 /* Device room of at least bytes in *buf (contents not kept). */
 static int dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes) {
   if (bytes <= *cap) return 0;
@@ -264,7 +252,7 @@ extern "C" int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv) {
    * receive part is free once `packed` is reached (pinned_parts waits for everything if it grows) */
   if (pinned_parts(g, (size_t)n_all * w, (size_t)ng * w, send, recv)) return -1;
   const int take = g->prm.density && n_all > 0;
-  if (take) k_rho_take<<<blocks_for(n_all), CUDA_BLOCK>>>(n_all, g->perm, g->rho, g->rho_stage);
+  if (take) cuda_rho_gather(n_all, g->perm, g->rho, g->rho_stage, 0);
   return copy_down(g, *send, g->rho_stage, take ? (size_t)n_all * w : 0, "density halo down");
 }
 
@@ -278,7 +266,7 @@ extern "C" int cuda_halo_rho_unpack(cuda_sim_t *g) {
                                  (size_t)ng * sizeof(meso_real), cudaMemcpyHostToDevice, g->copies),
                  "density halo up"))
     return -1;
-  k_rho_put<<<blocks_for(ng), CUDA_BLOCK, 0, g->copies>>>(g->n, ng, g->perm, g->rho_stage, g->rho);
+  cuda_rho_scatter(g->n, ng, g->perm, g->rho_stage, g->rho, g->copies);
   g->rho_on_copies = 1;
   return cuda_check(cudaGetLastError(), "density halo");
 }

@@ -253,6 +253,13 @@ int cuda_go_compact(struct cuda_sim *g, const char *why);
 /* cuda_halo.cu: the pinned host buffer of the halo transfers, grown to at least bytes (contents
  * not kept; the caller makes sure no copy from or to it is in flight). NULL on failure. */
 char *cuda_pinned(struct cuda_sim *g, size_t bytes);
+/* cuda_halo.cu: out[k] = rho[perm[k]] for k < n (the boundary densities in the send order), and
+ * rho[n0 + k] = in[perm[n0 + k]] for k < ng (arrived densities into the ghost slots through the
+ * ghost sort's permutation), queued on stream. */
+void cuda_rho_gather(int n, const int *perm, const meso_real *rho, meso_real *out,
+                     cudaStream_t stream);
+void cuda_rho_scatter(int n0, int ng, const int *perm, const meso_real *in, meso_real *rho,
+                      cudaStream_t stream);
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 /* with_f: carry the forces along (they are needed after the sort only when kept from a checkpoint
