@@ -115,11 +115,12 @@ int cuda_halo_rho_pack(cuda_sim_t *g, void **send, void **recv);
 int cuda_halo_rho_unpack(cuda_sim_t *g);
 /* This step's counts: sent down, sent up, received from above, received from below. */
 void cuda_halo_counts(const cuda_sim_t *g, int n[4]);
-/* Migration as records (one axis cut): the m leavers found by cuda_halo_find_leavers packed as
- * migrant_t records (slot order) and downloaded in one copy; *out points at them (pinned, valid
- * until the next call). Then the m records in (stayers and arrivals, host order) appended after
- * the owned slots in one upload, as cuda_halo_add_owned does with host arrays. 0 or -1. */
-int cuda_halo_take_migrants(cuda_sim_t *g, int m, const void **out);
+/* Migration as records (one axis cut): the leavers found (as cuda_halo_find_leavers does) and
+ * packed as migrant_t records (slot order) straight into pinned host memory, their count in *m,
+ * after one synchronising copy (two when the buffer must grow); *out points at them (valid until
+ * the next call). Then the m records in (stayers and arrivals, host order) appended after the owned
+ * slots in one upload, as cuda_halo_add_owned does with host arrays. 0 or -1. */
+int cuda_halo_take_leaving(cuda_sim_t *g, int *m, const void **out);
 int cuda_halo_add_migrants(cuda_sim_t *g, const void *in, int m);
 
 /* GPU idle probes (MDPORE_CUDA_IDLE=1, else no-ops): open (end 0) and close (end 1) section s on

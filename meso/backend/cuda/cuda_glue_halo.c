@@ -77,7 +77,7 @@ static int migrate_on_device(sim_state_t *st, int axis) {
   int m = 0;
   const void *out = NULL;
   cuda_idle_mark(c->g, CUDA_IDLE_MIGRATE, 0);
-  int rc = st->failed || cuda_halo_find_leavers(c->g, &m) || cuda_halo_take_migrants(c->g, m, &out);
+  int rc = st->failed || cuda_halo_take_leaving(c->g, &m, &out);
   if (rc) m = 0;
   const int n_in = migrate_records(&st->dc, axis, out, m, &st->sbuf, &st->rbuf, &c->mig_in, &c->mr);
   rc = rc || c->mr.out_of_memory || cuda_halo_add_migrants(c->g, c->mig_in.data, n_in);
@@ -152,10 +152,13 @@ static int ghosts_on_device(sim_state_t *st, int axis) {
   int rc = st->failed ||
            cuda_halo_select(c->g, axis, down != MPI_PROC_NULL, up != MPI_PROC_NULL, n_send);
   if (rc) n_send[0] = n_send[1] = 0;
-  MPI_Sendrecv(&n_send[0], 1, MPI_INT, down, 310, &n_recv[0], 1, MPI_INT, up, 310, st->dc.cart,
-               MPI_STATUS_IGNORE);
-  MPI_Sendrecv(&n_send[1], 1, MPI_INT, up, 311, &n_recv[1], 1, MPI_INT, down, 311, st->dc.cart,
-               MPI_STATUS_IGNORE);
+  /* the four counts in flight together (one wait) */
+  MPI_Request req[4];
+  MPI_Irecv(&n_recv[0], 1, MPI_INT, up, 310, st->dc.cart, &req[0]);
+  MPI_Irecv(&n_recv[1], 1, MPI_INT, down, 311, st->dc.cart, &req[1]);
+  MPI_Isend(&n_send[0], 1, MPI_INT, down, 310, st->dc.cart, &req[2]);
+  MPI_Isend(&n_send[1], 1, MPI_INT, up, 311, st->dc.cart, &req[3]);
+  MPI_Waitall(4, req, MPI_STATUSES_IGNORE);
   /* crossing the periodic boundary: ghosts.c's images */
   const double shift_lo = st->dc.coords[axis] == 0 ? st->dc.L[axis] : 0.0;
   const double shift_hi = st->dc.coords[axis] == st->dc.dims[axis] - 1 ? -st->dc.L[axis] : 0.0;

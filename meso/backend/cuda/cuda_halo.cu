@@ -84,6 +84,20 @@ char *cuda_pinned(struct cuda_sim *g, size_t bytes) {
   return g->pinned;
 }
 
+int cuda_counts_down(struct cuda_sim *g, int *out, const int *dev, int k, const char *what) {
+  if (!g->counts_pinned &&
+      cuda_check(cudaHostAlloc((void **)&g->counts_pinned, 4 * sizeof(int), cudaHostAllocDefault),
+                 what))
+    return -1;
+  if (cuda_check(cudaMemcpyAsync(g->counts_pinned, dev, (size_t)k * sizeof(int),
+                                 cudaMemcpyDeviceToHost, 0),
+                 what) ||
+      cuda_check(cudaStreamSynchronize(0), what))
+    return -1;
+  memcpy(out, g->counts_pinned, (size_t)k * sizeof(int));
+  return 0;
+}
+
 /* A set of device <-> host copies staged through the pinned buffer (16-byte aligned pieces). */
 struct stage {
   int k;
@@ -175,20 +189,23 @@ __global__ void k_leaver_gather(int m, const int *__restrict__ perm, struct dev_
   }
 }
 
-/* The leavers' slots (slot order) into perm[0, *m) without moving anyone: they stay in their slots,
- * counted in n, until the sort phase puts them last and drops them (cuda_halo_resort), so a step
- * sorts the owned particles once. */
-extern "C" int cuda_halo_find_leavers(cuda_sim_t *g, int *m) {
+/* The leavers' slots (slot order) into perm[0, count) without moving anyone, their count left on
+ * the device in g->counter: they stay in their slots, counted in n, until the sort phase puts them
+ * last and drops them (cuda_halo_resort), so a step sorts the owned particles once. */
+int cuda_leavers_select(struct cuda_sim *g) {
   const int n = g->n;
-  *m = 0;
-  g->n_leaving = 0;
-  if (n == 0) return 0;
   if (!g->leaver_flags_ready) /* (set-up: no kick-drift before this migration) */
     k_leaver_flags<<<blocks_of(n), CUDA_BLOCK>>>(g->prm, n, g->a.x[0], g->a.x[1], g->a.x[2],
                                                  g->iota);
   g->leaver_flags_ready = 0;
-  if (cuda_select_slots(g, g->iota, g->perm, g->counter, n, "leaver selection") ||
-      down(m, g->counter, sizeof(int)))
+  return cuda_select_slots(g, g->iota, g->perm, g->counter, n, "leaver selection");
+}
+
+extern "C" int cuda_halo_find_leavers(cuda_sim_t *g, int *m) {
+  *m = 0;
+  g->n_leaving = 0;
+  if (g->n == 0) return 0;
+  if (cuda_leavers_select(g) || cuda_counts_down(g, m, g->counter, 1, "leaver selection"))
     return -1;
   g->n_leaving = *m;
   return 0;

@@ -129,15 +129,25 @@ extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_h
    * exactly the boundary part (k_ghost_flags' tests), so no third selection is needed. */
   const int sets_cover =
       send_lo && send_hi && g->prm.sub_lo[axis] + g->prm.rcut <= g->prm.sub_hi[axis] - g->prm.rcut;
-  if (cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
-      cuda_check(cudaMemcpy(counts, g->halo_count_dev, sizeof(int), cudaMemcpyDeviceToHost),
-                 "ghost selection") ||
-      cuda_select_slots(g, flag_hi, g->perm + counts[0], g->halo_count_dev + 1, n,
-                        "ghost selection") ||
-      (!sets_cover && select_boundary(g, g->halo_count_dev + 2)) ||
-      cuda_check(cudaMemcpy(counts + 1, g->halo_count_dev + 1, (sets_cover ? 1 : 2) * sizeof(int),
-                            cudaMemcpyDeviceToHost),
-                 "ghost selection"))
+  if (sets_cover) {
+    /* the upper set into bslots, both counts in one synchronising copy, then moved after the
+     * lower set (queued: no wait) */
+    if (dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int)) ||
+        cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
+        cuda_select_slots(g, flag_hi, g->bslots, g->halo_count_dev + 1, n, "ghost selection") ||
+        cuda_counts_down(g, counts, g->halo_count_dev, 2, "ghost selection"))
+      return -1;
+    if ((long long)counts[0] + counts[1] <= (long long)g->cap && counts[1] > 0 &&
+        cuda_check(cudaMemcpyAsync(g->perm + counts[0], g->bslots, (size_t)counts[1] * sizeof(int),
+                                   cudaMemcpyDeviceToDevice, 0),
+                   "ghost selection"))
+      return -1;
+  } else if (cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
+             cuda_counts_down(g, counts, g->halo_count_dev, 1, "ghost selection") ||
+             cuda_select_slots(g, flag_hi, g->perm + counts[0], g->halo_count_dev + 1, n,
+                               "ghost selection") ||
+             select_boundary(g, g->halo_count_dev + 2) ||
+             cuda_counts_down(g, counts + 1, g->halo_count_dev + 1, 2, "ghost selection"))
     return -1;
   /* the two sets are the boundary part when they cover it: both sent, disjoint */
   g->boundary_slots = sets_cover ? g->perm : g->bslots;
@@ -277,10 +287,12 @@ extern "C" void cuda_halo_counts(const cuda_sim_t *g, int n[4]) {
 
 /* Migration as records (one axis cut): the leavers' records from their slots perm[0, m), every
  * field with the forces (migrate.c's migrant_t, the CPU path's wire format). */
-__global__ void k_migrant_pack(int m, const int *__restrict__ perm, struct dev_fields p,
-                               migrant_t *out) {
+/* The leavers' records from their slots perm[0, min(*count, cap)) into out (pinned host memory,
+ * mapped: written across the bus, read by the host after the synchronising copy of the count). */
+__global__ void k_migrant_pack(const int *__restrict__ count, int cap, const int *__restrict__ perm,
+                               struct dev_fields p, migrant_t *out) {
   const int k = blockIdx.x * blockDim.x + threadIdx.x;
-  if (k >= m) return;
+  if (k >= cap || k >= *count) return;
   const int i = perm[k];
   migrant_t r;
   r.id = p.id[i];
@@ -310,31 +322,49 @@ __global__ void k_migrant_unpack(int n0, int m, const migrant_t *__restrict__ in
   }
 }
 
-/* The migration's pinned buffer, at least bytes (no copy from it is in flight when it grows: the
- * last upload from it was followed by synchronising copies). */
+/* The migration's pinned buffer (mapped: the pack kernel writes into it), at least bytes (no copy
+ * from it is in flight when it grows: the last upload from it was followed by synchronising
+ * copies). */
 static char *mig_pinned(struct cuda_sim *g, size_t bytes) {
   if (bytes <= g->mig_pinned_bytes) return g->mig_pinned;
   if (g->mig_pinned) cudaFreeHost(g->mig_pinned);
   g->mig_pinned = NULL;
   g->mig_pinned_bytes = 0;
   const size_t want = bytes + bytes / 4 + 4096;
-  if (cuda_check(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocDefault),
+  if (cuda_check(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocMapped),
                  "migration buffer"))
     return NULL;
   g->mig_pinned_bytes = want;
   return g->mig_pinned;
 }
 
-extern "C" int cuda_halo_take_migrants(cuda_sim_t *g, int m, const void **out) {
-  *out = NULL;
-  if (m <= 0) return 0;
-  const size_t bytes = (size_t)m * sizeof(migrant_t);
-  char *host = mig_pinned(g, bytes);
-  if (!host || dev_room(g, &g->mig_dev, &g->mig_dev_cap, bytes)) return -1;
-  k_migrant_pack<<<blocks_for(m), CUDA_BLOCK>>>(m, g->perm, g->a, (migrant_t *)g->mig_dev);
-  if (cuda_check(cudaMemcpy(host, g->mig_dev, bytes, cudaMemcpyDeviceToHost), "migration"))
+/* Pack the first min(count, room) leavers into the mapped buffer. */
+static int pack_leavers(struct cuda_sim *g, int room) {
+  migrant_t *dev = NULL;
+  if (cuda_check(cudaHostGetDevicePointer((void **)&dev, g->mig_pinned, 0), "migration buffer"))
     return -1;
-  *out = host;
+  k_migrant_pack<<<blocks_for(room), CUDA_BLOCK>>>(g->counter, room, g->perm, g->a, dev);
+  return cuda_check(cudaGetLastError(), "migration");
+}
+
+extern "C" int cuda_halo_take_leaving(cuda_sim_t *g, int *m, const void **out) {
+  *m = 0;
+  *out = NULL;
+  g->n_leaving = 0;
+  if (g->n == 0) return 0;
+  /* room for the larger of 4096 records and what the buffer holds already */
+  if (!mig_pinned(g, 4096 * sizeof(migrant_t))) return -1;
+  int room = (int)(g->mig_pinned_bytes / sizeof(migrant_t));
+  if (cuda_leavers_select(g) || pack_leavers(g, room) ||
+      cuda_counts_down(g, m, g->counter, 1, "leaver selection"))
+    return -1;
+  if (*m > room) { /* more leavers than room: grow (nothing in flight), pack them all again */
+    if (!mig_pinned(g, (size_t)*m * sizeof(migrant_t)) || pack_leavers(g, *m) ||
+        cuda_check(cudaStreamSynchronize(0), "migration"))
+      return -1;
+  }
+  g->n_leaving = *m;
+  *out = g->mig_pinned;
   return 0;
 }
 

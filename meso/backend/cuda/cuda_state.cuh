@@ -191,6 +191,9 @@ struct cuda_sim {
    * on the device and in a pinned buffer of their own. */
   char *mig_dev, *mig_pinned;
   size_t mig_dev_cap, mig_pinned_bytes;
+  /* Small pinned host room for the counts a host decision waits for (one synchronising copy each
+   * time; cuda_counts_down). */
+  int *counts_pinned;
   /* GPU idle probes (MDPORE_CUDA_IDLE=1; cuda_util.cu): per section, the events that open and
    * close it, its state (0 none, 1 opened, 2 closed) and the device time between them. */
   int idle_on;
@@ -253,6 +256,11 @@ int cuda_go_compact(struct cuda_sim *g, const char *why);
 /* cuda_halo.cu: the pinned host buffer of the halo transfers, grown to at least bytes (contents
  * not kept; the caller makes sure no copy from or to it is in flight). NULL on failure. */
 char *cuda_pinned(struct cuda_sim *g, size_t bytes);
+/* cuda_halo.cu: k ints (k <= 4) from the device into out, after the work queued on the default
+ * stream (one synchronising copy through pinned memory). */
+int cuda_counts_down(struct cuda_sim *g, int *out, const int *dev, int k, const char *what);
+/* cuda_halo.cu: the leavers' slots into perm[0, *g->counter) (g->n > 0), nothing downloaded. */
+int cuda_leavers_select(struct cuda_sim *g);
 /* cuda_halo.cu: out[k] = rho[perm[k]] for k < n (the boundary densities in the send order), and
  * rho[n0 + k] = in[perm[n0 + k]] for k < ng (arrived densities into the ghost slots through the
  * ghost sort's permutation), queued on stream. */

@@ -327,6 +327,7 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
   if (g->mig_pinned) cudaFreeHost(g->mig_pinned);
+  if (g->counts_pinned) cudaFreeHost(g->counts_pinned);
   if (g->idle_on)
     for (int k = 0; k < 2 * CUDA_IDLE_SECTIONS; k++) cudaEventDestroy(g->idle_ev[k]);
   if (g->packed_made) {
