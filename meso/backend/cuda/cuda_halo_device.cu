@@ -330,7 +330,7 @@ static char *mig_pinned(struct cuda_sim *g, size_t bytes) {
   if (g->mig_pinned) cudaFreeHost(g->mig_pinned);
   g->mig_pinned = NULL;
   g->mig_pinned_bytes = 0;
-  const size_t want = bytes + bytes / 4 + 4096;
+  const size_t want = cuda_tight_room() ? bytes : bytes + bytes / 4 + 4096;
   if (cuda_check(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocMapped),
                  "migration buffer"))
     return NULL;
@@ -352,8 +352,9 @@ extern "C" int cuda_halo_take_leaving(cuda_sim_t *g, int *m, const void **out) {
   *out = NULL;
   g->n_leaving = 0;
   if (g->n == 0) return 0;
-  /* room for the larger of 4096 records and what the buffer holds already */
-  if (!mig_pinned(g, 4096 * sizeof(migrant_t))) return -1;
+  /* room for the larger of 4096 records (1 with MDPORE_CUDA_TIGHT_ROOM=1) and what the buffer
+   * holds already */
+  if (!mig_pinned(g, (cuda_tight_room() ? 1 : 4096) * sizeof(migrant_t))) return -1;
   int room = (int)(g->mig_pinned_bytes / sizeof(migrant_t));
   if (cuda_leavers_select(g) || pack_leavers(g, room) ||
       cuda_counts_down(g, m, g->counter, 1, "leaver selection"))

@@ -259,6 +259,9 @@ char *cuda_pinned(struct cuda_sim *g, size_t bytes);
 /* cuda_halo.cu: k ints (k <= 4) from the device into out, after the work queued on the default
  * stream (one synchronising copy through pinned memory). */
 int cuda_counts_down(struct cuda_sim *g, int *out, const int *dev, int k, const char *what);
+/* cuda_util.cu: MDPORE_CUDA_TIGHT_ROOM=1 (tests): buffers start with almost no spare room, so that
+ * their growth paths run. */
+int cuda_tight_room(void);
 /* cuda_halo.cu: the leavers' slots into perm[0, *g->counter) (g->n > 0), nothing downloaded. */
 int cuda_leavers_select(struct cuda_sim *g);
 /* cuda_halo.cu: out[k] = rho[perm[k]] for k < n (the boundary densities in the send order), and

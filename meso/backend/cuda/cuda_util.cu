@@ -124,13 +124,17 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   return 0;
 }
 
+int cuda_tight_room(void) {
+  const char *tight = getenv("MDPORE_CUDA_TIGHT_ROOM");
+  return tight && !strcmp(tight, "1");
+}
+
 /* Slots for need particles with a margin; several ranks leave room for the ghost layer, which
  * cuda_grow widens when a step needs more (MDPORE_CUDA_TIGHT_ROOM=1: almost no margin, so that the
  * tests exercise the growth). */
 static int room_for(const struct cuda_sim *g, int need) {
   if (!g->prm.multi) return need + need / 16 + 256;
-  const char *tight = getenv("MDPORE_CUDA_TIGHT_ROOM");
-  if (tight && !strcmp(tight, "1")) return need + 64;
+  if (cuda_tight_room()) return need + 64;
   return need + need / 4 + 4096;
 }
 
