@@ -56,6 +56,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "walls"))
 from common import RC_PER_VOXEL, mdval, pm, slit_slip_length, write_raw_image  # noqa: E402
+from voxel_flow import cross_section  # noqa: E402
 
 N_FLUID = 6.2
 
@@ -94,9 +95,7 @@ def tube_image(R, wall_vox, img_dir, length=4.0):
         sys.exit(f"slits_tubes: tube radius {R} rc: 2R is not a whole number of {hv} rc voxels")
     nc = int(round(m)) + 2 * wall_vox
     nx = int(round(length / hv))
-    c = (np.arange(nc) + 0.5) * hv - nc * hv / 2
-    Y, Z = np.meshgrid(c, c, indexing="ij")
-    pore = Y ** 2 + Z ** 2 < R ** 2
+    pore = np.pad(cross_section("tube", R, hv), wall_vox)
     labels = np.broadcast_to(np.where(pore, 0, 1).astype(np.uint8)[None, :, :], (nx, nc, nc))
     path = os.path.join(img_dir, f"tube_R{R:g}_l{nx}_w{wall_vox}.raw")
     write_raw_image(path, labels)

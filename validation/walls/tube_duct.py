@@ -50,7 +50,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from voxel_flow import continuum_ratio  # noqa: E402
+from voxel_flow import continuum_ratio, cross_section, q_duct, q_tube  # noqa: E402
 from common import (BOUNDARIES, RC_PER_VOXEL, bulk_viscosity, image_scene, mdval, mu_reference,  # noqa: E402
                     penetrations, pm, read_snapshots, run_or_reuse, slit_slip_length, write_raw_image)
 
@@ -58,18 +58,6 @@ BIN = 0.25  # rc; divides the voxel edge, so every bin is wholly pore or wholly 
 
 
 # ---- analytic flow rates and profiles -----------------------------------------------------------------
-
-def q_tube(G, mu, R):
-    return math.pi * G * R ** 4 / (8 * mu)
-
-
-def q_duct(G, mu, a, b=None, terms=200):
-    """Q of a rectangular duct a x b (b <= a) under the pressure gradient G (physics.md section 4)."""
-    b = a if b is None else b
-    a, b = max(a, b), min(a, b)
-    s = sum(math.tanh(k * math.pi * a / (2 * b)) / k ** 5 for k in range(1, 2 * terms, 2))
-    return a * b ** 3 * G / (12 * mu) * (1 - 192 * b / (math.pi ** 5 * a) * s)
-
 
 def u_duct(G, mu, a, y, z, terms=100):
     """Velocity in the square duct |y|, |z| < a / 2 (Fourier series in y, exact in z)."""
@@ -133,9 +121,7 @@ def make_geometry(kind, size, wall_vox, length, img_dir, h=RC_PER_VOXEL):
         sys.exit(f"tube_duct: {kind} size {size} rc is not a whole number of {h} rc voxels across")
     nc = int(round(m)) + 2 * wall_vox
     nx = int(round(length / h))
-    c = (np.arange(nc) + 0.5) * h - nc * h / 2  # voxel centres relative to the axis
-    Y, Z = np.meshgrid(c, c, indexing="ij")
-    pore = (Y ** 2 + Z ** 2 < size ** 2) if kind == "tube" else (np.maximum(abs(Y), abs(Z)) < size / 2)
+    pore = np.pad(cross_section(kind, size, h), wall_vox)  # the pore, wall_vox solid voxels around
     labels = np.broadcast_to(np.where(pore, 0, 1).astype(np.uint8)[None, :, :], (nx, nc, nc))
     path = os.path.join(img_dir, f"{kind}_{size:g}_l{nx}_w{wall_vox}" + ("" if h == RC_PER_VOXEL else f"_v{h:g}") + ".raw")
     write_raw_image(path, labels)

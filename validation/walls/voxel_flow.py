@@ -67,32 +67,37 @@ def qhat_voxels(pore, levels=(4, 8, 16)):
     return q[-1] - extra, abs(extra)  # the correction as its own uncertainty
 
 
-def duct_series(a):
-    """Qhat of a square duct of side a (-lap u = 1, no slip): a^4/12 [1 - 192/pi^5 sum tanh/k^5]."""
-    s = sum(math.tanh(k * math.pi / 2) / k ** 5 for k in range(1, 400, 2))
-    return a ** 4 / 12.0 * (1.0 - 192.0 / math.pi ** 5 * s)
+def q_tube(G, mu, R):
+    """Hagen-Poiseuille: Q of a circular tube of radius R under the pressure gradient G."""
+    return math.pi * G * R ** 4 / (8 * mu)
+
+
+def q_duct(G, mu, a, b=None, terms=200):
+    """Q of a rectangular duct a x b (b <= a) under the pressure gradient G (physics.md section 4)."""
+    b = a if b is None else b
+    a, b = max(a, b), min(a, b)
+    s = sum(math.tanh(k * math.pi * a / (2 * b)) / k ** 5 for k in range(1, 2 * terms, 2))
+    return a * b ** 3 * G / (12 * mu) * (1 - 192 * b / (math.pi ** 5 * a) * s)
 
 
 def cross_section(kind, size, h):
-    """tube_duct.make_geometry's pore mask (voxel centres within R, or the a / h square)."""
+    """The pore of a tube of radius `size` (voxel centres within it) or of a square duct of side
+    `size`, at h rc per voxel, as a 2D mask exactly as wide as the pore (tube_duct.py pads it with
+    its solid voxels)."""
     across = 2 * size if kind == "tube" else size
     n = int(round(across / h))
-    c = (np.arange(n) + 0.5) * h - n * h / 2
+    c = (np.arange(n) + 0.5) * h - n * h / 2  # voxel centres relative to the axis
     Y, Z = np.meshgrid(c, c, indexing="ij")
     return (Y ** 2 + Z ** 2 < size ** 2) if kind == "tube" else (np.maximum(abs(Y), abs(Z)) < size / 2)
 
 
 def continuum_ratio(kind, size, h):
-    """(Qhat on the voxels) / (Qhat of tube_duct.py's formula: pi R_A^4 / 8 with the area-equivalent
-    radius, or the duct series), and its extrapolation uncertainty."""
+    """(Qhat on the voxels) / (Qhat of the formula tube_duct.py compares with: q_tube with the
+    area-equivalent radius R_A, or q_duct), and its extrapolation uncertainty."""
     pore = cross_section(kind, size, h)
     qv, err = qhat_voxels(pore)
     qv, err = qv * h ** 4, err * h ** 4
-    if kind == "tube":
-        R_A = math.sqrt(pore.sum() * h * h / math.pi)
-        qa = math.pi * R_A ** 4 / 8.0
-    else:
-        qa = duct_series(size)
+    qa = q_tube(1.0, 1.0, math.sqrt(pore.sum() * h * h / math.pi)) if kind == "tube" else q_duct(1.0, 1.0, size)
     return qv / qa, err / qa
 
 

@@ -130,17 +130,12 @@ extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_h
   const int sets_cover =
       send_lo && send_hi && g->prm.sub_lo[axis] + g->prm.rcut <= g->prm.sub_hi[axis] - g->prm.rcut;
   if (sets_cover) {
-    /* the upper set into bslots, both counts in one synchronising copy, then moved after the
-     * lower set (queued: no wait) */
+    /* the upper set into bslots, both counts in one synchronising copy (then moved after the
+     * lower set, below) */
     if (dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int)) ||
         cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
         cuda_select_slots(g, flag_hi, g->bslots, g->halo_count_dev + 1, n, "ghost selection") ||
         cuda_counts_down(g, counts, g->halo_count_dev, 2, "ghost selection"))
-      return -1;
-    if ((long long)counts[0] + counts[1] <= (long long)g->cap && counts[1] > 0 &&
-        cuda_check(cudaMemcpyAsync(g->perm + counts[0], g->bslots, (size_t)counts[1] * sizeof(int),
-                                   cudaMemcpyDeviceToDevice, 0),
-                   "ghost selection"))
       return -1;
   } else if (cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
              cuda_counts_down(g, counts, g->halo_count_dev, 1, "ghost selection") ||
@@ -149,14 +144,20 @@ extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_h
              select_boundary(g, g->halo_count_dev + 2) ||
              cuda_counts_down(g, counts + 1, g->halo_count_dev + 1, 2, "ghost selection"))
     return -1;
-  /* the two sets are the boundary part when they cover it: both sent, disjoint */
-  g->boundary_slots = sets_cover ? g->perm : g->bslots;
-  g->n_bslots = sets_cover ? counts[0] + counts[1] : counts[2];
   if ((long long)counts[0] + counts[1] > (long long)g->cap) {
     fprintf(stderr, "mdpore: CUDA backend: %d + %d boundary particles exceed the %d slots\n",
             counts[0], counts[1], g->cap);
     return -1;
   }
+  /* the upper set after the lower one in perm (queued: no wait) */
+  if (sets_cover && counts[1] > 0 &&
+      cuda_check(cudaMemcpyAsync(g->perm + counts[0], g->bslots, (size_t)counts[1] * sizeof(int),
+                                 cudaMemcpyDeviceToDevice, 0),
+                 "ghost selection"))
+    return -1;
+  /* the two sets are the boundary part when they cover it: both sent, disjoint */
+  g->boundary_slots = sets_cover ? g->perm : g->bslots;
+  g->n_bslots = sets_cover ? counts[0] + counts[1] : counts[2];
   g->halo_n[0] = n_send[0] = counts[0];
   g->halo_n[1] = n_send[1] = counts[1];
   g->n_boundary = counts[0] + counts[1]; /* perm[0, n_boundary): kept by cuda_grow */
@@ -329,21 +330,23 @@ static char *mig_pinned(struct cuda_sim *g, size_t bytes) {
   if (bytes <= g->mig_pinned_bytes) return g->mig_pinned;
   if (g->mig_pinned) cudaFreeHost(g->mig_pinned);
   g->mig_pinned = NULL;
+  g->mig_pinned_dev = NULL;
   g->mig_pinned_bytes = 0;
   const size_t want = cuda_tight_room() ? bytes : bytes + bytes / 4 + 4096;
   if (cuda_check(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocMapped),
                  "migration buffer"))
     return NULL;
   g->mig_pinned_bytes = want;
+  if (cuda_check(cudaHostGetDevicePointer((void **)&g->mig_pinned_dev, g->mig_pinned, 0),
+                 "migration buffer"))
+    return NULL;
   return g->mig_pinned;
 }
 
 /* Pack the first min(count, room) leavers into the mapped buffer. */
 static int pack_leavers(struct cuda_sim *g, int room) {
-  migrant_t *dev = NULL;
-  if (cuda_check(cudaHostGetDevicePointer((void **)&dev, g->mig_pinned, 0), "migration buffer"))
-    return -1;
-  k_migrant_pack<<<blocks_for(room), CUDA_BLOCK>>>(g->counter, room, g->perm, g->a, dev);
+  k_migrant_pack<<<blocks_for(room), CUDA_BLOCK>>>(g->counter, room, g->perm, g->a,
+                                                   (migrant_t *)g->mig_pinned_dev);
   return cuda_check(cudaGetLastError(), "migration");
 }
 
@@ -352,9 +355,9 @@ extern "C" int cuda_halo_take_leaving(cuda_sim_t *g, int *m, const void **out) {
   *out = NULL;
   g->n_leaving = 0;
   if (g->n == 0) return 0;
-  /* room for the larger of 4096 records (1 with MDPORE_CUDA_TIGHT_ROOM=1) and what the buffer
-   * holds already */
-  if (!mig_pinned(g, (cuda_tight_room() ? 1 : 4096) * sizeof(migrant_t))) return -1;
+  /* first call: room for 4096 records (1 with MDPORE_CUDA_TIGHT_ROOM=1); it grows below */
+  if (!g->mig_pinned && !mig_pinned(g, (cuda_tight_room() ? 1 : 4096) * sizeof(migrant_t)))
+    return -1;
   int room = (int)(g->mig_pinned_bytes / sizeof(migrant_t));
   if (cuda_leavers_select(g) || pack_leavers(g, room) ||
       cuda_counts_down(g, m, g->counter, 1, "leaver selection"))

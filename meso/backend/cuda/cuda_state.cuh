@@ -190,6 +190,7 @@ struct cuda_sim {
   /* Migration as records (cuda_halo_device.cu, one axis cut): the leavers' and arrivals' records
    * on the device and in a pinned buffer of their own. */
   char *mig_dev, *mig_pinned;
+  void *mig_pinned_dev; /* mig_pinned as the device sees it (mapped; the leavers' pack writes it) */
   size_t mig_dev_cap, mig_pinned_bytes;
   /* Small pinned host room for the counts a host decision waits for (one synchronising copy each
    * time; cuda_counts_down). */
