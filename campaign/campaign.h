@@ -78,7 +78,8 @@ typedef struct {
   double q, q_err, G, rel_err;
   double G_err;      /* pressure drive: error of the measured G (NAN for a body force) */
   double dp_balance; /* pressure drive: dp / (inlet force / A_total) (NAN for a body force) */
-  int reached;       /* 1 met the target, 0 not, -1 no target */
+  double core_density, core_density_err; /* the pore core's fluid density (NAN: none) */
+  int reached;                           /* 1 met the target, 0 not, -1 no target */
   long long steps, particles, steady_from;
   double seconds; /* loop seconds of the run */
 } camp_run;
@@ -156,6 +157,14 @@ int camp_write_commands(const char *workdir, const camp_opts *o, const campaign 
 
 /* campaign_summary.c: reads DIR/summary.json into r (have = 1 when it holds a usable flux). */
 int camp_read_summary(camp_run *r, char *why, int whylen);
+
+/* campaign_viscosity.c: the viscosity of the campaign's standard mDPD water (an image's template,
+ * no --viscosity) at the density its runs measured in the pore core: sets c->viscosity and
+ * c->viscosity_source and prints what it did; any other campaign keeps its viscosity. */
+void camp_core_viscosity(campaign *c);
+/* The standard mDPD water's viscosity at number density n (reduced units; a line through the
+ * reverse-Poiseuille ladder of validation/results/engine/viscosity_density, valid 5.9-6.4). */
+double camp_water_viscosity(double n);
 
 /* campaign_exec.c: runs argv (execvp) in dir (NULL: here) with stdout + stderr to log (NULL: ours),
  * in the environment this process started with. Returns the exit status or -1. */

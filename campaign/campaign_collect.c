@@ -342,6 +342,10 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
 }
 
 int camp_collect(const camp_opts *o, campaign *c, const char *workdir) {
+  char why[CAMP_PATH + 256];
+  for (int i = 0; i < c->n_runs; i++)
+    if (!c->runs[i].have) camp_read_summary(&c->runs[i], why, sizeof why);
+  camp_core_viscosity(c);
   camp_units u;
   camp_units_of(c, &u);
   printf("units: rc = %.4g m (%s)\n", u.rc_m, c->length_source);

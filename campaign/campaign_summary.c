@@ -49,6 +49,9 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   int b = 0;
   r->reached =
       (!reached || yt_is_null(reached)) ? -1 : (yt_bool(&t, reached, "reached", &b) ? -1 : b);
+  yaml_node_t *core = yt_get(&t, root, "pore_core_density"); /* geometry runs with a pore core */
+  r->core_density = core && core->type == YAML_MAPPING_NODE ? num(&t, core, "mean") : NAN;
+  r->core_density_err = core && core->type == YAML_MAPPING_NODE ? num(&t, core, "err") : NAN;
   yaml_node_t *timing = yt_get(&t, root, "timing");
   double steps = num(&t, timing, "steps"), parts = num(&t, timing, "particles");
   r->seconds = num(&t, timing, "loop_seconds");

@@ -362,8 +362,9 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
   if (o->input_is_scene) {
     if (!o->viscosity_given)
       fprintf(stderr,
-              "mdpore permeability: note: k = mu q / G uses mu = %g, the standard mDPD "
-              "water's; give --viscosity for the fluid of %s\n",
+              "mdpore permeability: note: k = mu q / G uses the standard mDPD water's mu (%g "
+              "at n = 6.07; at the pore core's density where the runs measure one); give "
+              "--viscosity for the fluid of %s\n",
               o->viscosity, o->input);
     mdp_image_t img;
     int have_img, rc = 0;

@@ -2,32 +2,36 @@
 #include "analysis/penetration.h"
 #include "scene/scene_geometry.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <mpi.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Depth of every solid voxel: breadth-first layers (26-connected, periodic along periodic axes)
- * from the pore voxels, times the voxel edge. */
-static int depth_map(penetration_map_t *m, const mdp_image_t *img) {
+/* Breadth-first layers (26-connected, periodic along periodic axes) from the voxels whose label
+ * class is `from_pore` into the others: each reached voxel gets sign x (layer x voxel edge). */
+static int layer_distance(penetration_map_t *m, const mdp_image_t *img, int from_pore, float sign) {
   const size_t n = mdp_image_count(img);
   size_t *queue = n > SIZE_MAX / sizeof(size_t) ? NULL : malloc((n ? n : 1) * sizeof(size_t));
   if (!queue) return -1;
-  size_t head = 0, tail = 0;
-  for (size_t i = 0; i < n; i++) {
-    if (mdp_image_is_pore(img, i)) {
-      m->depth[i] = 0.0f;
-      queue[tail++] = i;
-    } else {
-      m->depth[i] = -1.0f;
-    }
+  unsigned char *seen = calloc(n ? n : 1, 1);
+  if (!seen) {
+    free(queue);
+    return -1;
   }
+  size_t head = 0, tail = 0;
+  for (size_t i = 0; i < n; i++)
+    if ((mdp_image_is_pore(img, i) != 0) == (from_pore != 0)) {
+      seen[i] = 1;
+      queue[tail++] = i;
+    }
   const int *N = m->n;
   while (head < tail) {
     const size_t v = queue[head++];
     const int c[3] = {(int)(v % (size_t)N[0]), (int)((v / (size_t)N[0]) % (size_t)N[1]),
                       (int)(v / ((size_t)N[0] * (size_t)N[1]))};
+    const float dv = seen[v] == 1 ? 0.0f : m->depth[v];
     for (int dz = -1; dz <= 1; dz++)
       for (int dy = -1; dy <= 1; dy++)
         for (int dx = -1; dx <= 1; dx++) {
@@ -42,12 +46,25 @@ static int depth_map(penetration_map_t *m, const mdp_image_t *img) {
           }
           if (!ok) continue;
           const size_t w = (size_t)q[0] + (size_t)N[0] * ((size_t)q[1] + (size_t)N[1] * q[2]);
-          if (m->depth[w] >= 0.0f) continue;
-          m->depth[w] = m->depth[v] + (float)m->h;
+          if (seen[w]) continue;
+          seen[w] = 2;
+          m->depth[w] = dv + sign * (float)m->h;
           queue[tail++] = w;
         }
   }
+  free(seen);
   free(queue);
+  return 0;
+}
+
+/* The signed depth map: solid voxels by their layer distance from the pore (> 0), pore voxels by
+ * minus their layer distance from the solid (-FLT_MAX where no solid exists). */
+static int depth_map(penetration_map_t *m, const mdp_image_t *img) {
+  const size_t n = mdp_image_count(img);
+  for (size_t i = 0; i < n; i++) m->depth[i] = mdp_image_is_pore(img, i) ? -FLT_MAX : 0.0f;
+  if (layer_distance(m, img, 1, 1.0f) || layer_distance(m, img, 0, -1.0f)) return -1;
+  for (size_t i = 0; i < n; i++)
+    if (m->depth[i] <= (float)-m->core_rc) m->core_voxels++;
   return 0;
 }
 
@@ -61,6 +78,7 @@ int penetration_map_create(penetration_map_t *m, const scene_t *s, char *err, si
   m->n[1] = img.ny;
   m->n[2] = img.nz;
   m->h = s->geometry.rc_per_voxel;
+  m->core_rc = MESO_PORE_CORE_RC;
   scene_geometry_grid(s, &img, &m->grid);
   const size_t n = mdp_image_count(&img);
   m->depth = malloc((n ? n : 1) * sizeof(float));
@@ -93,13 +111,15 @@ void penetration_count(const penetration_map_t *m, sim_t *sim, penetration_t *ou
   } deepest = {-1.0, 0};
   MPI_Comm comm = sim_comm(sim);
   MPI_Comm_rank(comm, &deepest.rank);
-  long count = 0;
+  long count = 0, core = 0;
   int best = -1, best_voxel[3] = {0, 0, 0};
+  const float core_depth = (float)-m->core_rc;
   for (int i = 0; i < p->n_local; i++) {
     if (s->species[p->species[i]].frozen) continue;
     const double x[3] = {p->x[0][i], p->x[1][i], p->x[2][i]};
     const long idx = voxel_grid_index(&m->grid, x);
     const float d = idx >= 0 ? m->depth[idx] : 0.0f;
+    if (idx >= 0 && d <= core_depth) core++;
     if (d <= 0.0f) continue;
     count++;
     if (d > deepest.depth) {
@@ -111,6 +131,7 @@ void penetration_count(const penetration_map_t *m, sim_t *sim, penetration_t *ou
     }
   }
   MPI_Allreduce(&count, &out->count, 1, MPI_LONG, MPI_SUM, comm);
+  MPI_Allreduce(&core, &out->core_count, 1, MPI_LONG, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &deepest, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
   if (out->count == 0) return;
   out->max_depth = deepest.depth;

@@ -1,7 +1,9 @@
 /* Penetration count (issue 10, item 3): mobile particles inside the solid voxels of the scene's
  * geometry image, and how deep. Whatever boundary a scene uses, this number must stay 0; the run
  * loop puts it in the thermo log and the summary, and with geometry.strict stops the run naming the
- * particle, the voxel and the step. */
+ * particle, the voxel and the step. The same pass counts the mobile particles of the pore core (pore
+ * voxels at least core_rc from the solid): the density the pore fluid has away from the walls,
+ * whose viscosity a permeability campaign uses (docs/permeability.md). */
 #ifndef MESO_ANALYSIS_PENETRATION_H
 #define MESO_ANALYSIS_PENETRATION_H
 
@@ -15,9 +17,12 @@ typedef struct {
   int on;
   voxel_grid_t grid; /* the image's voxels over the box */
   int n[3];
-  double h;     /* voxel edge (rc) */
-  float *depth; /* [n0 n1 n2]: 0 for pore voxels; for a solid voxel, the distance (rc) from its
-                    centre to the nearest pore voxel's centre (26-connected layers x h) */
+  double h;       /* voxel edge (rc) */
+  float *depth;   /* [n0 n1 n2]: for a solid voxel, the distance (rc) from its centre to the nearest
+                    pore voxel's centre (26-connected layers x h, > 0); for a pore voxel, minus the
+                    distance to the nearest solid voxel's centre (<= 0; -FLT_MAX with no solid) */
+  double core_rc; /* pore core: pore voxels with depth <= -core_rc (MESO_PORE_CORE_RC) */
+  long core_voxels; /* their number (0: the pores have no core) */
   const scene_t *scene;
 } penetration_map_t;
 
@@ -27,7 +32,15 @@ typedef struct {
   int64_t id;       /* the deepest one (-1 when none) */
   double x[3];
   int voxel[3];
+  long core_count; /* mobile particles in pore-core voxels (all ranks) */
 } penetration_t;
+
+/* The pore core's inner edge: 1.5 rc from the solid, past the layered fluid next to a wall (the
+ * contact layer is 8% denser than the core at wall density 4, docs/permeability.md). */
+#define MESO_PORE_CORE_RC 1.5
+/* A flux run's pore-core samples between thermo rows (steps); on the GPU each copies the particles
+ * to the host (~0.5% of the step time at 10M particles). */
+#define MESO_PORE_CORE_EVERY 500
 
 /* The map of the scene's geometry image (off when the scene has none). 0, or -1 with the reason. */
 int penetration_map_create(penetration_map_t *m, const scene_t *scene, char *err, size_t errlen);

@@ -57,16 +57,21 @@ static int write_outputs(sim_t *sim, long step, int fresh_start, int last, snaps
   return rc;
 }
 
-/* The penetration count of a geometry scene at a thermo sample (collective): into the thermo row
- * and the summary's tally; with geometry.strict a penetration stops the run, naming the particle,
- * the voxel and the step. Returns 1 to stop. */
-static int penetration_sample(const penetration_map_t *m, sim_t *sim, thermo_t *th, run_stats_t *st,
-                              const scene_t *s, int rank) {
+/* The penetration count of a geometry scene at a thermo sample, or at a pore-core sample of a flux
+ * run (th NULL) (collective): into the thermo row and the summary's tally, the pore core's density
+ * into its series from step core_start on; with geometry.strict a penetration stops the run, naming
+ * the particle, the voxel and the step. Returns 1 to stop. */
+static int penetration_sample(const penetration_map_t *m, sim_t *sim, thermo_t *th, long step,
+                              run_stats_t *st, const scene_t *s, int rank) {
   if (!m->on) return 0;
   penetration_t pen;
   penetration_count(m, sim, &pen);
-  th->penetrations = pen.count;
-  th->penetration_depth = pen.max_depth;
+  if (th) {
+    th->penetrations = pen.count;
+    th->penetration_depth = pen.max_depth;
+  }
+  if (m->core_voxels > 0 && step >= st->core_start)
+    series_push(&st->core_density, (double)pen.core_count / st->core_volume);
   st->penetration_samples++;
   if (pen.count == 0) return 0;
   st->penetration_bad_samples++;
@@ -76,7 +81,7 @@ static int penetration_sample(const penetration_map_t *m, sim_t *sim, thermo_t *
     fprintf(stderr,
             "mdpore: step %ld: %ld mobile particle(s) inside solid voxels of %s; deepest: particle "
             "%lld at (%g, %g, %g), voxel (%d, %d, %d), %.3g rc deep. %s\n",
-            th->step, pen.count, s->geometry.image, (long long)pen.id, pen.x[0], pen.x[1], pen.x[2],
+            step, pen.count, s->geometry.image, (long long)pen.id, pen.x[0], pen.x[1], pen.x[2],
             pen.voxel[0], pen.voxel[1], pen.voxel[2], pen.max_depth,
             s->geometry.strict ? "Stopping (geometry.strict). Try a boundary effect (bounce_back), "
                                  "a smaller dt, or a thicker wall."
@@ -145,6 +150,12 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     return 1;
   }
   st.penetration_on = pmap.on;
+  st.core_voxels = pmap.core_voxels;
+  st.core_rc = pmap.core_rc;
+  st.core_volume = (double)pmap.core_voxels * pmap.h * pmap.h * pmap.h;
+  /* The pore core's density settles within a few hundred steps; flux runs may stop early, before
+   * the thermo window, so its samples start after min(1000 steps, half the run). */
+  st.core_start = first + (last - first < 2000 ? (last - first) / 2 : 1000);
   temperature_guard_t tguard;
   density_guard_t dguard;
   err = temperature_guard_init(&tguard, sim) | density_guard_init(&dguard, sim, &pmap);
@@ -171,7 +182,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
 
   thermo_t th;
   sim_thermo(sim, &th);
-  if (!err) err = penetration_sample(&pmap, sim, &th, &st, s, rank);
+  if (!err) err = penetration_sample(&pmap, sim, &th, first, &st, s, rank);
   if (!err) err = density_guard_check(&dguard, sim, first, gmsg, sizeof gmsg); /* reference */
   st.n_total = th.n_total;
   if (!restart && !err) {
@@ -216,7 +227,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
      * the latest sample rather than asking for one). */
     if (log_row || stat) {
       sim_thermo(sim, &th);
-      if (penetration_sample(&pmap, sim, &th, &st, s, rank)) {
+      if (penetration_sample(&pmap, sim, &th, step, &st, s, rank)) {
         if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
         err = 1;
         break;
@@ -228,6 +239,14 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       }
       if (log_row) thermo_log_row(&log, &th);
       if (stat && rank == 0) run_stats_add(&st, &th);
+    }
+    /* A flux run samples the pore core's density (and the penetrations) every
+     * MESO_PORE_CORE_EVERY steps besides its thermo rows: the campaign's viscosity needs it. */
+    if (rf.on && pmap.core_voxels > 0 && step % MESO_PORE_CORE_EVERY == 0 && !(log_row || stat) &&
+        penetration_sample(&pmap, sim, NULL, step, &st, s, rank)) {
+      if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
+      err = 1;
+      break;
     }
     if (density_guard_check(&dguard, sim, step, gmsg, sizeof gmsg)) {
       if (rank == 0) fprintf(stderr, "%s\nmdpore: run stopped at step %ld\n", gmsg, step);

@@ -44,4 +44,5 @@ void run_stats_add(run_stats_t *st, const thermo_t *t) {
 
 void run_stats_free(run_stats_t *st) {
   for (int k = 0; k < STAT_COUNT; k++) series_free(&st->s[k]);
+  series_free(&st->core_density);
 }

@@ -37,6 +37,11 @@ typedef struct {
   int penetration_on;
   long penetration_samples, penetration_bad_samples, penetration_max;
   double penetration_depth;
+  /* The pore core's density (analysis/penetration.h): mobile particles per rc^3 in the pore voxels
+   * at least core_rc from the solid, one value per sample of the window; core_voxels 0: none. */
+  series_t core_density;
+  long core_voxels, core_start;
+  double core_rc, core_volume;
   /* Load balance (engine/sim_balance.h): max / mean over the ranks of the busy time in the step
    * loop since the last rebalancing and over the whole run (0: not measured, a GPU backend) and of
    * the particle weight;

@@ -19,7 +19,10 @@ Steps:
  4. the campaign of 5 gradients (a superset) in the same folder: the finished run is reused (summary
     untouched, "reused" on stderr), the killed one and the new ones run; flow table valid (5 rows,
     metadata), `mdpore fit` chose a law and fitted Darcy, k within the bounds; permeability.json;
- 5. --collect on the folder gives the same k.
+ 5. --collect on the folder gives the same k;
+ 6. every run measured the pore core's density (pore voxels >= 1.5 rc from the solid: the slit's 4
+    middle voxel layers, 4 x 12 x 8 = 384 voxels) near the fill's 6.2, and k used the standard
+    water's viscosity at the runs' mean core density (campaign/campaign_viscosity.c).
 """
 import json
 import os
@@ -35,6 +38,9 @@ NP = os.environ.get("MDPORE_TEST_NP", "2")
 STEPS = "8000"
 # campaign/campaign.h: the generated template's wall density and the default mu (docs/permeability.md)
 DEFAULT_WALL_DENSITY, DEFAULT_VISCOSITY = 4.0, 5.41
+# campaign/campaign_viscosity.c: the standard water's mu against density (validation/results/engine/
+# viscosity_density.md)
+WATER_MU_AT_6_2, WATER_MU_SLOPE = 5.636, 1.572
 failures = []
 
 
@@ -227,6 +233,24 @@ def main():
     res2 = json.load(open(os.path.join(wd, "permeability.json"))) if p.returncode == 0 else {}
     check(p.returncode == 0 and abs(res2["axes"]["x"]["k_rc2"] - k) <= 1e-12 * abs(k),
           "--collect reproduces k from the folder")
+
+    # 6. the pore core's density, and the viscosity at it
+    man = open(os.path.join(wd, "campaign.txt")).read().splitlines()
+    cores = []
+    for l in man:
+        if l.startswith("run: "):
+            sp = os.path.join(l.split()[3], "summary.json")
+            cores.append(json.load(open(sp)).get("pore_core_density") if os.path.exists(sp) else None)
+    check(len(cores) == 5 and all(c and c["voxels"] == 384 and c["samples"] > 0 for c in cores),
+          f"every run's summary has the pore core's density over 384 voxels: {[c and c['voxels'] for c in cores]}")
+    means = [c["mean"] for c in cores if c]
+    print("pore core densities: " + ", ".join(f"{m:.4f}" for m in means))
+    check(means and all(abs(m / 6.2 - 1) < 0.04 for m in means),
+          "pore core densities within 4% of the fill's 6.2 (the contact layers hold the excess)")
+    if means:
+        mu_exp = WATER_MU_AT_6_2 + WATER_MU_SLOPE * (sum(means) / len(means) - 6.2)
+        check(abs(res.get("viscosity", 0) - mu_exp) < 1e-3 and "pore core" in res.get("viscosity_source", ""),
+              f"k used mu = {res.get('viscosity')} at the mean core density (expected {mu_exp:.4f})")
 
     if failures:
         print(f"{len(failures)} check(s) failed:\n  " + "\n  ".join(failures))
