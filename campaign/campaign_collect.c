@@ -30,6 +30,7 @@ typedef struct {
   char par_unit[4][96];
   double chi2_dof; /* of the chosen law */
   int rows;
+  camp_linear linear; /* the Darcy range (campaign_linear.c) */
 } axis_result;
 
 static int by_g(const void *a, const void *b) {
@@ -269,6 +270,17 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
     printf("\n");
     if (missing) printf("  note: %d run(s) of this axis left out (see stderr)\n", missing);
   }
+  if (!rc && !camp_darcy_range(t.G, t.q, t.sigma, t.n, c->viscosity, &ar->linear)) {
+    const camp_linear *L = &ar->linear;
+    printf("  Darcy range: the %d lowest of %d gradients (G <= %.4g) %s (chi2/dof %.3g): k = %.5g "
+           "+- %.2g rc^2 = %.4g +- %.2g nD%s\n",
+           L->rows, t.n, L->G_max,
+           L->accepted ? "fit a Darcy law" : "do not fit a Darcy law either", L->chi2_dof, L->k,
+           L->k_err, L->k * u->k_m2 * NANODARCY_PER_M2, L->k_err * u->k_m2 * NANODARCY_PER_M2,
+           L->rows < t.n ? "; the gradients above leave the linear law (the fit over all of them "
+                           "is pulled by them)"
+                         : "");
+  }
   flow_table_free(&t);
   return rc;
 }
@@ -324,6 +336,20 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
     json_number(&j, "k_m2", (c->percolates[axes[a]] ? ar[a].k : 0.0) * u->k_m2);
     json_number(&j, "k_nD", (c->percolates[axes[a]] ? ar[a].k : 0.0) * u->k_m2 * NANODARCY_PER_M2);
     json_number(&j, "k_nD_err", ar[a].k_err * u->k_m2 * NANODARCY_PER_M2);
+    if (ar[a].linear.rows >= 2) {
+      json_object(&j, "darcy_range");
+      json_int(&j, "rows", ar[a].linear.rows);
+      json_bool(&j, "accepted", ar[a].linear.accepted);
+      json_number(&j, "G_max", ar[a].linear.G_max);
+      json_number(&j, "chi2_dof", ar[a].linear.chi2_dof);
+      json_number(&j, "k_rc2", ar[a].linear.k);
+      json_number(&j, "k_rc2_err", ar[a].linear.k_err);
+      json_number(&j, "k_nD", ar[a].linear.k * u->k_m2 * NANODARCY_PER_M2);
+      json_string(&j, "rule",
+                  "the most lowest-G rows (>= 2) that Darcy through the origin fits with chi2/dof "
+                  "<= 1 + 3 sqrt(2 / dof)");
+      json_object_end(&j);
+    }
     json_string(&j, "chosen", ar[a].chosen[0] ? ar[a].chosen : "none");
     json_object(&j, "parameters");
     for (int p = 0; p < ar[a].n_par; p++) {

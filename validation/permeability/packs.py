@@ -81,12 +81,15 @@ def report(a):
         ax = pj["axes"]["x"]
         viscosity_note = f"mu = {pj['viscosity']:g}: {pj['viscosity_source']}; wall density {pj.get('wall_density', 8)}"
         k, err = ax["k_rc2"], ax["k_rc2_err"]
+        dr = ax.get("darcy_range") or {}
+        if dr.get("accepted"):  # the zero-forcing k: the rows above the linear range left out
+            k, err = dr["k_rc2"], dr["k_rc2_err"]
         rows.append(dict(pack=pack, porosity=foam["porosity"], foam_drive=foam["drive"], k_mdpd=k, k_mdpd_err=err,
                          k_foam_refine1=k_r[0], k_foam_refine2=k_r[1], k_foam=k_foam,
                          ratio=k / k_foam, ratio_err=err / k_foam,
-                         law=ax.get("chosen")))
+                         law=ax.get("chosen"), darcy_rows=dr.get("rows") if dr.get("accepted") else ax.get("rows")))
     os.makedirs(a.outdir, exist_ok=True)
-    with open(os.path.join(a.outdir, "packs.csv"), "w", newline="") as f:
+    with open(os.path.join(a.outdir, f"packs{a.tag}.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
@@ -99,12 +102,14 @@ def report(a):
              "k foam: `mdpore foam --refine 1|2` on the same voxels, extrapolated (4 k2 - k1) / 3 (second order); "
              "where only the voxel mesh ran (refine 1, `--foam-refine 1`), that value, which is high by the "
              "scheme's error in throats a few voxels wide (the ring medium's 4-voxel gaps: 18%).", "",
-             "| pack | porosity | k mDPD (rc^2) | k foam voxel mesh / refined / extrapolated (rc^2, drive) | mDPD / foam | fitted law |",
-             "|---|---|---|---|---|---|"]
+             "k mDPD: the Darcy range's k where the campaign found one (the rows of the lowest gradients that a Darcy "
+             "law fits; docs/permeability.md), else the Darcy fit over all rows.", "",
+             "| pack | porosity | k mDPD (rc^2) | rows in k | k foam voxel mesh / refined / extrapolated (rc^2, drive) | mDPD / foam | fitted law |",
+             "|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['pack']} | {r['porosity']:.3f} | {r['k_mdpd']:.4g} +- {r['k_mdpd_err']:.2g} | "
+        lines.append(f"| {r['pack']} | {r['porosity']:.3f} | {r['k_mdpd']:.4g} +- {r['k_mdpd_err']:.2g} | {r['darcy_rows']} | "
                      f"{r['k_foam_refine1']:.4g} / {r['k_foam_refine2']:.4g} / {r['k_foam']:.4g} ({r['foam_drive']}) | {r['ratio']:.3f} +- {r['ratio_err']:.3f} | {r['law']} |")
-    open(os.path.join(a.outdir, "packs.md"), "w").write("\n".join(lines) + "\n")
+    open(os.path.join(a.outdir, f"packs{a.tag}.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:
         import matplotlib
@@ -118,7 +123,7 @@ def report(a):
         ax.set_ylabel("k mDPD / k foam")
         ax.legend()
         fig.tight_layout()
-        fig.savefig(os.path.join(a.outdir, "packs.png"), dpi=120)
+        fig.savefig(os.path.join(a.outdir, f"packs{a.tag}.png"), dpi=120)
     except ImportError:
         pass
     return 0
@@ -136,6 +141,7 @@ def main():
     ap.add_argument("--gradients", help="body forces (default: the campaign's auto ladder), or per pack: "
                                         "'bcc=0.05,0.1;fcc=0.15,0.3'")
     ap.add_argument("--target-error", type=float, default=0.02)
+    ap.add_argument("--tag", default="", help="suffix of the result files (packs{TAG}.md)")
     ap.add_argument("--outdir", default=os.path.join(sa.ROOT, "validation", "permeability", "results"))
     a = ap.parse_args()
     return {"emit": emit, "run": run, "report": report}[a.stage](a)

@@ -110,6 +110,9 @@ def report(a):
         pj = json.load(open(os.path.join(em, "permeability.json")))
         ax = pj["axes"]["x"]
         k, err = ax["k_rc2"], ax["k_rc2_err"]  # the Darcy k of the campaign (its report's k)
+        dr = ax.get("darcy_range") or {}
+        if dr.get("accepted"):  # the zero-forcing k: the rows above the linear range left out
+            k, err = dr["k_rc2"], dr["k_rc2_err"]
         mu = pj["viscosity"]
         setup = (f"mu = {mu:g} ({pj.get('viscosity_source', '')}), wall density "
                  f"{pj.get('wall_density', 8):g}")
