@@ -31,7 +31,10 @@ MDPORE = os.environ.get("MDPORE") or os.path.join(ROOT, "build", "bin", "mdpore"
 RC_PER_VOXEL = 0.5
 # Zick & Homsy (1982), simple-cubic spheres: k / L^2 against solid fraction c (validation/foam)
 ZICK_HOMSY = {0.125: 0.03985, 0.343: 7.933e-3}
-CASES = [(40, 0.125), (40, 0.343), (48, 0.125)]  # (voxels per cell edge, c)
+# (voxels per cell edge, c, rc per voxel); the last, a 20 rc cell at 0.25 rc voxels (a smoother
+# staircase on the same spheres), only when named with --case
+CASES = [(40, 0.125, 0.5), (40, 0.343, 0.5), (48, 0.125, 0.5), (80, 0.125, 0.25)]
+DEFAULT_CASES = 3
 
 
 def name(L, c):
@@ -48,7 +51,7 @@ def sh(*args, cwd=None):
 def emit(a):
     os.makedirs(a.work, exist_ok=True)
     cmds = []
-    for L, c in cases(a):
+    for L, c, rcv in cases(a):
         d = os.path.join(a.work, name(L, c))
         os.makedirs(d, exist_ok=True)
         img = os.path.join(d, "image.h5")
@@ -63,7 +66,7 @@ def emit(a):
         if not os.path.exists(os.path.join(em, "commands.txt")):
             extra = ["--gradients", a.gradients] if a.gradients else []
             extra += ["--seed", str(a.seed)] if a.seed is not None else []
-            sh("permeability", img, "--axis", "x", "--emit-scenes", em, "--rc-per-voxel", str(RC_PER_VOXEL),
+            sh("permeability", img, "--axis", "x", "--emit-scenes", em, "--rc-per-voxel", str(rcv),
                "--max-steps", str(a.max_steps), "--target-error", str(a.target_error), "--np", str(a.np), *extra)
         cmds += open(os.path.join(em, "commands.txt")).read().splitlines()
     with open(os.path.join(a.work, "commands.txt"), "w") as f:
@@ -72,9 +75,10 @@ def emit(a):
 
 
 def cases(a):
-    chosen = [(L, c) for L, c in CASES if not a.case or name(L, c) in a.case]
+    chosen = [(L, c, r) for i, (L, c, r) in enumerate(CASES)
+              if (name(L, c) in a.case if a.case else i < DEFAULT_CASES)]
     if not chosen:
-        sys.exit(f"sphere_array.py: --case: expected one of {', '.join(name(L, c) for L, c in CASES)}")
+        sys.exit(f"sphere_array.py: --case: expected one of {', '.join(name(L, c) for L, c, _ in CASES)}")
     return chosen
 
 
@@ -99,11 +103,11 @@ def run(a):
 
 def report(a):
     rows, setup = [], ""
-    for L, c in cases(a):
+    for L, c, rcv in cases(a):
         d = os.path.join(a.work, name(L, c))
         foam = json.load(open(os.path.join(d, "foam.json")))
-        k_foam = foam["permeability_voxel2"] * RC_PER_VOXEL ** 2
-        k_zh = ZICK_HOMSY[c] * (L * RC_PER_VOXEL) ** 2
+        k_foam = foam["permeability_voxel2"] * rcv ** 2
+        k_zh = ZICK_HOMSY[c] * (L * rcv) ** 2
         em = os.path.join(d, "emit")
         if os.path.isdir(os.path.join(em, "runs")):  # else the campaign's report as it came back from a GPU machine
             subprocess.run([MDPORE, "permeability", "--collect", em], capture_output=True, text=True)
@@ -116,13 +120,13 @@ def report(a):
         mu = pj["viscosity"]
         setup = (f"mu = {mu:g} ({pj.get('viscosity_source', '')}), wall density "
                  f"{pj.get('wall_density', 8):g}")
-        rows.append(dict(case=name(L, c), cell_rc=L * RC_PER_VOXEL, c=c, porosity=foam["porosity"],
+        rows.append(dict(case=name(L, c), cell_rc=L * rcv, rc_per_voxel=rcv, c=c, porosity=foam["porosity"],
                          k_mdpd=k, k_mdpd_err=err, k_foam=k_foam, k_zh=k_zh,
                          mdpd_over_foam=k / k_foam, mdpd_over_foam_err=err / k_foam,
                          mdpd_over_zh=k / k_zh, foam_over_zh=k_foam / k_zh,
                          rows_table=ax.get("rows"), law=ax.get("chosen"),
                          viscosity=mu,
-                         sphere_radius_rc=L * RC_PER_VOXEL * (3 * c / (4 * 3.141592653589793)) ** (1 / 3)))
+                         sphere_radius_rc=L * rcv * (3 * c / (4 * 3.141592653589793)) ** (1 / 3)))
     out = a.outdir
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, f"sphere_array{a.tag}.csv"), "w", newline="") as f:
@@ -135,11 +139,11 @@ def report(a):
              + "".join(f" --case {x}" for x in (a.case or [])) + (f" --gradients {a.gradients}" if a.gradients else "")
              + (f" --seed {a.seed}" if a.seed is not None else "")
              + f" --max-steps {a.max_steps} --target-error {a.target_error}`. k in rc^2 (superficial velocity "
-             f"q = Q / A_total), {RC_PER_VOXEL} rc per voxel, body force along x, bounce_back walls, {setup}.", "",
-             "| case | cell (rc) | c | mu | k mDPD | k foam | k ZH | mDPD/foam | mDPD/ZH | foam/ZH |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             f"q = Q / A_total), rc per voxel as listed, body force along x, bounce_back walls, {setup}.", "",
+             "| case | cell (rc) | rc/voxel | c | mu | k mDPD | k foam | k ZH | mDPD/foam | mDPD/ZH | foam/ZH |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['case']} | {r['cell_rc']:g} | {r['c']:g} | {r['viscosity']:.4g} | {r['k_mdpd']:.4g} +- {r['k_mdpd_err']:.2g} | "
+        lines.append(f"| {r['case']} | {r['cell_rc']:g} | {r['rc_per_voxel']:g} | {r['c']:g} | {r['viscosity']:.4g} | {r['k_mdpd']:.4g} +- {r['k_mdpd_err']:.2g} | "
                      f"{r['k_foam']:.4g} | {r['k_zh']:.4g} | {r['mdpd_over_foam']:.3f} +- {r['mdpd_over_foam_err']:.3f} | "
                      f"{r['mdpd_over_zh']:.3f} | {r['foam_over_zh']:.3f} |")
     lines += ["", "Check (the issue's 5%): |mDPD/foam - 1| <= 0.05 + 2 sigma: " +
