@@ -38,9 +38,10 @@ typedef struct {
 /* The pore core's inner edge: 1.5 rc from the solid, past the layered fluid next to a wall (the
  * contact layer is 8% denser than the core at wall density 4, docs/permeability.md). */
 #define MESO_PORE_CORE_RC 1.5
-/* A flux run's pore-core samples between thermo rows (steps); on the GPU each copies the particles
- * to the host (~0.5% of the step time at 10M particles). */
-#define MESO_PORE_CORE_EVERY 500
+/* The run loop's census of a geometry scene (penetrations, the pore core's density): at thermo rows
+ * and every this many steps. On the GPU each copies the particles to the host (~25 ms at 10M
+ * particles over PCIe, so ~0.5% of the step time at this interval). */
+#define MESO_GEOMETRY_SAMPLE_EVERY 500
 
 /* The map of the scene's geometry image (off when the scene has none). 0, or -1 with the reason. */
 int penetration_map_create(penetration_map_t *m, const scene_t *scene, char *err, size_t errlen);

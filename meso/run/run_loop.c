@@ -225,9 +225,13 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     }
     /* sim_thermo is collective: only on steps every rank knows (the progress line on rank 0 shows
      * the latest sample rather than asking for one). */
+    /* The geometry's census (penetrations, the pore core's density) at thermo rows and every
+     * MESO_GEOMETRY_SAMPLE_EVERY steps, not at every statistics sample: on the GPU each census
+     * copies the particles to the host. */
+    const int census = pmap.on && (log_row || step % MESO_GEOMETRY_SAMPLE_EVERY == 0);
     if (log_row || stat) {
       sim_thermo(sim, &th);
-      if (penetration_sample(&pmap, sim, &th, step, &st, s, rank)) {
+      if (census && penetration_sample(&pmap, sim, &th, step, &st, s, rank)) {
         if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
         err = 1;
         break;
@@ -240,10 +244,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       if (log_row) thermo_log_row(&log, &th);
       if (stat && rank == 0) run_stats_add(&st, &th);
     }
-    /* A flux run samples the pore core's density (and the penetrations) every
-     * MESO_PORE_CORE_EVERY steps besides its thermo rows: the campaign's viscosity needs it. */
-    if (rf.on && pmap.core_voxels > 0 && step % MESO_PORE_CORE_EVERY == 0 && !(log_row || stat) &&
-        penetration_sample(&pmap, sim, NULL, step, &st, s, rank)) {
+    if (census && !(log_row || stat) && penetration_sample(&pmap, sim, NULL, step, &st, s, rank)) {
       if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
       err = 1;
       break;
