@@ -166,10 +166,11 @@ void camp_core_viscosity(campaign *c);
  * reverse-Poiseuille ladder of validation/results/engine/viscosity_density, valid 5.9-6.4). */
 double camp_water_viscosity(double n);
 
-/* campaign_linear.c: the Darcy range of an axis: the largest number (>= 2) of the lowest-G rows
- * (G ascending) that a Darcy law through the origin fits, chi2/dof <= 1 + 3 sqrt(2 / dof), and its
- * k = mu slope with the error (scaled by sqrt(chi2/dof) when above 1). accepted 0: not even the
- * two lowest rows fit (their k is reported, flagged). 0, or -1 with fewer than 2 rows. */
+/* campaign_linear.c: the Darcy range of an axis: the largest number (>= 3, or 2 with 2 rows) of the
+ * lowest-G rows (G ascending) that a Darcy law through the origin fits, chi2/dof <= 1 + 3 sqrt(2 /
+ * dof), and its k = mu slope with the error (scaled by sqrt(chi2/dof) when above 1). accepted 0:
+ * not even the 3 lowest rows fit (their k is reported, flagged; use the all-rows fit). 0, or -1
+ * with fewer than 2 rows. */
 typedef struct {
   int rows, accepted;
   double k, k_err, chi2_dof, G_max;

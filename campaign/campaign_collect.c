@@ -272,14 +272,19 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   }
   if (!rc && !camp_darcy_range(t.G, t.q, t.sigma, t.n, c->viscosity, &ar->linear)) {
     const camp_linear *L = &ar->linear;
-    printf("  Darcy range: the %d lowest of %d gradients (G <= %.4g) %s (chi2/dof %.3g): k = %.5g "
-           "+- %.2g rc^2 = %.4g +- %.2g nD%s\n",
-           L->rows, t.n, L->G_max,
-           L->accepted ? "fit a Darcy law" : "do not fit a Darcy law either", L->chi2_dof, L->k,
-           L->k_err, L->k * u->k_m2 * NANODARCY_PER_M2, L->k_err * u->k_m2 * NANODARCY_PER_M2,
-           L->rows < t.n ? "; the gradients above leave the linear law (the fit over all of them "
-                           "is pulled by them)"
-                         : "");
+    if (!L->accepted)
+      printf("  Darcy range: none: the %d lowest of %d gradients do not fit a Darcy law either "
+             "(chi2/dof %.3g: the rows scatter beyond their error bars); the fit over all rows "
+             "stands\n",
+             L->rows, t.n, L->chi2_dof);
+    else
+      printf("  Darcy range: the %d lowest of %d gradients (G <= %.4g) fit a Darcy law (chi2/dof "
+             "%.3g): k = %.5g +- %.2g rc^2 = %.4g +- %.2g nD%s\n",
+             L->rows, t.n, L->G_max, L->chi2_dof, L->k, L->k_err, L->k * u->k_m2 * NANODARCY_PER_M2,
+             L->k_err * u->k_m2 * NANODARCY_PER_M2,
+             L->rows < t.n ? "; the gradients above leave the linear law (the fit over all rows "
+                             "is pulled by them): this k is the permeability"
+                           : "");
   }
   flow_table_free(&t);
   return rc;

@@ -1,6 +1,7 @@
 /* The Darcy range of a flow table (campaign/campaign_linear.c): rows that follow q = (k / mu) G up
  * to some gradient and rise above it are cut where the rise starts, and k is the slope of the kept
- * rows; rows that all follow the law are all kept; a table that never fits is flagged. */
+ * rows; rows that all follow the law are all kept; a table that never fits is flagged (at least 3
+ * rows are kept where there are 3). */
 #include <math.h>
 #include <stdio.h>
 
@@ -35,8 +36,9 @@ int main(void) {
         "linear rows: all 6 kept, k within 0.2%");
 
   for (int i = 0; i < 6; i++) q[i] = k / mu * G[i] * (1.0 + 0.1 * i); /* never linear */
-  check(camp_darcy_range(G, q, sigma, 6, mu, &L) == 0 && !L.accepted && L.rows == 2,
-        "a table that leaves the law from the start: the 2 lowest rows, flagged not accepted");
+  check(camp_darcy_range(G, q, sigma, 6, mu, &L) == 0 && !L.accepted && L.rows == 3,
+        "a table that leaves the law from the start: the 3 lowest rows, flagged not accepted");
+  check(camp_darcy_range(G, q, sigma, 2, mu, &L) == 0 && L.rows == 2, "two rows: both");
   check(camp_darcy_range(G, q, sigma, 1, mu, &L) == -1, "one row: no range (-1)");
   return failures ? 1 : 0;
 }
