@@ -351,8 +351,8 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
       json_number(&j, "k_rc2_err", ar[a].linear.k_err);
       json_number(&j, "k_nD", ar[a].linear.k * u->k_m2 * NANODARCY_PER_M2);
       json_string(&j, "rule",
-                  "the most lowest-G rows (>= 2) that Darcy through the origin fits with chi2/dof "
-                  "<= 1 + 3 sqrt(2 / dof)");
+                  "the most lowest-G rows (>= 3; 2 with 2 rows) that Darcy through the origin "
+                  "fits with chi2/dof <= 1 + 3 sqrt(2 / dof)");
       json_object_end(&j);
     }
     json_string(&j, "chosen", ar[a].chosen[0] ? ar[a].chosen : "none");

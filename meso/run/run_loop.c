@@ -57,10 +57,10 @@ static int write_outputs(sim_t *sim, long step, int fresh_start, int last, snaps
   return rc;
 }
 
-/* The penetration count of a geometry scene at a thermo sample, or at a pore-core sample of a flux
- * run (th NULL) (collective): into the thermo row and the summary's tally, the pore core's density
- * into its series from step core_start on; with geometry.strict a penetration stops the run, naming
- * the particle, the voxel and the step. Returns 1 to stop. */
+/* The census of a geometry scene (collective): the penetration count into the thermo row (th; NULL
+ * at a census between rows) and the summary's tally, the pore core's density into its series from
+ * step core_start on; with geometry.strict a penetration stops the run, naming the particle, the
+ * voxel and the step. Returns 1 to stop. */
 static int penetration_sample(const penetration_map_t *m, sim_t *sim, thermo_t *th, long step,
                               run_stats_t *st, const scene_t *s, int rank) {
   if (!m->on) return 0;
@@ -229,13 +229,13 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
      * MESO_GEOMETRY_SAMPLE_EVERY steps, not at every statistics sample: on the GPU each census
      * copies the particles to the host. */
     const int census = pmap.on && (log_row || step % MESO_GEOMETRY_SAMPLE_EVERY == 0);
+    if (log_row || stat) sim_thermo(sim, &th);
+    if (census && penetration_sample(&pmap, sim, log_row ? &th : NULL, step, &st, s, rank)) {
+      if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
+      err = 1;
+      break;
+    }
     if (log_row || stat) {
-      sim_thermo(sim, &th);
-      if (census && penetration_sample(&pmap, sim, &th, step, &st, s, rank)) {
-        if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
-        err = 1;
-        break;
-      }
       if (temperature_guard_sample(&tguard, &th, gmsg, sizeof gmsg)) {
         if (rank == 0) fprintf(stderr, "%s\nmdpore: run stopped at step %ld\n", gmsg, step);
         err = 1;
@@ -243,11 +243,6 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       }
       if (log_row) thermo_log_row(&log, &th);
       if (stat && rank == 0) run_stats_add(&st, &th);
-    }
-    if (census && !(log_row || stat) && penetration_sample(&pmap, sim, NULL, step, &st, s, rank)) {
-      if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld\n", step);
-      err = 1;
-      break;
     }
     if (density_guard_check(&dguard, sim, step, gmsg, sizeof gmsg)) {
       if (rank == 0) fprintf(stderr, "%s\nmdpore: run stopped at step %ld\n", gmsg, step);

@@ -256,10 +256,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
   block_average_t b[STAT_COUNT];
   for (int k = 0; k < STAT_COUNT; k++) b[k] = block_average(st->s[k].x, st->s[k].n);
   const long samples = st->s[STAT_T].n;
-  struct {
-    block_average_t b;
-    long n;
-  } core = {block_average(st->core_density.x, st->core_density.n), st->core_density.n};
+  const block_average_t core = block_average(st->core_density.x, st->core_density.n);
   double rho = NAN, rho_err = NAN;
   int plateau = 0, interfaces = 0;
   if (prof && prof->samples > 0)
@@ -319,11 +316,11 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
         "once, deepest %.3g rc)%s\n",
         st->penetration_bad_samples, st->penetration_samples, st->penetration_max,
         st->penetration_depth, st->penetration_bad_samples ? "  <-- NOT ZERO" : "");
-  if (core.n > 0)
+  if (st->core_density.n > 0)
     fprintf(out,
             "pore core density: %.4f +- %.2g (mobile particles per rc^3 in the %ld pore voxels at "
             "least %g rc from the solid, %.4g rc^3; %ld samples)\n",
-            core.b.mean, core.b.err, st->core_voxels, st->core_rc, st->core_volume, core.n);
+            core.mean, core.err, st->core_voxels, st->core_rc, st->core_volume, st->core_density.n);
   if (flux) flux_text(out, flux, s);
   if (s->units.on) units_text(out, s);
   if (st->nranks > 1) balance_text(out, st, s);
@@ -385,17 +382,17 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
             "\"max_particles\": %ld, \"max_depth_rc\": %.6g},\n",
             st->penetration_samples, st->penetration_bad_samples, st->penetration_max,
             st->penetration_depth);
-  if (core.n > 0) {
+  if (st->core_density.n > 0) {
     fprintf(fp, "  \"pore_core_density\": {\"mean\": ");
-    json_num(fp, core.b.mean);
+    json_num(fp, core.mean);
     fprintf(fp, ", \"err\": ");
-    json_num(fp, core.b.err);
+    json_num(fp, core.err);
     fprintf(
         fp,
         ", \"samples\": %ld, \"voxels\": %ld, \"volume_rc3\": %.6g, \"distance_rc\": %g, "
         "\"what\": \"mobile particles per rc^3 in the pore voxels at least distance_rc from the "
         "solid (26-connected voxel layers)\"},\n",
-        core.n, st->core_voxels, st->core_volume, st->core_rc);
+        st->core_density.n, st->core_voxels, st->core_volume, st->core_rc);
   }
   if (flux) flux_json(fp, flux, s);
   if (s->units.on) units_json(fp, s);
