@@ -30,7 +30,9 @@ static void usage(FILE *to) {
       "                        points move onto the 0.5 iso-surface of the solid fraction\n"
       "                        averaged over the 2x2x2 voxels at each corner (flat walls stay)\n"
       "  --drive pressure|periodic  pressure drop between inlet and outlet faces (default), or\n"
-      "                        cyclic inlet/outlet with a body force (needs matching end slices)\n"
+      "                        cyclic inlet/outlet with a body force: the image is one period\n"
+      "                        along the axis; where the first and last slices meet pore to\n"
+      "                        solid, the face is a wall (smooth walls need matching slices)\n"
       "  --sides symmetry|wall the four box faces parallel to the flow (default symmetry)\n"
       "  --solver pimple|simple  pimpleFoam marched in pseudo-time to the steady state (default;\n"
       "                        converges in far fewer steps) or simpleFoam (SIMPLEC)\n"
@@ -61,7 +63,9 @@ static int axis_of(const char *s) {
   return !strcmp(s, "x") ? 0 : !strcmp(s, "y") ? 1 : !strcmp(s, "z") ? 2 : -1;
 }
 
-/* For --drive periodic the pore masks of the first and last slices must agree (cyclic faces). */
+/* --drive periodic: the faces where the first and last slices meet pore to solid. On the staircase
+ * mesh subsetMesh turns them into walls (the cyclic pair keeps the pore-pore faces); the smooth-wall
+ * mesh moves points on the cyclic planes and needs them to match. */
 static long long end_slice_mismatch(const mdp_image_t *img, int axis) {
   const int n[3] = {img->nx, img->ny, img->nz};
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -191,13 +195,15 @@ int cmd_foam(int argc, char **argv) {
   /* non-spanning clusters become solid, so OpenFOAM never sees a closed region with an undetermined
    * pressure */
   if (mdp_image_drop_nonspanning(&img, o.axis, &dropped, err)) goto out;
+  long long end_walls = 0;
   if (o.periodic) {
-    long long bad = end_slice_mismatch(&img, o.axis);
-    if (bad) {
+    end_walls = end_slice_mismatch(&img, o.axis);
+    if (end_walls && o.smooth_walls) {
       snprintf(err, sizeof err,
-               "%s: --drive periodic needs the same pore voxels on the first and last slices along "
-               "%c (they differ at %lld voxels); use --drive pressure",
-               path, 'x' + o.axis, bad);
+               "%s: --drive periodic with --walls smooth needs the same pore voxels on the first "
+               "and last slices along %c (they differ at %lld voxels); use --walls staircase or "
+               "--drive pressure",
+               path, 'x' + o.axis, end_walls);
       goto out;
     }
   }
@@ -260,7 +266,8 @@ int cmd_foam(int argc, char **argv) {
            "\"solver\": \"%s\", "
            "\"pseudo_dt\": %.6g, \"restarts\": %d,\n"
            " \"voxel_size\": %.10g, \"unit\": \"%s\", \"porosity\": %.8f, "
-           "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld,\n"
+           "\"connected_porosity\": %.8f, \"dropped_nonspanning_voxels\": %lld, "
+           "\"periodic_end_wall_faces\": %lld,\n"
            " \"permeability_voxel2\": %.10e, \"permeability_m2\": %s, \"permeability_mD\": %s,\n"
            " \"convention\": \"k = mu q L / dp, q = Q / A_total: superficial (Darcy) velocity over "
            "the whole cross-section including solid\",\n"
@@ -274,7 +281,7 @@ int cmd_foam(int argc, char **argv) {
            path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells, walls,
            o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
            o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts,
-           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, k_vox,
+           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, end_walls, k_vox,
            kphys, kmd, o.gradient, q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
            res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
            res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "",
