@@ -4,8 +4,11 @@ poremaps_benchmarks, 100^3 voxels, porosity 0.30), mDPD against `mdpore foam` on
 table of k_mDPD / k_foam with error bars and a PNG. Both run on the image downsampled by
 --downsample (majority vote; 2: 50^3 voxels, a 25 rc box, for a GPU; 4, the default: 25^3 voxels, a
 12.5 rc box of ~10^4 particles that a 2-core CPU runs in minutes) at 0.5 rc per voxel. foam runs on
-the same downsampled voxels. The drp sphere pack (621 spheres) is left out (its 25 rc-per-sphere
-resolution needs a GPU campaign).
+the same downsampled voxels. `--pack drp` adds the drp-benchmarks random sphere pack (621 spheres of
+radius 3.5 in a periodic 55.2 x 55.4 x 55.5 box, ../shared/data/external/drp_spherepack), voxelised
+with --drp-dx (default 0.5: R = 7 voxels = 3.5 rc at 0.5 rc per voxel, 110 x 111 x 111 voxels, a
+55 rc box of ~0.55 M particles: a GPU campaign); its foam runs on the voxel mesh only (refine 2 would
+be 3.7 M cells), periodic (the pack is periodic; the end faces where pore meets solid are walls).
 
   packs.py emit WORK     images, foam (here), the campaigns emitted (WORK/commands.txt: run anywhere)
   packs.py run WORK      emit, then every run of WORK/commands.txt here, one after another
@@ -23,6 +26,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import sphere_array as sa  # noqa: E402  (sh, MDPORE, RC_PER_VOXEL, MU_*)
 
 EXT = os.path.join(sa.ROOT, "..", "shared", "data", "external", "poremaps_benchmarks")
+DRP = os.path.join(sa.ROOT, "..", "shared", "data", "external", "drp_spherepack")
+DRP_RADIUS = 3.5  # the pack's sphere radius in its own units (Box_DIM.dat, final_loc_cn1.dat)
 PACKS = {"bcc": "SPHERE3D_bcc_NX100_NY100_NZ100_PHI0.3_DIAMETER0.0008745237084764591_VSIZE1e-05.raw",
          "fcc": "SPHERE3D_fcc_NX100_NY100_NZ100_PHI0.3_DIAMETER0.000693979234383925_VSIZE1e-05.raw"}
 
@@ -30,14 +35,17 @@ PACKS = {"bcc": "SPHERE3D_bcc_NX100_NY100_NZ100_PHI0.3_DIAMETER0.000874523708476
 def emit(a):
     os.makedirs(a.work, exist_ok=True)
     cmds = []
-    for pack, raw in PACKS.items():
+    for pack in a.pack:
         d = os.path.join(a.work, pack)
         os.makedirs(d, exist_ok=True)
         img = os.path.join(d, "image.h5")
-        if not os.path.exists(img):
-            sa.sh("image", "convert", os.path.join(EXT, raw), "--dims", "100x100x100", "--labels",
+        if not os.path.exists(img) and pack == "drp":
+            sa.sh("image", "make", "sphere-file", "--centres", os.path.join(DRP, "final_loc_cn1.dat"), "--box-file",
+                  os.path.join(DRP, "Box_DIM.dat"), "--radius", str(DRP_RADIUS), "--dx", str(a.drp_dx), "-o", img)
+        elif not os.path.exists(img):
+            sa.sh("image", "convert", os.path.join(EXT, PACKS[pack]), "--dims", "100x100x100", "--labels",
                   "pore=0,inorganic=1", "--downsample", str(a.downsample), "-o", img)
-        for refine in a.foam_refine:  # the voxel mesh and each voxel cut in 2^3 (report: extrapolation)
+        for refine in a.foam_refine if pack != "drp" else [1]:  # the voxel mesh and each voxel cut in 2^3 (report: extrapolation)
             fj = os.path.join(d, f"foam_r{refine}.json")
             if not os.path.exists(fj):  # periodic like the mDPD runs; pressure where the end slices differ
                 p = subprocess.run([sa.MDPORE, "foam", img, "--axis", "x", "--drive", "periodic", "--refine",
@@ -51,6 +59,7 @@ def emit(a):
             if grads and "=" in grads:  # per pack: bcc=0.05,0.1;fcc=0.15,0.3
                 grads = dict(kv.split("=", 1) for kv in grads.split(";")).get(pack)
             extra = ["--gradients", grads] if grads else []
+            extra += ["--wall-density", str(a.wall_density)] if a.wall_density is not None else []
             sa.sh("permeability", img, "--axis", "x", "--emit-scenes", em, "--rc-per-voxel", str(sa.RC_PER_VOXEL),
                   "--max-steps", str(a.max_steps), "--target-error", str(a.target_error), "--np", str(a.np), *extra)
         cmds += open(os.path.join(em, "commands.txt")).read().splitlines()
@@ -66,7 +75,7 @@ def run(a):
 
 def report(a):
     rows, viscosity_note = [], ""
-    for pack in PACKS:
+    for pack in a.pack:
         d = os.path.join(a.work, pack)
         # k of the voxels' continuum limit: the two-point scheme is second order, throats are a few
         # voxels wide, so Richardson's (4 k_refine2 - k_refine1) / 3 (as ring.py)
@@ -95,9 +104,12 @@ def report(a):
         w.writerows(rows)
     lines = ["# POREMAPS BCC / FCC packs: mDPD against OpenFOAM on the same voxels (issue 11, 7d)", "",
              f"Command: `/usr/bin/python3 validation/permeability/packs.py run WORK --downsample {a.downsample} "
-             f"--np {a.np} --max-steps {a.max_steps} --target-error {a.target_error}"
-             + (f" --gradients {a.gradients}" if a.gradients else "") + "`. Images downsampled "
-             f"{a.downsample}x to {100 // a.downsample}^3 voxels at 0.5 rc per voxel ({50 / a.downsample:g} rc box); k in "
+             f"--np {a.np} --max-steps {a.max_steps} --target-error {a.target_error} --pack {' '.join(a.pack)}"
+             + (f" --wall-density {a.wall_density:g}" if a.wall_density is not None else "")
+             + (f" --gradients {a.gradients}" if a.gradients else "") + "`. POREMAPS images downsampled "
+             f"{a.downsample}x to {100 // a.downsample}^3 voxels at 0.5 rc per voxel ({50 / a.downsample:g} rc box)"
+             + (f"; drp: spheres of radius {DRP_RADIUS} voxelised at dx {a.drp_dx} ({DRP_RADIUS / a.drp_dx:g} voxels = "
+                f"{DRP_RADIUS / a.drp_dx * sa.RC_PER_VOXEL:g} rc)" if "drp" in a.pack else "") + "; k in "
              f"rc^2, superficial velocity; the campaign's wall density and mu ({viscosity_note}).", "",
              "k foam: `mdpore foam --refine 1|2` on the same voxels, extrapolated (4 k2 - k1) / 3 (second order); "
              "where only the voxel mesh ran (refine 1, `--foam-refine 1`), that value, which is high by the "
@@ -133,8 +145,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("stage", choices=["emit", "run", "report"])
     ap.add_argument("work")
+    ap.add_argument("--wall-density", type=float, help="the campaign's wall patch density (default its own, 4)")
     ap.add_argument("--max-steps", type=int, default=40000)
     ap.add_argument("--downsample", type=int, default=4, help="majority downsampling of the 100^3 image (2 or 4)")
+    ap.add_argument("--pack", nargs="+", default=["bcc", "fcc"], choices=["bcc", "fcc", "drp"],
+                    help="packs (default bcc fcc; drp: the random sphere pack, a GPU campaign)")
+    ap.add_argument("--drp-dx", type=float, default=0.5,
+                    help="drp voxel edge in the pack's units (R = 3.5): 0.5 gives R = 7 voxels = 3.5 rc")
     ap.add_argument("--np", type=int, default=2, help="ranks per run")
     ap.add_argument("--foam-refine", type=int, nargs="+", default=[1, 2], choices=[1, 2],
                     help="foam meshes: 1 = the voxels, 2 = each voxel cut in 2^3 (default both: extrapolated)")

@@ -96,7 +96,7 @@ def report(a):
                mdpd_over_foam=ratio, mdpd_over_foam_err=ratio_err, law=ax.get("chosen"),
                viscosity=pj.get("viscosity"), wall_density=pj.get("wall_density"))
     os.makedirs(a.outdir, exist_ok=True)
-    with open(os.path.join(a.outdir, "ring.csv"), "w", newline="") as f:
+    with open(os.path.join(a.outdir, f"ring{a.tag}.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(row))
         w.writeheader()
         w.writerow(row)
@@ -118,7 +118,7 @@ def report(a):
              "",
              f"The gaps between rings are {CELL - 2 * R_OUT:g} rc wide (4 voxels): a nanopore where one slip length "
              f"of 0.1 rc changes a slit's k by 6 b / h = {600 * 0.1 / (CELL - 2 * R_OUT):.0f}%."]
-    open(os.path.join(a.outdir, "ring.md"), "w").write("\n".join(lines) + "\n")
+    open(os.path.join(a.outdir, f"ring{a.tag}.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:
         import matplotlib
@@ -137,7 +137,7 @@ def report(a):
         ax1.set_title(f"mDPD / foam = {ratio:.3f} +- {ratio_err:.3f}")
         ax1.legend()
         fig.tight_layout()
-        fig.savefig(os.path.join(a.outdir, "ring.png"), dpi=120)
+        fig.savefig(os.path.join(a.outdir, f"ring{a.tag}.png"), dpi=120)
     except ImportError:
         pass
     return 0 if ok else 1
@@ -153,6 +153,7 @@ def main():
     ap.add_argument("--target-error", type=float, default=0.02)
     ap.add_argument("--gradients", help="body forces (default: the campaign's auto ladder)")
     ap.add_argument("--extra", action="append", default=[], help="more mdpore permeability options, e.g. --extra=--dt --extra=0.005")
+    ap.add_argument("--tag", default="", help="suffix of the result files (ring{TAG}.md)")
     ap.add_argument("--outdir", default=os.path.join(sa.ROOT, "validation", "permeability", "results"))
     a = ap.parse_args()
     return run(a) if a.stage == "run" else report(a)

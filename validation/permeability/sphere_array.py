@@ -66,6 +66,7 @@ def emit(a):
         if not os.path.exists(os.path.join(em, "commands.txt")):
             extra = ["--gradients", a.gradients] if a.gradients else []
             extra += ["--seed", str(a.seed)] if a.seed is not None else []
+            extra += ["--wall-density", str(a.wall_density)] if a.wall_density is not None else []
             sh("permeability", img, "--axis", "x", "--emit-scenes", em, "--rc-per-voxel", str(rcv),
                "--max-steps", str(a.max_steps), "--target-error", str(a.target_error), "--np", str(a.np), *extra)
         cmds += open(os.path.join(em, "commands.txt")).read().splitlines()
@@ -138,6 +139,7 @@ def report(a):
              f"Command: `/usr/bin/python3 validation/permeability/sphere_array.py emit|run|report WORK"
              + "".join(f" --case {x}" for x in (a.case or [])) + (f" --gradients {a.gradients}" if a.gradients else "")
              + (f" --seed {a.seed}" if a.seed is not None else "")
+             + (f" --wall-density {a.wall_density:g}" if a.wall_density is not None else "")
              + f" --max-steps {a.max_steps} --target-error {a.target_error}`. k in rc^2 (superficial velocity "
              f"q = Q / A_total), rc per voxel as listed, body force along x, bounce_back walls, {setup}.", "",
              "| case | cell (rc) | rc/voxel | c | mu | k mDPD | k foam | k ZH | mDPD/foam | mDPD/ZH | foam/ZH |",
@@ -184,6 +186,7 @@ def main():
     ap.add_argument("--gradients", help="body forces (default: the campaign's auto ladder)")
     ap.add_argument("--seed", type=int, help="the campaign's base seed (default its own): an independent repeat")
     ap.add_argument("work")
+    ap.add_argument("--wall-density", type=float, help="the campaign's wall patch density (default its own, 4)")
     ap.add_argument("--max-steps", type=int, default=200000)
     ap.add_argument("--target-error", type=float, default=0.02)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "validation", "permeability", "results"))
