@@ -281,11 +281,11 @@ int cmd_foam(int argc, char **argv) {
            path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells, walls,
            o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
            o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts,
-           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, end_walls, k_vox,
-           kphys, kmd, o.gradient, q * area, q, q / st.porosity, res.int_mag_u / res.int_u[o.axis],
-           res.converged ? "true" : "false", res.iterations, res.res_p, res.res_u, res.flux_change,
-           res.flux_error, o.tol_residual, o.tol_flux, res.wall_s, keep ? "\"" : "",
-           keep ? dir : "null", keep ? "\"" : "");
+           img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, end_walls,
+           k_vox, kphys, kmd, o.gradient, q * area, q, q / st.porosity,
+           res.int_mag_u / res.int_u[o.axis], res.converged ? "true" : "false", res.iterations,
+           res.res_p, res.res_u, res.flux_change, res.flux_error, o.tol_residual, o.tol_flux,
+           res.wall_s, keep ? "\"" : "", keep ? dir : "null", keep ? "\"" : "");
   fputs(json, stdout);
   rc = res.converged ? 0 : EXIT_NOT_CONVERGED;
   if (!res.converged)
