@@ -20,8 +20,8 @@ cd "$out"
 np=$(( $(nproc) >= 2 ? 2 : 1 ))
 "$m" permeability spheres_c0.125.h5 --axis x --np "$np" --workdir campaign "$@"
 # foam on the voxel mesh and with each voxel cut in 2^3 cells: the 2.3 rc gaps are 4-5 voxels wide,
-# where the two-point scheme reads several % high, so the continuum k of these voxels is the
-# Richardson extrapolation (4 k2 - k1) / 3 (docs/permeability.md, item 7b)
+# where the voxel mesh alone reads several % high; the continuum k of these voxels is extrapolated
+# from the two (foam_continuum in validation/permeability/sphere_array.py; docs/permeability.md, 7b)
 foam=""
 if "$m" foam spheres_c0.125.h5 --axis x > foam.json 2> foam.log &&
    "$m" foam spheres_c0.125.h5 --axis x --refine 2 > foam_r2.json 2>> foam.log; then
@@ -29,17 +29,10 @@ if "$m" foam spheres_c0.125.h5 --axis x > foam.json 2> foam.log &&
 else
   echo "mdpore foam: not run ($(tail -1 foam.log)); the OpenFOAM comparison is skipped"
 fi
-python3 - "$foam" <<'PY'
+python3 - "$foam" "$root" <<'PY'
 import json, sys
-
-
-def foam_k(path):
-    """k of the voxels' continuum limit (rc^2): voxel mesh, refined 2x, extrapolated."""
-    k1 = json.load(open(path))["permeability_voxel2"] * 0.5 ** 2
-    k2 = json.load(open(path.replace(".json", "_r2.json")))["permeability_voxel2"] * 0.5 ** 2
-    return k1, k2, (4 * k2 - k1) / 3
-
-
+sys.path.insert(0, sys.argv[2] + "/validation/permeability")
+from sphere_array import foam_k_files  # noqa: E402
 k = json.load(open("campaign/permeability.json"))
 print("\n== main job: simple-cubic spheres, c = 0.125, one 6 rc cell (12^3 voxels of 0.5 rc), axis x ==")
 ax = k["axes"]["x"]
@@ -49,7 +42,7 @@ print(f"mDPD (mdpore permeability): k = {kr:.4g} +- {ke:.2g} rc^2 = {ax['k_m2']:
 zh = 0.03985 * 6.0 ** 2
 print(f"Zick & Homsy (smooth spheres): k = {zh:.4g} rc^2; mDPD / ZH = {kr / zh:.3f}")
 if sys.argv[1]:
-    k1, k2, kf = foam_k(sys.argv[1])
+    k1, k2, kf = foam_k_files(sys.argv[1], "foam_r2.json", 0.5)
     print(f"OpenFOAM on the same voxels (staircase): k = {kf:.4g} rc^2 (voxel mesh {k1:.4g}, refined 2x {k2:.4g}, "
           f"extrapolated); mDPD / foam = {kr / kf:.3f}")
 PY
@@ -78,8 +71,10 @@ if "$m" foam layered.h5 --axis x > foam_layered.json 2> foam_layered.log &&
    "$m" foam layered.h5 --axis x --refine 2 > foam_layered_r2.json 2>> foam_layered.log; then
   foam2=foam_layered.json
 fi
-python3 - "$foam2" <<'PY'
+python3 - "$foam2" "$root" <<'PY'
 import json, sys
+sys.path.insert(0, sys.argv[2] + "/validation/permeability")
+from sphere_array import foam_k_files  # noqa: E402
 s = json.load(open("couple/couple.json"))
 k = s["effective_permeability"]
 print("\n== coupled demo: layered sample (sphere arrays c = 0.125 | c = 0.3 along x), 2 x 1 x 1 blocks ==")
@@ -91,9 +86,7 @@ print(f"loop: {s['stop_reason']}")
 print(f"k_eff (mDPD blocks -> continuum) = {k['k_rc2']:.4g} +- {k['k_rc2_err']:.2g} rc^2 = {k['k_m2']:.3g} m^2 = "
       f"{k['k_nD']:.3g} +- {k['k_nD_err']:.2g} nD (superficial velocity q = Q / A_total)")
 if sys.argv[1]:
-    k1 = json.load(open(sys.argv[1]))["permeability_voxel2"] * 0.5 ** 2
-    k2 = json.load(open(sys.argv[1].replace(".json", "_r2.json")))["permeability_voxel2"] * 0.5 ** 2
-    kf = (4 * k2 - k1) / 3
+    k1, k2, kf = foam_k_files(sys.argv[1], "foam_layered_r2.json", 0.5)
     print(f"OpenFOAM on the whole layered image: k = {kf:.4g} rc^2 (voxel mesh {k1:.4g}, refined 2x {k2:.4g}, "
           f"extrapolated); loop / foam = {k['k_rc2'] / kf:.3f}")
 PY

@@ -224,10 +224,9 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       if (!profile_wants(&prof, step + 1)) sim_request_virial(sim, 0);
     }
     /* sim_thermo is collective: only on steps every rank knows (the progress line on rank 0 shows
-     * the latest sample rather than asking for one). */
-    /* The geometry's census (penetrations, the pore core's density) at thermo rows and every
-     * MESO_GEOMETRY_SAMPLE_EVERY steps, not at every statistics sample: on the GPU each census
-     * copies the particles to the host. */
+     * the latest sample rather than asking for one). The geometry's census (penetrations, the pore
+     * core's density) runs at thermo rows and every MESO_GEOMETRY_SAMPLE_EVERY steps, not at every
+     * statistics sample: on the GPU each census copies the particles to the host. */
     const int census = pmap.on && (log_row || step % MESO_GEOMETRY_SAMPLE_EVERY == 0);
     if (log_row || stat) sim_thermo(sim, &th);
     if (census && penetration_sample(&pmap, sim, log_row ? &th : NULL, step, &st, s, rank)) {

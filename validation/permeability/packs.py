@@ -77,13 +77,12 @@ def report(a):
     rows, viscosity_note = [], ""
     for pack in a.pack:
         d = os.path.join(a.work, pack)
-        # k of the voxels' continuum limit: the two-point scheme is second order, throats are a few
-        # voxels wide, so Richardson's (4 k_refine2 - k_refine1) / 3 (as ring.py)
+        # k of the voxels' continuum limit (sa.foam_continuum), the voxel mesh where refine 2 did not run
         levels = [r for r in (1, 2) if os.path.exists(os.path.join(d, f"foam_r{r}.json"))]
         foams = [json.load(open(os.path.join(d, f"foam_r{r}.json"))) for r in levels]
         foam = foams[0]
         k_r = [f["permeability_voxel2"] * sa.RC_PER_VOXEL ** 2 for f in foams] + [float("nan")]
-        k_foam = (4 * k_r[1] - k_r[0]) / 3 if len(levels) == 2 else k_r[0]
+        k_foam = sa.foam_continuum(k_r[0], k_r[1]) if len(levels) == 2 else k_r[0]
         em = os.path.join(d, "emit")
         subprocess.run([sa.MDPORE, "permeability", "--collect", em], capture_output=True, text=True)
         pj = json.load(open(os.path.join(em, "permeability.json")))

@@ -78,11 +78,11 @@ def run(a):
 
 def report(a):
     # foam on the voxels' own mesh (refine 1) and each voxel cut in 2^3 (refine 2): the 2 rc gaps are 4
-    # cells wide, where the two-point scheme is 1 + 2 / N^2 high (physics.md section 4), so the
-    # continuum k of these voxels is the Richardson extrapolation (4 k2 - k1) / 3 of second order.
+    # cells wide, where the two-point scheme is 1 + 2 / N^2 high (physics.md section 4): the continuum
+    # k of these voxels is sa.foam_continuum's extrapolation.
     k_r = [json.load(open(os.path.join(a.work, f"foam_r{r}.json")))["permeability_voxel2"] * RC_PER_VOXEL ** 2
            for r in (1, 2)]
-    k_foam = (4 * k_r[1] - k_r[0]) / 3
+    k_foam = sa.foam_continuum(k_r[0], k_r[1])
     pj = json.load(open(os.path.join(a.work, "campaign", "permeability.json")))
     ax = pj["axes"]["z"]
     k, err = ax["k_rc2"], ax["k_rc2_err"]

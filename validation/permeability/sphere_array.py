@@ -39,6 +39,20 @@ CASES = [(40, 0.125, 0.5), (40, 0.343, 0.5), (48, 0.125, 0.5), (80, 0.125, 0.25)
 DEFAULT_CASES = 3
 
 
+def foam_continuum(k_voxel_mesh, k_refined):
+    """foam's continuum k of a voxel image from its voxel mesh and the mesh with each voxel cut in 2^3
+    cells: the two-point scheme is second order, so Richardson's (4 k_refined - k_voxel_mesh) / 3.
+    Throats a few voxels wide are where the voxel mesh alone reads high (sphere arrays 3-6%, the
+    ring and the packs 12-21%). Used by every item-7 comparison and the README's main job."""
+    return (4 * k_refined - k_voxel_mesh) / 3
+
+
+def foam_k_files(voxel_mesh_json, refined_json, rc_per_voxel):
+    """(voxel mesh, refined 2x, continuum) k in rc^2 from two `mdpore foam` JSON outputs."""
+    k1, k2 = (json.load(open(f))["permeability_voxel2"] * rc_per_voxel ** 2 for f in (voxel_mesh_json, refined_json))
+    return k1, k2, foam_continuum(k1, k2)
+
+
 def name(L, c, rcv=RC_PER_VOXEL):
     """sph{voxels}_c{c}; cells of 40 rc or more say so (sph80_c0.125_40rc: 80 voxels of 0.5 rc)."""
     return f"sph{L}_c{c:g}" + (f"_{L * rcv:g}rc" if L * rcv >= 40 else "")
@@ -113,12 +127,10 @@ def report(a):
         d = os.path.join(a.work, name(L, c, rcv))
         foam = json.load(open(os.path.join(d, "foam.json")))
         k_foam1 = foam["permeability_voxel2"] * rcv ** 2
-        # the continuum k of these voxels: Richardson's (4 k_refine2 - k_refine1) / 3 (the two-point
-        # scheme is second order; the dense array's gaps are 5 voxels wide, where the voxel mesh reads
-        # ~6% high), as for the packs and the ring; the voxel mesh alone where refine 2 did not run
+        # the continuum k of these voxels; the voxel mesh alone where refine 2 did not run
         f2 = os.path.join(d, "foam_r2.json")
         k_foam2 = json.load(open(f2))["permeability_voxel2"] * rcv ** 2 if os.path.exists(f2) else float("nan")
-        k_foam = (4 * k_foam2 - k_foam1) / 3 if os.path.exists(f2) else k_foam1
+        k_foam = foam_continuum(k_foam1, k_foam2) if os.path.exists(f2) else k_foam1
         k_zh = ZICK_HOMSY[c] * (L * rcv) ** 2
         em = os.path.join(d, "emit")
         if os.path.isdir(os.path.join(em, "runs")):  # else the campaign's report as it came back from a GPU machine
