@@ -28,7 +28,7 @@ int flux_def_init(flux_def_t *d, const scene_t *s, const double count[SCENE_MAX_
   d->density_source = s->flux.density > 0 ? FLUX_DENSITY_GIVEN
                       : s->geometry.on    ? FLUX_DENSITY_GEOMETRY
                                           : FLUX_DENSITY_FILL;
-  double fluid_volume = 0, force = 0;
+  double fluid_volume = 0, force = 0, mass = 0;
   for (int sp = 0; sp < s->n_species; sp++) {
     if (!(d->mask >> sp & 1u)) continue;
     if (!(count[sp] > 0)) {
@@ -59,6 +59,7 @@ int flux_def_init(flux_def_t *d, const scene_t *s, const double count[SCENE_MAX_
     }
     }
     fluid_volume += count[sp] / d->n[sp];
+    mass += count[sp] * s->species[sp].mass;
     if (s->effect[EFFECT_BODY_FORCE]) {
       const body_force_params_t *b =
           SCENE_EFFECT_OPTIONS(s, EFFECT_BODY_FORCE, const body_force_params_t);
@@ -66,6 +67,7 @@ int flux_def_init(flux_def_t *d, const scene_t *s, const double count[SCENE_MAX_
     }
   }
   d->fluid_fraction = fluid_volume / d->volume;
+  d->mass_density = fluid_volume > 0 ? mass / fluid_volume : 0;
   /* G: the body force per fluid volume. A pressure-driven run (reservoir pistons, issue 11 item 4)
    * adds its source here and measures G per sample in flux_sample. */
   if (s->effect[EFFECT_BODY_FORCE]) {

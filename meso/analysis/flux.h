@@ -35,6 +35,7 @@ typedef struct {
   double n[SCENE_MAX_SPECIES];      /* number density of each counted species */
   double count[SCENE_MAX_SPECIES];  /* mobile particles of each counted species (at set-up) */
   double n_counted, fluid_fraction; /* sum N_s; phi = sum_s N_s / (n_s V) */
+  double mass_density;              /* rho = sum_s N_s m_s / V_fluid */
   int density_source;               /* enum flux_density_source */
   int gradient_source;              /* enum flux_gradient_source */
   double G;                         /* driving gradient (NaN: none defined) */

@@ -90,6 +90,8 @@ double integrated_autocorrelation_time(const double *x, long n) {
 
 void steady_state_analyse(const double *x, long n, steady_state_t *out) {
   out->n = n;
+  out->tau_floor = 0;
+  out->floor_governs = 0;
   out->start = mser_truncation(x, n, STEADY_MSER_BATCH, &out->steady);
   const long m = n - out->start;
   out->avg = block_average_plateau(x + out->start, m);
@@ -106,6 +108,25 @@ void steady_state_analyse(const double *x, long n, steady_state_t *out) {
   }
   out->rel_err =
       out->avg.mean != 0 && isfinite(out->avg.err) ? out->avg.err / fabs(out->avg.mean) : INFINITY;
+}
+
+void steady_state_floor_tau(steady_state_t *s, const double *x, double tau_floor) {
+  if (!(tau_floor > 0) || !isfinite(tau_floor)) return;
+  s->tau_floor = tau_floor;
+  const long m = s->n - s->start;
+  if (m < 2 || !(tau_floor > s->tau_int)) return;
+  const double *w = x + s->start;
+  double mean = 0, var = 0;
+  for (long i = 0; i < m; i++) mean += w[i];
+  mean /= (double)m;
+  for (long i = 0; i < m; i++) var += (w[i] - mean) * (w[i] - mean);
+  var /= (double)(m - 1);
+  s->floor_governs = 1;
+  s->tau_int = tau_floor;
+  s->n_eff = (double)m / (2.0 * tau_floor);
+  const double err = sqrt(var * 2.0 * tau_floor / (double)m);
+  if (!(s->avg.err >= err)) s->avg.err = err; /* (a NaN error too) */
+  s->rel_err = s->avg.mean != 0 && isfinite(s->avg.err) ? s->avg.err / fabs(s->avg.mean) : INFINITY;
 }
 
 int steady_state_converged(const steady_state_t *s, double target) {

@@ -39,6 +39,9 @@ typedef struct {
   double n_eff;        /* effective samples: (n - start) / (2 tau_int) */
   double rel_err;      /* avg.err / |avg.mean| (inf when the mean is 0); avg.err is the larger of
                           the block error and the autocorrelation error */
+  double tau_floor;    /* a physical lower bound on tau_int in samples (steady_state_floor_tau; 0:
+                          none applied) */
+  int floor_governs;   /* 1: the floor was above the data's tau_int and set the error and n_eff */
 } steady_state_t;
 
 /* MSER truncation with batches of `batch` samples: the number of samples to drop (a multiple of
@@ -52,6 +55,16 @@ void steady_state_analyse(const double *x, long n, steady_state_t *out);
  * longer than 4096 samples is first reduced to 4096 batch means (then tau_batch x batch, an upper
  * bound in samples). */
 double integrated_autocorrelation_time(const double *x, long n);
+
+/* A lower bound on the correlation time that the series may be too short to show: a window of a
+ * few times a slow mode's relaxation time makes its own autocorrelation read short (the mean is
+ * taken over the same window), and the error with it. With tau_floor > tau_int (samples) the
+ * analysis of x[0..s->n) is redone with tau_floor: error sqrt(var 2 tau_floor / m), n_eff =
+ * m / (2 tau_floor) for the m samples of the window, var their variance (the larger error and the
+ * smaller n_eff are kept). For a flow run the bound is the Darcy relaxation time of the mean flow,
+ * by Green-Kubo the integrated autocorrelation time of q's thermal fluctuations (run/run_flux.c).
+ * tau_floor <= 0 or not finite: nothing changes. */
+void steady_state_floor_tau(steady_state_t *s, const double *x, double tau_floor);
 
 /* Whether the analysed series meets a relative error target: steady, a plateau of the blocked
  * error, at least STEADY_MIN_SAMPLES samples used, a window >= STEADY_WINDOW_OVER_TRANSIENT x the

@@ -36,6 +36,33 @@ int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank)
   return bad ? -1 : 0;
 }
 
+/* The Darcy relaxation time of the mean flow, in steps: tau = rho q / (phi G). The mean-flow
+ * momentum balance per fluid volume, (rho / phi) dq/dt = G - mu q / k, relaxes as exp(-t / tau)
+ * with tau = rho k / (phi mu), and k / mu = q / G at steady state, so tau comes from the run's own
+ * mean q. It is also the integrated autocorrelation time of q's thermal fluctuations (Green-Kubo):
+ * the response to a body force f per particle, q = (k / mu) n f, equals (n V f / kT) int
+ * <dq(0) dq(t)> dt, so that integral is kT k / (mu V), and equipartition gives var q =
+ * phi kT / (rho V); their ratio is rho k / (phi mu) (a slit: h^2 / (12 nu), the sum over its modes
+ * h^2 / (n^2 pi^2 nu) weighted 8 / (n^2 pi^2)). A run a few times tau long reads its own
+ * autocorrelation short (the sphere arrays, docs/permeability.md): tau floors it. G: the body
+ * force's, or the mean of the measured one. 0 where undefined (no drive, q and G of opposite
+ * signs). */
+static double darcy_relaxation_steps(const run_flux_t *rf, double q_mean, double dt) {
+  double G = rf->def.G;
+  if (!isfinite(G) && rf->def.gradient_source == FLUX_G_PRESSURE && rf->G_count > 0)
+    G = rf->G_sum / (double)rf->G_count;
+  const double tau = rf->def.mass_density * q_mean / (rf->def.fluid_fraction * G);
+  return isfinite(tau) && tau > 0 && dt > 0 ? tau / dt : 0;
+}
+
+/* Rank 0: the steady-state analysis of the series so far, its correlation time floored at the
+ * Darcy relaxation time. */
+static void analyse(run_flux_t *rf, double dt) {
+  steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
+  rf->relax_steps = darcy_relaxation_steps(rf, rf->result.avg.mean, dt);
+  steady_state_floor_tau(&rf->result, rf->q.x, rf->relax_steps / (double)rf->every);
+}
+
 int run_flux_due(const run_flux_t *rf, long step) {
   return rf->on && step % rf->every == 0;
 }
@@ -59,6 +86,10 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
   rf->samples++;
   if (rank == 0) {
     flux_log_row(&rf->log, &r);
+    if (isfinite(r.G)) {
+      rf->G_sum += r.G;
+      rf->G_count++;
+    }
     series_push(&rf->steps, (double)step);
     series_push(&rf->q, r.q);
   }
@@ -69,7 +100,7 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
   rf->next_check = rf->samples + grow;
   int stop = 0;
   if (rank == 0) {
-    steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
+    analyse(rf, s->dt);
     stop = steady_state_converged(&rf->result, rf->target);
   }
   MPI_Bcast(&stop, 1, MPI_INT, 0, sim_comm(sim));
@@ -79,16 +110,17 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
     if (rank == 0)
       fprintf(stderr,
               "mdpore: flux: relative error of q %.3g <= run.target_error %g at step %ld (steady "
-              "from step %.0f, %ld samples used, %.0f independent): stopping\n",
+              "from step %.0f, %ld samples used, %.0f independent; Darcy relaxation time %.0f "
+              "steps): stopping\n",
               rf->result.rel_err, rf->target, step, rf->steps.x[rf->result.start],
-              rf->result.n - rf->result.start, rf->result.n_eff);
+              rf->result.n - rf->result.start, rf->result.n_eff, rf->relax_steps);
   }
   return stop;
 }
 
-void run_flux_finish(run_flux_t *rf, int rank) {
+void run_flux_finish(run_flux_t *rf, double dt, int rank) {
   if (!rf->on || rank != 0) return;
-  steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
+  analyse(rf, dt);
   if (rf->pd.on) {
     pressure_drop_analyse(&rf->pd, rf->result.start, &rf->pd_result);
     if (pressure_drop_write_profile(&rf->pd, rf->result.start, rf->pd.profile_path))
@@ -116,8 +148,10 @@ void run_flux_finish(run_flux_t *rf, int rank) {
                     : r->n - r->start < STEADY_WINDOW_OVER_TRANSIENT * r->start
                         ? "the steady window is shorter than 3x the transient before it"
                     : r->n_eff < STEADY_MIN_EFFECTIVE
-                        ? "fewer than 30 independent samples (the flux is correlated over long "
-                          "times)"
+                        ? (r->floor_governs ? "fewer than 30 independent samples at the Darcy "
+                                              "relaxation time of the mean flow"
+                                            : "fewer than 30 independent samples (the flux is "
+                                              "correlated over long times)")
                         : "the error is still above it";
   fprintf(stderr,
           "mdpore: flux: run.target_error %g NOT reached within the step budget: relative error "

@@ -3,7 +3,9 @@
  * and with a target the early stop: from FLUX_FIRST_CHECK samples on, each time the series has
  * grown by 5% (at least 10 samples), rank 0 finds the steady part and its error
  * (analysis/steady_state.h) and every rank stops once the relative error of q is at most the
- * target. Without output.flux nothing here allocates or runs. */
+ * target. The correlation time of q is taken as at least the Darcy relaxation time of the mean
+ * flow, rho q / (phi G) (run_flux.c): a run a few times that long reads its own autocorrelation
+ * short. Without output.flux nothing here allocates or runs. */
 #ifndef MESO_RUN_RUN_FLUX_H
 #define MESO_RUN_RUN_FLUX_H
 
@@ -29,6 +31,10 @@ typedef struct run_flux {
   steady_state_t result; /* rank 0: the latest analysis (the final one after run_flux_finish) */
   pressure_drop_t pd;    /* inlet_force with a sample: the measured G (analysis/pressure_drop.h) */
   pressure_drop_result_t pd_result; /* rank 0, after run_flux_finish */
+  double G_sum;       /* rank 0: sum of the sampled G (a measured G's mean: the floor below) */
+  long G_count;       /* ... over this many samples of this process */
+  double relax_steps; /* rank 0: the Darcy relaxation time of the mean flow in steps, the floor
+                              of the flux's correlation time (0: undefined); run_flux.c */
 } run_flux_t;
 
 /* Collective: the definitions (one flux reduction for the counts) and the file; `restart`: the run
@@ -45,7 +51,7 @@ int run_flux_check_at(const run_flux_t *rf, long step);
  * when the run should stop (target met), 0 to go on, -1 on a device error (message printed). */
 int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank);
 /* Rank 0, after the loop: analyse the whole series; say on stderr when a target was not met. */
-void run_flux_finish(run_flux_t *rf, int rank);
+void run_flux_finish(run_flux_t *rf, double dt, int rank);
 void run_flux_close(run_flux_t *rf);
 
 #endif

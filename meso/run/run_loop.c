@@ -276,7 +276,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   if (!err) {
     st.steps_done = sim_step_index(sim) - first;
     st.last_step = sim_step_index(sim); /* earlier than planned after an early stop */
-    run_flux_finish(&rf, rank);
+    run_flux_finish(&rf, s->dt, rank);
     run_balance_finish(&rbal, sim, &st);
     st.loop_seconds = loop;
     st.total_seconds = MPI_Wtime() - t_start;

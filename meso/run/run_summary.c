@@ -101,6 +101,14 @@ static void flux_text(FILE *out, const run_flux_t *f, const scene_t *s) {
             "  steady from step %.0f (MSER-5%s), %ld of %ld samples used, block length %ld%s\n",
             f->steps.x[r->start], r->steady ? "" : ": NO steady state found", r->n - r->start, r->n,
             r->avg.block_len, r->avg.plateau ? "" : " (no plateau: error underestimated)");
+  if (r->n > 0)
+    fprintf(out,
+            "  correlation time of q %.0f steps (%s), %.1f independent samples; Darcy relaxation "
+            "time of the mean flow rho q / (phi G) = %.0f steps\n",
+            r->tau_int * f->every,
+            r->floor_governs ? "the Darcy relaxation time: the series reads shorter"
+                             : "from the series",
+            r->n_eff, f->relax_steps);
   if (f->target > 0)
     fprintf(out, "  target relative error %g: %s (relative error %.3g)%s\n", f->target,
             f->reached ? "reached" : "NOT reached within the step budget", r->rel_err,
@@ -120,6 +128,13 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
   json_num(fp, r->avg.err * f->def.area);
   fprintf(fp, ", \"relative_error\": ");
   json_num(fp, r->rel_err);
+  fprintf(fp, ", \"correlation_steps\": ");
+  json_num(fp, r->tau_int * f->every);
+  fprintf(fp, ", \"independent_samples\": ");
+  json_num(fp, r->n_eff);
+  fprintf(fp, ", \"relaxation_steps\": ");
+  json_num(fp, f->relax_steps);
+  fprintf(fp, ", \"relaxation_governs\": %s", r->floor_governs ? "true" : "false");
   fprintf(fp, ", \"G\": ");
   json_num(fp, flux_G(f));
   if (f->pd.on) {

@@ -3,7 +3,9 @@
 (scenes/flux_slit.yaml, CPU):
   A  2 ranks, target 0.03 within 40000 steps: the run stops early (summary flux.reached and
      stopped_early, last_step < 40000, relative error <= 0.03); flux.csv has the documented columns,
-     a row every 10 steps up to the last step, N constant; q > 0 along the force; G = n F = 0.6 and
+     a row every 10 steps up to the last step, N constant; q > 0 along the force; the Darcy
+     relaxation time rho q / (phi G) in the summary, the correlation time used at least it and at
+     least 30 independent samples at the stop; G = n F = 0.6 and
      the fluid fraction 3/5 exactly; the summary's q is the mean of the CSV's q from
      steady_from_step on; the profile's mobile flux sum_b density_b vx_b / (n bins) over its window
      equals the CSV's mean q over the same samples (the same definition, 1e-5), and q agrees with it
@@ -70,6 +72,13 @@ check(f["reached"] is True and f["stopped_early"] is True and s["last_step"] < 4
 check(f["relative_error"] <= 0.03 and abs(f["q_err"] / f["q"] - f["relative_error"]) < 1e-9,
       f"relative error {f['relative_error']:.4g} <= 0.03")
 check(f["q"] > 0 and f["q_err"] > 0, f"q = {f['q']:.5g} +- {f['q_err']:.2g} > 0 along the force")
+# the floor of the correlation time: the Darcy relaxation time rho q / (phi G) in steps (rho = 3,
+# phi = 0.6, G = 0.6, dt = 0.02), and the correlation time used is at least it
+relax = 3.0 * f["q"] / (0.6 * 0.6) / 0.02
+check(abs(f["relaxation_steps"] - relax) < 1e-9 * relax and f["correlation_steps"] >= relax * (1 - 1e-12)
+      and f["independent_samples"] >= 30,
+      f"relaxation time {f['relaxation_steps']:.1f} steps = rho q / (phi G dt) = {relax:.1f}; correlation time "
+      f"{f['correlation_steps']:.1f} >= it, {f['independent_samples']:.1f} independent samples")
 check(abs(f["G"] - 0.6) < 1e-12 and abs(f["fluid_fraction"] - 0.6) < 1e-12,
       f"G = {f['G']} = n F = 0.6, fluid fraction {f['fluid_fraction']}")
 check(np.allclose(rows[:, 2] * 15, rows[:, 3], rtol=1e-8) and np.allclose(rows[:, 2], 0.6 * rows[:, 5], rtol=1e-8),
