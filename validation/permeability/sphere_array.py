@@ -15,7 +15,12 @@ Two stages, because the mDPD runs want a GPU:
   sphere_array.py report WORK [--outdir DIR]
       mdpore permeability --collect per case, the table (k_mDPD, k_foam, k_ZH in rc^2, ratios with
       errors), validation/permeability/results/sphere_array.{md,csv,png}; exit 1 when a ratio
-      k_mDPD / k_foam is off 1 by more than 5% + 2 sigma.
+      k_mDPD / k_foam is off 1 by more than 5% + 2 sigma;
+  sphere_array.py draws TAG1,TAG2,... [--tag _draws]
+      independent draws (reports of campaigns with different --seed, sphere_array{TAGi}.csv) side
+      by side per case: each ratio with its error, their weighted mean, scatter and chi^2 per
+      degree of freedom (do the error bars hold?), sphere_array{TAG}.md; exit 1 when a draw fails
+      the 5% + 2 sigma rule.
 Run with /usr/bin/python3 (numpy, matplotlib). MDPORE: the mdpore binary (default build/bin/mdpore).
 """
 import argparse
@@ -204,15 +209,52 @@ def report(a):
     return 1 if bad else 0
 
 
+def draws(a):
+    """The draws named in a.work (comma-separated report tags) side by side, per case."""
+    tags = [t for t in a.work.split(",") if t]
+    rows = {}
+    for t in tags:
+        f = os.path.join(a.outdir, f"sphere_array{t}.csv")
+        if not os.path.exists(f):
+            sys.exit(f"sphere_array.py draws: {f}: no such report (run `report` with --tag {t} first)")
+        for r in csv.DictReader(open(f)):
+            rows.setdefault(r["case"], []).append((t, float(r["mdpd_over_foam"]), float(r["mdpd_over_foam_err"])))
+    lines = ["# Sphere arrays: independent draws of k_mDPD / k_foam (foam: the continuum limit on the same voxels)", "",
+             f"Draws: {', '.join(tags)} (validation/permeability/results/sphere_array{{TAG}}.csv).", "",
+             "| case | draws | each: ratio +- error | weighted mean | scatter (sd) | chi^2 / dof | every draw within 5% + 2 sigma |",
+             "|---|---:|---|---|---:|---:|---|"]
+    bad = 0
+    for case, d in rows.items():
+        r = [x[1] for x in d]
+        e = [x[2] for x in d]
+        w = [1 / x ** 2 for x in e]
+        mean = sum(wi * ri for wi, ri in zip(w, r)) / sum(w)
+        err = sum(w) ** -0.5
+        n = len(r)
+        sd = (sum((ri - sum(r) / n) ** 2 for ri in r) / (n - 1)) ** 0.5 if n > 1 else float("nan")
+        chi2 = sum(((ri - mean) / ei) ** 2 for ri, ei in zip(r, e)) / (n - 1) if n > 1 else float("nan")
+        ok = all(abs(ri - 1) <= 0.05 + 2 * ei for ri, ei in zip(r, e))
+        bad += not ok
+        lines.append(f"| {case} | {n} | {', '.join(f'{ri:.3f} +- {ei:.3f}' for ri, ei in zip(r, e))} | "
+                     f"{mean:.3f} +- {err:.3f} | {sd:.3f} | {chi2:.2f} | {'yes' if ok else 'NO'} |")
+    lines += ["", "chi^2 / dof near 1: the draws scatter as their error bars say; well above 1: the error bars are "
+              "understated."]
+    text = "\n".join(lines) + "\n"
+    print(text)
+    with open(os.path.join(a.outdir, f"sphere_array{a.tag or '_draws'}.md"), "w") as f:
+        f.write(text)
+    return 1 if bad else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("stage", choices=["emit", "run", "report"])
+    ap.add_argument("stage", choices=["emit", "run", "report", "draws"])
     ap.add_argument("--case", action="append", help="only these cases (default all), e.g. sph40_c0.125")
     ap.add_argument("--np", type=int, default=1, help="ranks per run in commands.txt")
     ap.add_argument("--tag", default="", help="suffix of the result files (sphere_array{TAG}.md)")
     ap.add_argument("--gradients", help="body forces (default: the campaign's auto ladder)")
     ap.add_argument("--seed", type=int, help="the campaign's base seed (default its own): an independent repeat")
-    ap.add_argument("work")
+    ap.add_argument("work", help="the work folder (draws: the report tags, comma-separated)")
     ap.add_argument("--wall-density", type=float, help="the campaign's wall patch density (default its own, 4)")
     ap.add_argument("--foam-refine", type=int, nargs="+", default=[1, 2], choices=[1, 2],
                     help="foam meshes: 1 = the voxels, 2 = each voxel cut in 2^3 (default both: extrapolated)")
@@ -221,7 +263,7 @@ def main():
     ap.add_argument("--target-error", type=float, default=0.02)
     ap.add_argument("--outdir", default=os.path.join(ROOT, "validation", "permeability", "results"))
     a = ap.parse_args()
-    return {"emit": emit, "run": run, "report": report}[a.stage](a)
+    return {"emit": emit, "run": run, "report": report, "draws": draws}[a.stage](a)
 
 
 if __name__ == "__main__":
