@@ -8,7 +8,10 @@
 # time; fluid-only throughput = MPS x fluid / particles.
 # With CACHE_AB=1 each image runs twice, the density cache of the static walls off then on
 # (MDPORE_DENSITY_CACHE=0 / =1; on the GPU the cache is opt-in; docs/walls.md section 15).
-# usage: [BOUNDARY=...] [CACHE_AB=1] bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
+# THERMO_EVERY (default 100): thermo rows, each with the geometry's census (penetrations, pore-core
+# density: on the GPU a copy of the particles to the host); with 1000 and STEPS 1000 only the census
+# every 500 steps remains, so two runs give the census's cost (bench/RESULTS.md, session 13).
+# usage: [BOUNDARY=...] [CACHE_AB=1] [THERMO_EVERY=N] bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
 set -u
 B=$1; BCC=$2; S=${3:-1.5}; N=${4:-400}; W=${5:-/tmp/gpu-walls}
 # BOUNDARY: bounce_back (default), wall_boundary, or wall_boundary+bounce_back
@@ -42,7 +45,7 @@ geometry:
   species: {fluid: liquid, inorganic: wall}
 run: {dt: 0.01, steps: $N, seed: 5}
 output:
-  thermo: {every: 100, file: thermo.csv}
+  thermo: {every: ${THERMO_EVERY:-100}, file: thermo.csv}
   summary: summary.json
   progress: false
 YAML

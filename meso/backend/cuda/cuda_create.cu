@@ -144,8 +144,6 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   g->compact = g->memory_request == SCENE_GPU_MEMORY_COMPACT; /* (no skin: fill_cells) */
   const char *ov = getenv("MDPORE_CUDA_OVERLAP");
   g->overlap = !(ov && !strcmp(ov, "0"));
-  const char *split = getenv("MDPORE_CUDA_SPLIT_DENSITY");
-  g->split_density = split && !strcmp(split, "1");
   if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, g->compact, err, len)) {
     free(g);
     return NULL;

@@ -247,18 +247,9 @@ template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim
       (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads);
 }
 
-/* The split variant (g->split_density): one rank, lists every step (no skin), no cache; the scan
- * writes the lists only and cuda_density_from_lists sums the densities over them in traversal
- * order, so the sums are the same bits. Its aim: the scan's in-range body (the weight, ~15% of the
- * candidates) runs at a fraction of the lanes; over the lists every lane has work. */
-static int split_density(const struct cuda_sim *g) {
-  return g->split_density && g->prm.density && !g->prm.multi && !g->compact && g->prm.skin <= 0.0 &&
-         cache_args(g).table == NULL;
-}
-
 static void launch_part(struct cuda_sim *g, int part) {
   const int cache = cache_args(g).table != NULL;
-  if (!g->prm.density || split_density(g))
+  if (!g->prm.density)
     launch<MESO_KERNEL_WARREN, 0, 0>(g, part);
   else if (g->prm.kernel == MESO_KERNEL_LUCY)
     cache ? launch<MESO_KERNEL_LUCY, 1, 1>(g, part) : launch<MESO_KERNEL_LUCY, 1, 0>(g, part);
@@ -385,7 +376,6 @@ int cuda_density_pass(struct cuda_sim *g) {
     if (g->compact) cuda_pack(g); /* switched (no room for the lists): arrays re-made */
   }
   g->n_builds++;
-  if (split_density(g)) cuda_density_from_lists(g);
   if (g->prm.skin <= 0.0 || g->prm.multi || g->compact) return 0;
   /* Positions at this build: the pack kernel measures the displacement from them. */
   if (!g->pos0 && cuda_alloc(g, (void **)&g->pos0, (size_t)g->cap * sizeof(struct dev_pos)))

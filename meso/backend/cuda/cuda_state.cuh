@@ -159,10 +159,6 @@ struct cuda_sim {
   uint64_t last_force_step;
   /* Several ranks: the interior passes run while the host exchanges (MDPORE_CUDA_OVERLAP). */
   int overlap;
-  /* One rank, lists rebuilt every step: the bin scan writes the lists only and the densities are
-   * summed over them by a second kernel (MDPORE_CUDA_SPLIT_DENSITY=1, a measured variant:
-   * bench/RESULTS.md; cuda_density.cu). */
-  int split_density;
   /* Pinned host staging buffer of the halo transfers (cuda_halo.cu). */
   char *pinned;
   size_t pinned_bytes;
