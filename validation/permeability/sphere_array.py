@@ -218,11 +218,13 @@ def draws(a):
         if not os.path.exists(f):
             sys.exit(f"sphere_array.py draws: {f}: no such report (run `report` with --tag {t} first)")
         for r in csv.DictReader(open(f)):
-            rows.setdefault(r["case"], []).append((t, float(r["mdpd_over_foam"]), float(r["mdpd_over_foam_err"])))
-    lines = ["# Sphere arrays: independent draws of k_mDPD / k_foam (foam: the continuum limit on the same voxels)", "",
+            ref = "voxel mesh" if r["k_foam_refine2"] in ("", "nan") else "continuum (refined 2x, extrapolated)"
+            rows.setdefault(r["case"], []).append((t, float(r["mdpd_over_foam"]), float(r["mdpd_over_foam_err"]), ref))
+    lines = ["# Sphere arrays: independent draws of k_mDPD / k_foam (foam on the same voxels)", "",
              f"Draws: {', '.join(tags)} (validation/permeability/results/sphere_array{{TAG}}.csv).", "",
-             "| case | draws | each: ratio +- error | weighted mean | scatter (sd) | chi^2 / dof | every draw within 5% + 2 sigma |",
-             "|---|---:|---|---|---:|---:|---|"]
+             "| case | foam reference | draws | each: ratio +- error | weighted mean | scatter (sd) | chi^2 / dof | "
+             "every draw within 5% + 2 sigma |",
+             "|---|---|---:|---|---|---:|---:|---|"]
     bad = 0
     for case, d in rows.items():
         r = [x[1] for x in d]
@@ -235,7 +237,8 @@ def draws(a):
         chi2 = sum(((ri - mean) / ei) ** 2 for ri, ei in zip(r, e)) / (n - 1) if n > 1 else float("nan")
         ok = all(abs(ri - 1) <= 0.05 + 2 * ei for ri, ei in zip(r, e))
         bad += not ok
-        lines.append(f"| {case} | {n} | {', '.join(f'{ri:.3f} +- {ei:.3f}' for ri, ei in zip(r, e))} | "
+        refs = sorted({x[3] for x in d})
+        lines.append(f"| {case} | {' / '.join(refs)} | {n} | {', '.join(f'{ri:.3f} +- {ei:.3f}' for ri, ei in zip(r, e))} | "
                      f"{mean:.3f} +- {err:.3f} | {sd:.3f} | {chi2:.2f} | {'yes' if ok else 'NO'} |")
     lines += ["", "chi^2 / dof near 1: the draws scatter as their error bars say; well above 1: the error bars are "
               "understated."]
