@@ -144,6 +144,10 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   g->compact = g->memory_request == SCENE_GPU_MEMORY_COMPACT; /* (no skin: fill_cells) */
   const char *ov = getenv("MDPORE_CUDA_OVERLAP");
   g->overlap = !(ov && !strcmp(ov, "0"));
+  const char *mob = getenv("MDPORE_CUDA_MOBILE_SLOTS");
+  int any_frozen = 0;
+  for (int a = 0; a < plan->n_species; a++) any_frozen |= !plan->mobile[a];
+  g->mobile_slots_on = any_frozen && !(mob && !strcmp(mob, "0"));
   if (fill_cells(q, plan, s, sub_lo, sub_hi, dims, g->compact, err, len)) {
     free(g);
     return NULL;

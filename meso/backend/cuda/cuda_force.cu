@@ -14,6 +14,8 @@
 #include "physics/wall_boundary.h"
 
 #include <cub/block/block_reduce.cuh>
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
 
 struct force_args {
   const uint32_t *nbr;
@@ -39,6 +41,8 @@ struct force_args {
    * computes slot slots[t], t < n_slots; NULL: thread i computes slot i. */
   const int *slots;
   int n_slots;
+  /* With slots: their count on the device instead of n_slots (NULL: n_slots). */
+  const int *n_slots_dev;
 };
 
 /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
@@ -68,7 +72,8 @@ template <int TERMS, int VIRIAL, int PV, int LISTS, int RNG>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
   const int t_id = blockIdx.x * blockDim.x + threadIdx.x;
-  const int i = !a.slots ? t_id : (t_id < a.n_slots ? a.slots[t_id] : a.n);
+  const int n_slots = a.n_slots_dev ? *a.n_slots_dev : a.n_slots;
+  const int i = !a.slots ? t_id : (t_id < n_slots ? a.slots[t_id] : a.n);
   meso_real w[6] = {0, 0, 0, 0, 0, 0};
   if (i < a.n && (!a.part || a.part[i] == a.part_flag)) {
     const struct dev_pos pi = a.pos[i];
@@ -194,6 +199,53 @@ static void launch(const struct dev_params &q, const struct force_args &a, int b
   }
 }
 
+/* Whether slot i holds a mobile species (bit s of mask). */
+struct is_mobile {
+  const struct dev_pos *pos;
+  unsigned mask;
+  __device__ __forceinline__ bool operator()(int i) const {
+    return (mask >> (unsigned)pos[i].species) & 1u;
+  }
+};
+
+__global__ void k_zero_frozen_f(const struct dev_params q, int n, const struct dev_pos *pos,
+                                double *fx, double *fy, double *fz) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n || q.mobile[pos[i].species]) return;
+  fx[i] = fy[i] = fz[i] = 0.0;
+}
+
+/* One rank with lists (g->mobile_slots_on): the mobile slots of this step's order into
+ * g->mobile_slot, their count into g->mobile_count (device), and the frozen particles' f zeroed
+ * (what the full pass writes for them). 0 or -1. */
+static int select_mobile(struct cuda_sim *g, int write_f) {
+  const int n = g->n;
+  const size_t bytes = (size_t)g->cap * sizeof(int);
+  if (bytes > g->mobile_slot_bytes) {
+    cuda_free_ptr(g, (void **)&g->mobile_slot);
+    g->mobile_slot_bytes = 0;
+    if (cuda_alloc(g, (void **)&g->mobile_slot, bytes)) return -1;
+    g->mobile_slot_bytes = bytes;
+  }
+  if (!g->mobile_count && cuda_alloc(g, (void **)&g->mobile_count, sizeof(int))) return -1;
+  struct is_mobile pred = {g->pos, 0u};
+  for (int s = 0; s < g->prm.n_species; s++)
+    if (g->prm.mobile[s]) pred.mask |= 1u << s;
+  thrust::counting_iterator<int> slots(0);
+  size_t need = 0;
+  cub::DeviceSelect::If(NULL, need, slots, g->mobile_slot, g->mobile_count, n, pred);
+  if (cuda_select_room(g, need)) return -1;
+  size_t tmp = g->select_tmp_bytes;
+  if (cuda_check(cub::DeviceSelect::If(g->select_tmp, tmp, slots, g->mobile_slot, g->mobile_count,
+                                       n, pred),
+                 "mobile slots"))
+    return -1;
+  if (write_f)
+    k_zero_frozen_f<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a.f[0],
+                                                                       g->a.f[1], g->a.f[2]);
+  return 0;
+}
+
 /* part < 0: every owned particle; 1 / 0: only the interior / boundary particles (several ranks,
  * overlap: cuda_halo.cu), the boundary part second. The boundary part over its slot list when
  * there is one; on `stream` (not the default stream: concurrent with the interior part) its
@@ -201,8 +253,14 @@ static void launch(const struct dev_params &q, const struct force_args &a, int b
 void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
                           int part, cudaStream_t stream) {
   const int n = g->n;
-  const int *slots = part == 0 ? g->boundary_slots : NULL;
-  const int threads = slots ? g->n_bslots : n, blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  const int virial = want_virial && g->virial != NULL;
+  /* one rank, lists, no per-particle virial (whose frozen rows the full pass writes): over the
+   * mobile slots, the grid still sized for every slot (threads past the device count leave) */
+  const int mobile = part < 0 && n > 0 && g->mobile_slots_on && !g->prm.multi && !g->compact &&
+                     !virial && g->nbr && select_mobile(g, !keep_forces) == 0;
+  const int *slots = part == 0 ? g->boundary_slots : mobile ? g->mobile_slot : NULL;
+  const int threads = part == 0 && slots ? g->n_bslots : n,
+            blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
   const int own_rows = part == 0 && stream != 0;
   double *rows = own_rows ? g->block_virial + 6 * (size_t)g->n_force_blocks : g->block_virial;
   if (part != 0) g->n_force_blocks = n > 0 ? blocks : 0;
@@ -233,8 +291,8 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                          g->prm.multi && part != 1 ? g->gcell_start : NULL,
                          g->key_sorted,
                          slots,
-                         threads};
-  const int virial = want_virial && g->virial != NULL;
+                         threads,
+                         mobile ? g->mobile_count : NULL};
   switch (g->prm.terms & 15) { /* 8 (wall no slip) comes with 4 (its check) */
   case 0:
     launch<0>(g->prm, a, blocks, virial, pv, stream);

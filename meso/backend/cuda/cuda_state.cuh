@@ -159,6 +159,14 @@ struct cuda_sim {
   uint64_t last_force_step;
   /* Several ranks: the interior passes run while the host exchanges (MDPORE_CUDA_OVERLAP). */
   int overlap;
+  /* One rank, neighbour lists, frozen particles present: the force pass runs over the mobile slots
+   * only (cub select in slot order; their count stays on the device), so that no lane of its warps
+   * holds a frozen particle, which computes no force of its own; the frozen particles' f is zeroed
+   * by a small kernel instead. MDPORE_CUDA_MOBILE_SLOTS=0 turns it off (bench/RESULTS.md). */
+  int mobile_slots_on;
+  int *mobile_slot; /* [mobile_slot_bytes / 4] */
+  size_t mobile_slot_bytes;
+  int *mobile_count; /* [1] */
   /* Pinned host staging buffer of the halo transfers (cuda_halo.cu). */
   char *pinned;
   size_t pinned_bytes;

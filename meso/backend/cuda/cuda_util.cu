@@ -78,6 +78,9 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   cuda_free_ptr(g, (void **)&g->pos0);
   cuda_free_ptr(g, (void **)&g->wall_field);
   cuda_free_ptr(g, (void **)&g->sort_scratch);
+  cuda_free_ptr(g, (void **)&g->mobile_slot); /* (made again by the next force pass) */
+  cuda_free_ptr(g, (void **)&g->mobile_count);
+  g->mobile_slot_bytes = 0;
   g->prm.pe.wall_boundary.field = NULL;
   g->lists_valid = 0;
   g->nbr_stride = 0;
@@ -326,7 +329,9 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->ghost_recv_dev,
                    (void **)&g->mig_dev,
                    (void **)&g->bslots,
-                   &g->select_tmp};
+                   &g->select_tmp,
+                   (void **)&g->mobile_slot,
+                   (void **)&g->mobile_count};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
   if (g->pinned) cudaFreeHost(g->pinned);
