@@ -45,12 +45,15 @@ int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank)
  * phi kT / (rho V); their ratio is rho k / (phi mu) (a slit: h^2 / (12 nu), the sum over its modes
  * h^2 / (n^2 pi^2 nu) weighted 8 / (n^2 pi^2)). A run a few times tau long reads its own
  * autocorrelation short (the sphere arrays, docs/permeability.md): tau floors it. G: the body
- * force's, or the mean of the measured one. 0 where undefined (no drive, q and G of opposite
- * signs). */
+ * force's, or the mean of the measured one (the pressure drop's series). 0 where undefined (no
+ * drive, q and G of opposite signs). */
 static double darcy_relaxation_steps(const run_flux_t *rf, double q_mean, double dt) {
   double G = rf->def.G;
-  if (!isfinite(G) && rf->def.gradient_source == FLUX_G_PRESSURE && rf->G_count > 0)
-    G = rf->G_sum / (double)rf->G_count;
+  if (!isfinite(G) && rf->pd.on && rf->pd.dp.n > 0) { /* the measured G: mean dp / L_sample */
+    double dp = 0;
+    for (long k = 0; k < rf->pd.dp.n; k++) dp += rf->pd.dp.x[k];
+    G = dp / (double)rf->pd.dp.n / rf->pd.length;
+  }
   const double tau = rf->def.mass_density * q_mean / (rf->def.fluid_fraction * G);
   return isfinite(tau) && tau > 0 && dt > 0 ? tau / dt : 0;
 }
@@ -86,10 +89,6 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
   rf->samples++;
   if (rank == 0) {
     flux_log_row(&rf->log, &r);
-    if (isfinite(r.G)) {
-      rf->G_sum += r.G;
-      rf->G_count++;
-    }
     series_push(&rf->steps, (double)step);
     series_push(&rf->q, r.q);
   }

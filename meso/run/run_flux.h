@@ -31,9 +31,6 @@ typedef struct run_flux {
   steady_state_t result; /* rank 0: the latest analysis (the final one after run_flux_finish) */
   pressure_drop_t pd;    /* inlet_force with a sample: the measured G (analysis/pressure_drop.h) */
   pressure_drop_result_t pd_result; /* rank 0, after run_flux_finish */
-  double G_sum;       /* rank 0: sum of the finite sampled G since this process started (the
-                         measured G's mean, for the floor below) */
-  long G_count;       /* rank 0: how many G were summed */
   double relax_steps; /* rank 0: the Darcy relaxation time of the mean flow in steps, the floor of
                          the flux's correlation time (0: undefined); run_flux.c */
 } run_flux_t;

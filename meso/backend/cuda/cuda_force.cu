@@ -9,13 +9,12 @@
  * backend/cpu), and so is the generator of xi_ij (RNG, enum pair_rng: dpd_thermostat's option
  * rng), so the default Philox4x32-10 kernel is the one it was, without a branch per pair. */
 #include "cuda_neighbours.cuh"
+#include "cuda_select.cuh"
 #include "physics/pair_forces.h"
 #include "physics/pair_random.h"
 #include "physics/wall_boundary.h"
 
 #include <cub/block/block_reduce.cuh>
-#include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
 
 struct force_args {
   const uint32_t *nbr;
@@ -220,25 +219,12 @@ __global__ void k_zero_frozen_f(const struct dev_params q, int n, const struct d
  * (what the full pass writes for them). 0 or -1. */
 static int select_mobile(struct cuda_sim *g, int write_f) {
   const int n = g->n;
-  const size_t bytes = (size_t)g->cap * sizeof(int);
-  if (bytes > g->mobile_slot_bytes) {
-    cuda_free_ptr(g, (void **)&g->mobile_slot);
-    g->mobile_slot_bytes = 0;
-    if (cuda_alloc(g, (void **)&g->mobile_slot, bytes)) return -1;
-    g->mobile_slot_bytes = bytes;
-  }
-  if (!g->mobile_count && cuda_alloc(g, (void **)&g->mobile_count, sizeof(int))) return -1;
   struct is_mobile pred = {g->pos, 0u};
   for (int s = 0; s < g->prm.n_species; s++)
     if (g->prm.mobile[s]) pred.mask |= 1u << s;
-  thrust::counting_iterator<int> slots(0);
-  size_t need = 0;
-  cub::DeviceSelect::If(NULL, need, slots, g->mobile_slot, g->mobile_count, n, pred);
-  if (cuda_select_room(g, need)) return -1;
-  size_t tmp = g->select_tmp_bytes;
-  if (cuda_check(cub::DeviceSelect::If(g->select_tmp, tmp, slots, g->mobile_slot, g->mobile_count,
-                                       n, pred),
-                 "mobile slots"))
+  if (cuda_dev_room(g, (char **)&g->mobile_slot, &g->mobile_slot_bytes, (size_t)n * sizeof(int)) ||
+      (!g->mobile_count && cuda_alloc(g, (void **)&g->mobile_count, sizeof(int))) ||
+      cuda_select_slots_if(g, pred, g->mobile_slot, g->mobile_count, n, "mobile slots"))
     return -1;
   if (write_f)
     k_zero_frozen_f<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a.f[0],

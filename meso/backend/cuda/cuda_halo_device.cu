@@ -9,11 +9,8 @@
  * and are unpacked into ghost slots by a kernel. The ghost order (from above, then from below, each
  * in the sender's slot order) and the density halo's order are those of the host path, so the two
  * paths give the same ghosts in the same order. */
-#include "cuda_state.cuh"
+#include "cuda_select.cuh"
 #include "domain/migrate.h"
-
-#include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
 
 #include <string.h>
 
@@ -79,17 +76,6 @@ __global__ void k_ghost_unpack(int n0, int ng, const struct ghost_record *__rest
   }
 }
 
-/* Device room of at least bytes in *buf (contents not kept). */
-static int dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes) {
-  if (bytes <= *cap) return 0;
-  cuda_free_ptr(g, (void **)buf);
-  *cap = 0;
-  const size_t want = bytes + bytes / 4 + 4096;
-  if (cuda_alloc(g, (void **)buf, want)) return -1;
-  *cap = want;
-  return 0;
-}
-
 /* Whether slot i is in the boundary part (key 0: k_ghost_flags). */
 struct is_boundary {
   const uint32_t *key;
@@ -99,15 +85,9 @@ struct is_boundary {
 /* The boundary slots (slot order) into g->bslots, their count into count_dev. */
 static int select_boundary(struct cuda_sim *g, int *count_dev) {
   const int n = g->n;
-  if (dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int))) return -1;
-  thrust::counting_iterator<int> slots(0);
   const struct is_boundary pred = {g->key};
-  size_t need = 0;
-  cub::DeviceSelect::If(NULL, need, slots, g->bslots, count_dev, n, pred);
-  if (cuda_select_room(g, need)) return -1;
-  size_t tmp = g->select_tmp_bytes;
-  return cuda_check(cub::DeviceSelect::If(g->select_tmp, tmp, slots, g->bslots, count_dev, n, pred),
-                    "boundary slots");
+  if (cuda_dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int))) return -1;
+  return cuda_select_slots_if(g, pred, g->bslots, count_dev, n, "boundary slots");
 }
 
 extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_hi, int n_send[2]) {
@@ -132,7 +112,7 @@ extern "C" int cuda_halo_select(cuda_sim_t *g, int axis, int send_lo, int send_h
   if (sets_cover) {
     /* the upper set into bslots, both counts in one synchronising copy (then moved after the
      * lower set, below) */
-    if (dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int)) ||
+    if (cuda_dev_room(g, (char **)&g->bslots, &g->bslots_cap, (size_t)n * sizeof(int)) ||
         cuda_select_slots(g, flag_lo, g->perm, g->halo_count_dev, n, "ghost selection") ||
         cuda_select_slots(g, flag_hi, g->bslots, g->halo_count_dev + 1, n, "ghost selection") ||
         cuda_counts_down(g, counts, g->halo_count_dev, 2, "ghost selection"))
@@ -221,7 +201,7 @@ extern "C" int cuda_halo_pack(cuda_sim_t *g, int axis, double shift_lo, double s
   const size_t out_bytes = (size_t)n_all * sizeof(struct ghost_record);
   const size_t in_bytes = (size_t)(n_from_up + n_from_down) * sizeof(struct ghost_record);
   if (pinned_parts(g, out_bytes, in_bytes, send, recv) ||
-      dev_room(g, &g->ghost_send_dev, &g->ghost_send_cap, out_bytes + 1))
+      cuda_dev_room(g, &g->ghost_send_dev, &g->ghost_send_cap, out_bytes + 1))
     return -1;
   if (n_all > 0)
     k_ghost_pack<<<blocks_for(n_all), CUDA_BLOCK>>>(g->halo_n[0], n_all, g->perm, g->a,
@@ -245,7 +225,7 @@ extern "C" int cuda_halo_unpack(cuda_sim_t *g) {
     if (cuda_grow(g, n0 + ng)) return -1;
   }
   const size_t bytes = (size_t)ng * sizeof(struct ghost_record);
-  if (dev_room(g, &g->ghost_recv_dev, &g->ghost_recv_cap, bytes + 1)) return -1;
+  if (cuda_dev_room(g, &g->ghost_recv_dev, &g->ghost_recv_cap, bytes + 1)) return -1;
   if (ng > 0) {
     if (copy_up(g, g->ghost_recv_dev, g->pinned + g->pinned_send_bytes, bytes, "ghost records up"))
       return -1;
@@ -378,7 +358,7 @@ extern "C" int cuda_halo_add_migrants(cuda_sim_t *g, const void *in, int m) {
   if (cuda_grow(g, n0 + m)) return -1;
   const size_t bytes = (size_t)m * sizeof(migrant_t);
   char *host = mig_pinned(g, bytes);
-  if (!host || dev_room(g, &g->mig_dev, &g->mig_dev_cap, bytes)) return -1;
+  if (!host || cuda_dev_room(g, &g->mig_dev, &g->mig_dev_cap, bytes)) return -1;
   memcpy(host, in, bytes);
   /* asynchronous: the next synchronising copy (the ghost selection's counts) comes before this
    * buffer is written again */

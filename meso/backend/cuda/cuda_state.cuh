@@ -164,7 +164,7 @@ struct cuda_sim {
    * holds a frozen particle, which computes no force of its own; the frozen particles' f is zeroed
    * by a small kernel instead. MDPORE_CUDA_MOBILE_SLOTS=0 turns it off (bench/RESULTS.md). */
   int mobile_slots_on;
-  int *mobile_slot; /* [mobile_slot_bytes / 4] */
+  int *mobile_slot; /* room of mobile_slot_bytes (cuda_dev_room) */
   size_t mobile_slot_bytes;
   int *mobile_count; /* [1] */
   /* Pinned host staging buffer of the halo transfers (cuda_halo.cu). */
@@ -252,6 +252,9 @@ int cuda_reserve(struct cuda_sim *g, int n);
 int cuda_grow(struct cuda_sim *g, int need);
 int cuda_set_virial(struct cuda_sim *g, int on);
 int cuda_nbr_reserve(struct cuda_sim *g, int stride);
+/* Device room of at least bytes in *buf, *cap its size (grown with a margin; contents not kept).
+ * 0 or -1. */
+int cuda_dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes);
 /* The cub selections' temporary storage, at least need bytes (g->select_tmp). 0 or -1. */
 int cuda_select_room(struct cuda_sim *g, size_t need);
 /* The slots i < n with flag[i] != 0, in slot order, into out; their count into *count_dev (device).

@@ -228,6 +228,16 @@ static int realloc_keep(struct cuda_sim *g, int need) {
   return rc ? -1 : 0;
 }
 
+int cuda_dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes) {
+  if (bytes <= *cap) return 0;
+  cuda_free_ptr(g, (void **)buf);
+  *cap = 0;
+  const size_t want = bytes + bytes / 4 + 4096;
+  if (cuda_alloc(g, (void **)buf, want)) return -1;
+  *cap = want;
+  return 0;
+}
+
 int cuda_select_room(struct cuda_sim *g, size_t need) {
   if (need <= g->select_tmp_bytes) return 0;
   cuda_free_ptr(g, &g->select_tmp);
