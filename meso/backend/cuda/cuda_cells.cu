@@ -5,24 +5,26 @@
 
 #include <cub/device/device_radix_sort.cuh>
 
-__device__ __forceinline__ int bin_of(double x, double lo, double inv, int nb) {
-  const double s = (x - lo) * inv;
+/* Fine bin along one axis: the coarse coordinate s scaled by sub (exact: sub is 1 or 2), so the
+ * fine bin lies in coarse bin floor(s) (k_pack packs relative to that one). */
+__device__ __forceinline__ int bin_of(double x, double lo, double inv, int sub, int nf) {
+  const double s = (x - lo) * inv * sub;
   if (!(s >= 0.0)) return 0; /* NaN goes to bin 0 (the step check stops the run) */
-  const int b = (int)s;
-  return b < nb ? b : nb - 1;
+  const int b = s < (double)nf ? (int)s : nf - 1;
+  return b;
 }
 
-/* Bin of each particle; with sentinel (several ranks, owned particles) a particle outside this
+/* (Fine) bin of each particle; with sentinel (several ranks, owned particles) a particle outside this
  * rank's subdomain gets bin ncell, so the stable sort puts the leavers last. */
 __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict__ x,
                             const double *__restrict__ y, const double *__restrict__ z,
                             uint32_t *key, int *iota, int sentinel) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
-  const int bx = bin_of(x[i], q.lo[0], q.inv_bin[0], q.nb[0]);
-  const int by = bin_of(y[i], q.lo[1], q.inv_bin[1], q.nb[1]);
-  const int bz = bin_of(z[i], q.lo[2], q.inv_bin[2], q.nb[2]);
-  key[i] = (uint32_t)(bx + q.nb[0] * (by + q.nb[1] * bz));
+  const int bx = bin_of(x[i], q.lo[0], q.inv_bin[0], q.sub[0], q.nf[0]);
+  const int by = bin_of(y[i], q.lo[1], q.inv_bin[1], q.sub[1], q.nf[1]);
+  const int bz = bin_of(z[i], q.lo[2], q.inv_bin[2], q.sub[2], q.nf[2]);
+  key[i] = (uint32_t)(bx + q.nf[0] * (by + q.nf[1] * bz));
   if (sentinel && !(x[i] >= q.sub_lo[0] && x[i] < q.sub_hi[0] && y[i] >= q.sub_lo[1] &&
                     y[i] < q.sub_hi[1] && z[i] >= q.sub_lo[2] && z[i] < q.sub_hi[2]))
     key[i] = (uint32_t)q.ncell;
@@ -207,8 +209,9 @@ __global__ void k_pack(const struct dev_params q, int k0, int n, struct dev_fiel
                        int use_vpred, const struct dev_pos *__restrict__ pos0, int *rebuild) {
   const int k = k0 + blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  const int c = (int)key[k];
-  const int b[3] = {c % q.nb[0], (c / q.nb[0]) % q.nb[1], c / (q.nb[0] * q.nb[1])};
+  const int c = (int)key[k]; /* fine bin; the coarse bin holds it */
+  const int b[3] = {(c % q.nf[0]) / q.sub[0], ((c / q.nf[0]) % q.nf[1]) / q.sub[1],
+                    c / (q.nf[0] * q.nf[1]) / q.sub[2]};
   struct dev_pos r;
   r.x = rel_to_bin(q, 0, p.x[0][k], b[0]);
   r.y = rel_to_bin(q, 1, p.x[1][k], b[1]);

@@ -3,6 +3,7 @@
  * cutoffs, so a pair meets at most one image of its partner). */
 #include "cuda_state.cuh"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,11 +68,60 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     q->bin_w[d] = (meso_real)(q->L[d] / nb);
     q->box_L[d] = (meso_real)q->L[d];
     q->inv_box_L[d] = (meso_real)(1.0 / q->L[d]);
-    q->ncell *= nb;
     q->min_image[d] = q->periodic[d] && nb < 3;
     q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* nb = 2, periodic: bins b and b + 1 */
     q->off_hi[d] = nb >= 2 ? 1 : 0;
   }
+  /* The scan (docs/engine-cuda.md "Neighbour scan"), MDPORE_CUDA_SCAN: auto (default: half bins on
+   * one rank in a quasi-2D box, one axis of fewer than 3 bins; else bins of the cutoff's size, as
+   * measured faster in 3D: bench/RESULTS.md, session 14), fine (half bins), coarse (bins of the
+   * cutoff's size), nested (the bin-by-bin loops of coarse bins, as before the row traversal).
+   * Several ranks keep coarse keys (the ghosts' bins). Every row scan is trimmed to its caller's
+   * reach unless MDPORE_CUDA_TRIM=0. MDPORE_CUDA_NEAREST=1 keeps the minimum-image select in the
+   * list force loop where no axis needs it. (The switches are for measuring.) */
+  const char *scan = getenv("MDPORE_CUDA_SCAN");
+  const int nested = scan && !strcmp(scan, "nested");
+  const int quasi_2d = q->min_image[0] || q->min_image[1] || q->min_image[2];
+  const int coarse = nested || (scan && !strcmp(scan, "coarse")) ||
+                     (!quasi_2d && !(scan && !strcmp(scan, "fine")));
+  q->row_scan = !nested;
+  const char *trim_env = getenv("MDPORE_CUDA_TRIM");
+  q->trim_any = !(trim_env && !strcmp(trim_env, "0"));
+  const char *near_env = getenv("MDPORE_CUDA_NEAREST");
+  q->nearest =
+      (near_env && !strcmp(near_env, "1")) || q->min_image[0] || q->min_image[1] || q->min_image[2];
+  long long ncell = 1;
+  for (int d = 0; d < 3; d++) {
+    q->sub[d] = multi || coarse || q->min_image[d] ? 1 : 2;
+    q->nf[d] = q->sub[d] * q->nb[d];
+    q->fine_w[d] = (meso_real)(q->L[d] / q->nf[d]);
+    q->inv_fine_w[d] = (meso_real)(q->nf[d] / q->L[d]);
+    ncell *= q->nf[d];
+  }
+  /* keys are 32-bit, bin starts int (the sentinel key is ncell): half bins only where they fit */
+  if (ncell > INT_MAX / 2) {
+    ncell = 1;
+    for (int d = 0; d < 3; d++) {
+      q->sub[d] = 1;
+      q->nf[d] = q->nb[d];
+      q->fine_w[d] = q->bin_w[d];
+      q->inv_fine_w[d] = (meso_real)(q->nb[d] / q->L[d]);
+      ncell *= q->nb[d];
+    }
+  }
+  if (ncell > INT_MAX / 2) {
+    snprintf(err, len,
+             "%s: CUDA backend: %lld cells of the cutoff's size (%d x %d x %d) do not fit "
+             "a 32-bit cell index; split the box over MPI ranks",
+             s->file, ncell, q->nb[0], q->nb[1], q->nb[2]);
+    return -1;
+  }
+  q->ncell = (int)ncell;
+  /* 1e-4 of the cutoff covers the float rounding of the packed positions and of the bin edges */
+  const double scan_cut = sqrt((double)q->list_cut2) * (1.0 + 1e-4);
+  q->scan_cut2 = (meso_real)(scan_cut * scan_cut);
+  const double scan_rd = sqrt((double)q->rd2_max) * (1.0 + 1e-4);
+  q->scan_rd2 = (meso_real)(scan_rd * scan_rd);
   return 0;
 }
 
@@ -184,7 +234,8 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
     *(void **)((char *)&q->pe + plan->arrays[k].offset) = g->effect_arrays[k];
   }
   if (cuda_alloc(g, (void **)&g->cell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
-      cuda_alloc(g, (void **)&g->gcell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
+      cuda_alloc(g, (void **)&g->gcell_start, /* the ghosts' bins: several ranks only */
+                 (q->multi ? (size_t)q->ncell + 1 : 1) * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->counter, sizeof(int)) ||
       cuda_alloc(g, (void **)&g->thermo_part, (size_t)THERMO_SUMS * (THERMO_BLOCKS + 1) * 8) ||
       cuda_alloc(g, (void **)&g->problem, sizeof(struct dev_problem)) ||

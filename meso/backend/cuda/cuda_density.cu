@@ -40,20 +40,23 @@ __device__ __forceinline__ int cache_mode(const struct dev_params &q,
   return isnan(*cached) ? 2 : 1;
 }
 
-/* Whether any bin around bin ci holds a mobile or moving particle (one rank: no ghosts). */
+/* Whether any (fine) bin around bin ci holds a mobile or moving particle (one rank: no ghosts). */
 __device__ __forceinline__ int any_dynamic_near(const struct dev_params &q,
                                                 const int *__restrict__ cell_dynamic, uint32_t ci) {
-  const int bx = (int)ci % q.nb[0], by = ((int)ci / q.nb[0]) % q.nb[1],
-            bz = (int)ci / (q.nb[0] * q.nb[1]);
-  for (int oz = q.off_lo[2]; oz <= q.off_hi[2]; oz++) {
-    const int cz = dev_nbr_bin(q, 2, bz, oz);
-    if (cz < 0) continue;
-    for (int oy = q.off_lo[1]; oy <= q.off_hi[1]; oy++) {
-      const int cy = dev_nbr_bin(q, 1, by, oy);
-      if (cy < 0) continue;
-      for (int ox = q.off_lo[0]; ox <= q.off_hi[0]; ox++) {
-        const int cx = dev_nbr_bin(q, 0, bx, ox);
-        if (cx >= 0 && cell_dynamic[cx + q.nb[0] * (cy + q.nb[1] * cz)]) return 1;
+  const int h[3] = {(int)ci % q.nf[0], ((int)ci / q.nf[0]) % q.nf[1],
+                    (int)ci / (q.nf[0] * q.nf[1])};
+  const int b[3] = {h[0] / q.sub[0], h[1] / q.sub[1], h[2] / q.sub[2]};
+  const int r[3] = {h[0] - b[0] * q.sub[0], h[1] - b[1] * q.sub[1], h[2] - b[2] * q.sub[2]};
+  int co;
+  for (int oz = dev_fine_lo(q, 2); oz <= dev_fine_hi(q, 2); oz++) {
+    const int fz = dev_fine_bin(q, 2, b[2], r[2], oz, &co);
+    if (fz < 0) continue;
+    for (int oy = dev_fine_lo(q, 1); oy <= dev_fine_hi(q, 1); oy++) {
+      const int fy = dev_fine_bin(q, 1, b[1], r[1], oy, &co);
+      if (fy < 0) continue;
+      for (int ox = dev_fine_lo(q, 0); ox <= dev_fine_hi(q, 0); ox++) {
+        const int fx = dev_fine_bin(q, 0, b[0], r[0], ox, &co);
+        if (fx >= 0 && cell_dynamic[fx + q.nf[0] * (fy + q.nf[1] * fz)]) return 1;
       }
     }
   }
@@ -98,7 +101,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real w = KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
                                                        : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
         fixed += llrint((double)w * STATIC_FIXED_SCALE);
-      });
+      },
+      q.scan_rd2);
   dc.table[id_i] = (meso_real)((double)fixed / STATIC_FIXED_SCALE);
 }
 
@@ -137,14 +141,24 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     if (LISTS) count[i] = 0;
     return;
   }
+  /* A frozen particle's list is read by no pass when lists are rebuilt every step (the force and
+   * wall-field passes run over the mobile particles' lists): it keeps none, and its scan (as every
+   * scan of the compact mode) reaches only the density cutoff. */
+  const int list_me = LISTS && (q.mobile[pi.species] || q.skin > 0.0);
+  if (!list_me && !DENSITY) {
+    if (LISTS) count[i] = 0;
+    return;
+  }
+  const meso_real keep2 = list_me ? q.list_cut2 : q.rd2_max;
+  const meso_real trim2 = list_me ? q.scan_cut2 : q.scan_rd2;
   int m = 0;
   dev_for_each_neighbour(
       q, start, gstart, n, pos, pi, key[i],
       [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
-        if (r2 >= q.list_cut2 || t == i) return;                       /* most candidates */
+        if (r2 >= keep2 || t == i) return;                             /* most candidates */
         if (CACHE && mode == 1 && q.static_frozen[pj.species]) return; /* in the cached part */
-        if (LISTS && m < stride) {
+        if (list_me && m < stride) {
           mine[m % NBR_CHUNK] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
           if (m % NBR_CHUNK == NBR_CHUNK - 1) flush(m / NBR_CHUNK);
         }
@@ -155,11 +169,16 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real r = meso_sqrt(r2);
         sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
                                           : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
-      });
+      },
+      trim2);
   if (CACHE && mode == 1) sum = cached + sum;
   if (DENSITY) rho[i] = sum;
   if (DENSITY && vel) vel[i].pad = sum; /* one rank: the force pass reads it there */
   if (!LISTS) return;
+  if (!list_me) {
+    count[i] = 0;
+    return;
+  }
   const int kept = m < stride ? m : stride;
   if (kept % NBR_CHUNK) flush(kept / NBR_CHUNK); /* the last, partial chunk */
   count[i] = m;

@@ -23,18 +23,134 @@ __device__ __forceinline__ meso_real dev_nearest(const struct dev_params &q, int
   return q.min_image[d] ? x - q.box_L[d] * rint(x * q.inv_box_L[d]) : x;
 }
 
+/* A compile-time MI for generic lambdas (decltype(mi)::value). */
+template <int MI> struct dev_mi { static constexpr int value = MI; };
+
+/* MI = 0: the caller knows that no axis takes the minimum image (q.nearest = 0): the separation
+ * as it is, without the select that costs ~4 instructions per axis in the pair loops. */
+template <int MI>
+__device__ __forceinline__ meso_real dev_nearest_t(const struct dev_params &q, int d, meso_real x) {
+  return MI ? dev_nearest(q, d, x) : x;
+}
+
 /* Separation of a partner at bin offset code (ox + 1) + 3 (oy + 1) + 9 (oz + 1): the same float
  * operations as the traversal below, so a list entry replays the traversal's value exactly. */
+template <int MI = 1>
 __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const struct dev_pos &pi,
                                                const struct dev_pos &pj, int code, meso_real *dx,
                                                meso_real *dy, meso_real *dz) {
   const int ox = code % 3 - 1, oy = (code / 3) % 3 - 1, oz = code / 9 - 1;
-  *dx = dev_nearest(q, 0, (pi.x - (meso_real)ox * q.bin_w[0]) - pj.x);
-  *dy = dev_nearest(q, 1, (pi.y - (meso_real)oy * q.bin_w[1]) - pj.y);
-  *dz = dev_nearest(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
+  *dx = dev_nearest_t<MI>(q, 0, (pi.x - (meso_real)ox * q.bin_w[0]) - pj.x);
+  *dy = dev_nearest_t<MI>(q, 1, (pi.y - (meso_real)oy * q.bin_w[1]) - pj.y);
+  *dz = dev_nearest_t<MI>(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
 }
 
-/* (gstart: the ghosts' bin starts, relative to slot goff, with several ranks; else NULL.)
+/* Fine bin index along axis d at fine offset o from a particle in coarse bin b, fine bin r within
+ * it (0 <= r < sub); *co gets the coarse offset (floor((r + o) / sub), the offset the separation and
+ * the list code use). -1 outside a non-periodic box. */
+__device__ __forceinline__ int dev_fine_bin(const struct dev_params &q, int d, int b, int r, int o,
+                                            int *co) {
+  const int u = r + o; /* fine offset from the coarse bin's first fine bin, >= -2 */
+  *co = (u + 2 * q.sub[d]) / q.sub[d] - 2;
+  const int cb = dev_nbr_bin(q, d, b, *co);
+  return cb < 0 ? -1 : cb * q.sub[d] + (u - *co * q.sub[d]);
+}
+
+/* The fine offsets along axis d that can hold a partner: +-2 with half bins, else the coarse
+ * offsets. */
+__device__ __forceinline__ int dev_fine_lo(const struct dev_params &q, int d) {
+  return q.sub[d] == 2 ? -2 : q.off_lo[d];
+}
+__device__ __forceinline__ int dev_fine_hi(const struct dev_params &q, int d) {
+  return q.sub[d] == 2 ? 2 : q.off_hi[d];
+}
+
+/* Shortest distance along axis d from a position p (relative to its coarse bin's corner) to the
+ * fine bin at fine offset u from that corner's first fine bin (0 along a minimum-image axis: no
+ * trimming there). */
+__device__ __forceinline__ meso_real dev_gap(const struct dev_params &q, int d, meso_real p,
+                                             int u) {
+  if (q.min_image[d]) return MESO_R(0.0);
+  const meso_real lo = (meso_real)u * q.fine_w[d], hi = lo + q.fine_w[d];
+  return p < lo ? lo - p : (p > hi ? p - hi : MESO_R(0.0));
+}
+
+/* The traversal of one rank (or of the interior part of several): the rows of fine bins (z, then
+ * y) around the particle's fine bin; each row's fine bins along x are consecutive slots, visited in
+ * one loop (the coarse x offset of a slot from the two coarse-bin edges of the row). With trimming
+ * (trim2 > 0: the caller's cutoff squared, with 1e-4 of the cutoff added for the float rounding of
+ * the packed positions and bin edges: q.scan_cut2 or q.scan_rd2) a row farther than that from the
+ * particle is skipped and a row's fine bins along x are cut to those within reach: no candidate
+ * within the caller's cutoff is skipped. Visit order: rows z, y, then slots; fixed, so every sum is deterministic. MI = 0:
+ * no axis takes the minimum image (q.nearest = 0), so the separations need no rint. */
+template <int MI, class F>
+__device__ __forceinline__ void
+dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
+              const struct dev_pos *__restrict__ pos, const struct dev_pos &pi, uint32_t ci, F &f,
+              meso_real trim2) {
+  const int hx = (int)ci % q.nf[0], hy = ((int)ci / q.nf[0]) % q.nf[1],
+            hz = (int)ci / (q.nf[0] * q.nf[1]);
+  const int bx = hx / q.sub[0], by = hy / q.sub[1], bz = hz / q.sub[2];
+  const int rx = hx - bx * q.sub[0], ry = hy - by * q.sub[1], rz = hz - bz * q.sub[2];
+  const int xlo = dev_fine_lo(q, 0), xhi = dev_fine_hi(q, 0);
+  /* the row along x is one slot range unless it wraps or leaves the box */
+  const int x_inside = hx + xlo >= 0 && hx + xhi < q.nf[0];
+  for (int oz = dev_fine_lo(q, 2); oz <= dev_fine_hi(q, 2); oz++) {
+    int coz;
+    const int fz = dev_fine_bin(q, 2, bz, rz, oz, &coz);
+    if (fz < 0) continue;
+    const meso_real sz = pi.z - (meso_real)coz * q.bin_w[2];
+    const meso_real gz = trim2 > MESO_R(0.0) ? dev_gap(q, 2, pi.z, rz + oz) : MESO_R(0.0);
+    for (int oy = dev_fine_lo(q, 1); oy <= dev_fine_hi(q, 1); oy++) {
+      int coy;
+      const int fy = dev_fine_bin(q, 1, by, ry, oy, &coy);
+      if (fy < 0) continue;
+      const meso_real sy = pi.y - (meso_real)coy * q.bin_w[1];
+      const int code_yz = 3 * (coy + 1) + 9 * (coz + 1);
+      const int row = q.nf[0] * (fy + q.nf[1] * fz);
+      int olo = xlo, ohi = xhi;
+      if (trim2 > MESO_R(0.0)) {
+        const meso_real gy = dev_gap(q, 1, pi.y, ry + oy);
+        const meso_real room2 = trim2 - gy * gy - gz * gz;
+        if (!(room2 > MESO_R(0.0))) continue;
+        if (!q.min_image[0]) {
+          const meso_real e = meso_sqrt(room2);
+          olo = max(xlo, (int)floorf((float)((pi.x - e) * q.inv_fine_w[0])) - rx);
+          ohi = min(xhi, (int)floorf((float)((pi.x + e) * q.inv_fine_w[0])) - rx);
+          if (olo > ohi) continue; /* (a position far outside its bin, or NaN) */
+        }
+      }
+      if (x_inside) {
+        /* slots of coarse x offset -1 before s1, 0 in [s1, s2), +1 from s2 */
+        const int t0 = start[row + hx + olo], t1 = start[row + hx + ohi + 1];
+        const int s1 = start[row + bx * q.sub[0]], s2 = start[row + (bx + 1) * q.sub[0]];
+        for (int t = t0; t < t1; t++) {
+          const int ox = (t >= s1) + (t >= s2) - 1;
+          const meso_real sx = pi.x - (meso_real)ox * q.bin_w[0];
+          const struct dev_pos pj = pos[t];
+          f(t, (ox + 1) + code_yz, pj, dev_nearest_t<MI>(q, 0, sx - pj.x),
+            dev_nearest_t<MI>(q, 1, sy - pj.y), dev_nearest_t<MI>(q, 2, sz - pj.z));
+        }
+        continue;
+      }
+      for (int ox = olo; ox <= ohi; ox++) { /* bin by bin, wrapping (the box's x ends) */
+        int cox;
+        const int fx = dev_fine_bin(q, 0, bx, rx, ox, &cox);
+        if (fx < 0) continue;
+        const meso_real sx = pi.x - (meso_real)cox * q.bin_w[0];
+        const int code = (cox + 1) + code_yz;
+        for (int t = start[row + fx]; t < start[row + fx + 1]; t++) {
+          const struct dev_pos pj = pos[t];
+          f(t, code, pj, dev_nearest_t<MI>(q, 0, sx - pj.x), dev_nearest_t<MI>(q, 1, sy - pj.y),
+            dev_nearest_t<MI>(q, 2, sz - pj.z));
+        }
+      }
+    }
+  }
+}
+
+/* (gstart: the ghosts' bin starts, relative to slot goff, with several ranks; else NULL. trim2:
+ * see dev_scan_rows; 0 visits every bin around the particle.)
  * Call f(t, code, pj, dx, dy, dz) for every slot t of the bins around particle i (slot i, packed
  * position pi, bin key ci), i itself included (callers skip it); d = r_i - r_j of the nearest
  * image. */
@@ -43,7 +159,17 @@ __device__ __forceinline__ void
 dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start,
                        const int *__restrict__ gstart, int goff,
                        const struct dev_pos *__restrict__ pos, const struct dev_pos &pi,
-                       uint32_t ci, F &&f) {
+                       uint32_t ci, F &&f, meso_real trim2) {
+  if (!gstart && q.row_scan) {
+    if (!q.trim_any) trim2 = MESO_R(0.0);
+    if (q.nearest)
+      dev_scan_rows<1>(q, start, pos, pi, ci, f, trim2);
+    else
+      dev_scan_rows<0>(q, start, pos, pi, ci, f, trim2);
+    return;
+  }
+  /* the nested loops over coarse bins (sub = 1 here: the ghosts of several ranks, or
+   * MDPORE_CUDA_SCAN=nested) */
   const int bx = (int)ci % q.nb[0], by = ((int)ci / q.nb[0]) % q.nb[1],
             bz = (int)ci / (q.nb[0] * q.nb[1]);
   for (int oz = q.off_lo[2]; oz <= q.off_hi[2]; oz++) {

@@ -51,7 +51,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
           (void)code;
           /* the lists hold the partners within the largest cutoff */
           if (t != i && dx * dx + dy * dy + dz * dz < q.list_cut2) partner(pj, dx, dy, dz);
-        });
+        },
+        q.scan_cut2);
   }
   field[i] = wall_field_finish(w, acc);
 }
