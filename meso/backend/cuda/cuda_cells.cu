@@ -14,8 +14,8 @@ __device__ __forceinline__ int bin_of(double x, double lo, double inv, int sub, 
   return b;
 }
 
-/* (Fine) bin of each particle; with sentinel (several ranks, owned particles) a particle outside this
- * rank's subdomain gets bin ncell, so the stable sort puts the leavers last. */
+/* (Fine) bin of each particle; with sentinel (several ranks, owned particles) a particle outside
+ * this rank's subdomain gets bin ncell, so the stable sort puts the leavers last. */
 __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict__ x,
                             const double *__restrict__ y, const double *__restrict__ z,
                             uint32_t *key, int *iota, int sentinel) {

@@ -36,7 +36,6 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   q->skin = skin;
   q->list_cut2 = skin > 0.0 ? (meso_real)(list_cut * list_cut) : q->cut2_max;
   q->half_skin2 = (meso_real)(0.25 * skin * skin);
-  q->ncell = 1;
   q->multi = multi;
   q->rcut = rcut;
   for (int d = 0; d < 3; d++) {
@@ -77,37 +76,29 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
    * measured faster in 3D: bench/RESULTS.md, session 14), fine (half bins), coarse (bins of the
    * cutoff's size), nested (the bin-by-bin loops of coarse bins, as before the row traversal).
    * Several ranks keep coarse keys (the ghosts' bins). Every row scan is trimmed to its caller's
-   * reach unless MDPORE_CUDA_TRIM=0. MDPORE_CUDA_NEAREST=1 keeps the minimum-image select in the
-   * list force loop where no axis needs it. (The switches are for measuring.) */
+   * reach unless MDPORE_CUDA_TRIM=0. (The switches are for measuring.) */
   const char *scan = getenv("MDPORE_CUDA_SCAN");
   const int nested = scan && !strcmp(scan, "nested");
-  const int quasi_2d = q->min_image[0] || q->min_image[1] || q->min_image[2];
+  /* an axis of fewer than 3 periodic bins: the pair loops take the minimum image (quasi-2D) */
+  q->nearest = q->min_image[0] || q->min_image[1] || q->min_image[2];
+  const int quasi_2d = q->nearest;
   const int coarse = nested || (scan && !strcmp(scan, "coarse")) ||
                      (!quasi_2d && !(scan && !strcmp(scan, "fine")));
   q->row_scan = !nested;
   const char *trim_env = getenv("MDPORE_CUDA_TRIM");
   q->trim_any = !(trim_env && !strcmp(trim_env, "0"));
-  const char *near_env = getenv("MDPORE_CUDA_NEAREST");
-  q->nearest =
-      (near_env && !strcmp(near_env, "1")) || q->min_image[0] || q->min_image[1] || q->min_image[2];
-  long long ncell = 1;
-  for (int d = 0; d < 3; d++) {
-    q->sub[d] = multi || coarse || q->min_image[d] ? 1 : 2;
-    q->nf[d] = q->sub[d] * q->nb[d];
-    q->fine_w[d] = (meso_real)(q->L[d] / q->nf[d]);
-    q->inv_fine_w[d] = (meso_real)(q->nf[d] / q->L[d]);
-    ncell *= q->nf[d];
-  }
   /* keys are 32-bit, bin starts int (the sentinel key is ncell): half bins only where they fit */
-  if (ncell > INT_MAX / 2) {
+  long long ncell = 1;
+  for (int halves = !(multi || coarse); halves >= 0; halves--) {
     ncell = 1;
     for (int d = 0; d < 3; d++) {
-      q->sub[d] = 1;
-      q->nf[d] = q->nb[d];
-      q->fine_w[d] = q->bin_w[d];
-      q->inv_fine_w[d] = (meso_real)(q->nb[d] / q->L[d]);
-      ncell *= q->nb[d];
+      q->sub[d] = halves && !q->min_image[d] ? 2 : 1;
+      q->nf[d] = q->sub[d] * q->nb[d];
+      q->fine_w[d] = (meso_real)(q->L[d] / q->nf[d]);
+      q->inv_fine_w[d] = (meso_real)(q->nf[d] / q->L[d]);
+      ncell *= q->nf[d];
     }
+    if (ncell <= INT_MAX / 2) break;
   }
   if (ncell > INT_MAX / 2) {
     snprintf(err, len,

@@ -23,11 +23,8 @@ __device__ __forceinline__ meso_real dev_nearest(const struct dev_params &q, int
   return q.min_image[d] ? x - q.box_L[d] * rint(x * q.inv_box_L[d]) : x;
 }
 
-/* A compile-time MI for generic lambdas (decltype(mi)::value). */
-template <int MI> struct dev_mi { static constexpr int value = MI; };
-
 /* MI = 0: the caller knows that no axis takes the minimum image (q.nearest = 0): the separation
- * as it is, without the select that costs ~4 instructions per axis in the pair loops. */
+ * as it is, without the select (the row scan; in the list force loop it measured nothing). */
 template <int MI>
 __device__ __forceinline__ meso_real dev_nearest_t(const struct dev_params &q, int d, meso_real x) {
   return MI ? dev_nearest(q, d, x) : x;
@@ -35,19 +32,18 @@ __device__ __forceinline__ meso_real dev_nearest_t(const struct dev_params &q, i
 
 /* Separation of a partner at bin offset code (ox + 1) + 3 (oy + 1) + 9 (oz + 1): the same float
  * operations as the traversal below, so a list entry replays the traversal's value exactly. */
-template <int MI = 1>
 __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const struct dev_pos &pi,
                                                const struct dev_pos &pj, int code, meso_real *dx,
                                                meso_real *dy, meso_real *dz) {
   const int ox = code % 3 - 1, oy = (code / 3) % 3 - 1, oz = code / 9 - 1;
-  *dx = dev_nearest_t<MI>(q, 0, (pi.x - (meso_real)ox * q.bin_w[0]) - pj.x);
-  *dy = dev_nearest_t<MI>(q, 1, (pi.y - (meso_real)oy * q.bin_w[1]) - pj.y);
-  *dz = dev_nearest_t<MI>(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
+  *dx = dev_nearest(q, 0, (pi.x - (meso_real)ox * q.bin_w[0]) - pj.x);
+  *dy = dev_nearest(q, 1, (pi.y - (meso_real)oy * q.bin_w[1]) - pj.y);
+  *dz = dev_nearest(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
 }
 
 /* Fine bin index along axis d at fine offset o from a particle in coarse bin b, fine bin r within
- * it (0 <= r < sub); *co gets the coarse offset (floor((r + o) / sub), the offset the separation and
- * the list code use). -1 outside a non-periodic box. */
+ * it (0 <= r < sub); *co gets the coarse offset (floor((r + o) / sub), the offset the separation
+ * and the list code use). -1 outside a non-periodic box. */
 __device__ __forceinline__ int dev_fine_bin(const struct dev_params &q, int d, int b, int r, int o,
                                             int *co) {
   const int u = r + o; /* fine offset from the coarse bin's first fine bin, >= -2 */
@@ -81,8 +77,9 @@ __device__ __forceinline__ meso_real dev_gap(const struct dev_params &q, int d, 
  * (trim2 > 0: the caller's cutoff squared, with 1e-4 of the cutoff added for the float rounding of
  * the packed positions and bin edges: q.scan_cut2 or q.scan_rd2) a row farther than that from the
  * particle is skipped and a row's fine bins along x are cut to those within reach: no candidate
- * within the caller's cutoff is skipped. Visit order: rows z, y, then slots; fixed, so every sum is deterministic. MI = 0:
- * no axis takes the minimum image (q.nearest = 0), so the separations need no rint. */
+ * within the caller's cutoff is skipped. Visit order: rows z, y, then slots; fixed, so every sum
+ * is deterministic. MI = 0: no axis takes the minimum image (q.nearest = 0), so the separations
+ * need no rint. */
 template <int MI, class F>
 __device__ __forceinline__ void
 dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
