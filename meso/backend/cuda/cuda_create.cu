@@ -54,7 +54,10 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     q->periodic[d] = q->split[d] ? 0 : s->periodic[d];
     /* Bins at least as wide as the list cutoff (the cutoff plus the skin). */
     int nb = (int)(q->L[d] / (q->split[d] ? rcut : rcut + skin));
-    if (nb < 1) nb = 1;
+    /* A periodic axis of fewer than 3 bins takes the minimum image: one bin the box long, so a
+     * row of bins along x holds the particles of every height along it and the scan visits half
+     * the rows of two bins (the same candidates; positions packed from the box's lower face). */
+    if (nb < 1 || (nb < 3 && q->periodic[d])) nb = 1;
     if (q->periodic[d] && q->L[d] < 2.0 * rcut && plan->pair_terms) {
       snprintf(err, len,
                "%s: CUDA backend: periodic box length %g along %c is shorter than twice the "
@@ -68,6 +71,8 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     q->box_L[d] = (meso_real)q->L[d];
     q->inv_box_L[d] = (meso_real)(1.0 / q->L[d]);
     q->min_image[d] = q->periodic[d] && nb < 3;
+    q->near_L[d] = q->min_image[d] ? q->box_L[d] : (meso_real)0;
+    q->near_inv_L[d] = q->min_image[d] ? q->inv_box_L[d] : (meso_real)0;
     q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* nb = 2, periodic: bins b and b + 1 */
     q->off_hi[d] = nb >= 2 ? 1 : 0;
   }
@@ -81,6 +86,7 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   const int nested = scan && !strcmp(scan, "nested");
   /* an axis of fewer than 3 periodic bins: the pair loops take the minimum image (quasi-2D) */
   q->nearest = q->min_image[0] || q->min_image[1] || q->min_image[2];
+  q->near_axes = q->min_image[0] | q->min_image[1] << 1 | q->min_image[2] << 2;
   const int quasi_2d = q->nearest;
   const int coarse = nested || (scan && !strcmp(scan, "coarse")) ||
                      (!quasi_2d && !(scan && !strcmp(scan, "fine")));
@@ -92,7 +98,8 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   for (int halves = !(multi || coarse); halves >= 0; halves--) {
     ncell = 1;
     for (int d = 0; d < 3; d++) {
-      q->sub[d] = halves && !q->min_image[d] ? 2 : 1;
+      q->sub_shift[d] = halves && !q->min_image[d] ? 1 : 0;
+      q->sub[d] = 1 << q->sub_shift[d];
       q->nf[d] = q->sub[d] * q->nb[d];
       q->fine_w[d] = (meso_real)(q->L[d] / q->nf[d]);
       q->inv_fine_w[d] = (meso_real)(q->nf[d] / q->L[d]);

@@ -16,6 +16,17 @@
 
 #include <stdio.h>
 
+/* The term of a partner at squared distance r2 in rho_i: the kernel's weight when r2 is within the
+ * pair's rd2, else 0, without a branch. r = r2 rsqrt(r2) (no sqrt slow path; r2 = 0 gives r = 0):
+ * within a few float ulps of sqrt, and the bin scan and the list pass use this same function. */
+template <int KERNEL>
+__device__ __forceinline__ meso_real dev_w_rho(const struct dev_coef &c, meso_real r2) {
+  const meso_real r = r2 * rsqrt(fmax(r2, MESO_R(1e-30)));
+  const meso_real w = KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
+                                                 : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
+  return r2 < c.rd2 ? w : MESO_R(0.0);
+}
+
 /* The density cache's arguments of the passes (NULL table: off). */
 struct density_cache_args {
   meso_real *table; /* [len] static part by id, NaN until computed */
@@ -159,16 +170,13 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         if (r2 >= keep2 || t == i) return;                             /* most candidates */
         if (CACHE && mode == 1 && q.static_frozen[pj.species]) return; /* in the cached part */
         if (list_me && m < stride) {
-          mine[m % NBR_CHUNK] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
-          if (m % NBR_CHUNK == NBR_CHUNK - 1) flush(m / NBR_CHUNK);
+          /* (m >= 0: a mask and a shift, not the signed % and /) */
+          mine[m & (NBR_CHUNK - 1)] = (uint32_t)t | ((uint32_t)code << NBR_SLOT_BITS);
+          if ((m & (NBR_CHUNK - 1)) == NBR_CHUNK - 1) flush(m >> 3);
         }
         m++;
         if (!DENSITY || r2 >= q.rd2_max) return;
-        const struct dev_coef &c = row[pj.species];
-        if (r2 >= c.rd2) return;
-        const meso_real r = meso_sqrt(r2);
-        sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
-                                          : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
+        sum += dev_w_rho<KERNEL>(row[pj.species], r2);
       },
       trim2);
   if (CACHE && mode == 1) sum = cached + sum;
@@ -340,20 +348,15 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
    * table was filled holds them) left out */
   const int cached_i = cache_mode(q, dc, pi.species, i, &cached, &id_i) == 1;
   const int m = count[i];
-  for (int k = 0; k < m; k++) {
-    const uint32_t e = nbr[nbr_index(i, k, cap)];
+  nbr_for_each(nbr, i, m, cap, [&](uint32_t e) {
     const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
-    if (cached_i && q.static_frozen[pj.species]) continue;
+    if (cached_i && q.static_frozen[pj.species]) return;
     meso_real dx, dy, dz;
-    dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+    dev_offset_sep<1>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
     const meso_real r2 = dx * dx + dy * dy + dz * dz;
-    if (r2 >= q.rd2_max) continue;
-    const struct dev_coef &c = row[pj.species];
-    if (r2 >= c.rd2) continue;
-    const meso_real r = meso_sqrt(r2);
-    sum += KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
-                                      : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
-  }
+    if (r2 >= q.rd2_max) return;
+    sum += dev_w_rho<KERNEL>(row[pj.species], r2);
+  });
   if (cached_i) sum = cached + sum;
   rho[i] = sum;
   if (vel) vel[i].pad = sum;

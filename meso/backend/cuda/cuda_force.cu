@@ -131,14 +131,13 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
      * are evaluated from their side), so wall-wall pairs are never computed */
     if (LISTS) {
       const int m = q.mobile[pi.species] ? a.count[i] : 0;
-      for (int k = 0; k < m; k++) {
-        const uint32_t e = a.nbr[nbr_index(i, k, a.cap)];
+      nbr_for_each(a.nbr, i, m, a.cap, [&](uint32_t e) {
         const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
         const struct dev_pos pj = a.pos[t];
         meso_real dx, dy, dz;
-        dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+        dev_offset_sep<1>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
         pair(t, pj, dx, dy, dz);
-      }
+      });
     } else if (q.mobile[pi.species]) {
       dev_for_each_neighbour(
           q, a.start, a.gstart, a.n, a.pos, pi, a.key[i],

@@ -19,26 +19,47 @@ __device__ __forceinline__ int dev_nbr_bin(const struct dev_params &q, int d, in
   return c;
 }
 
+/* The minimum image along axis d (near_L, near_inv_L are 0 along an axis that does not take it:
+ * x comes back as it is, with no branch and no per-axis flag to read). */
 __device__ __forceinline__ meso_real dev_nearest(const struct dev_params &q, int d, meso_real x) {
-  return q.min_image[d] ? x - q.box_L[d] * rint(x * q.inv_box_L[d]) : x;
+  return x - q.near_L[d] * rint(x * q.near_inv_L[d]);
 }
 
 /* MI = 0: the caller knows that no axis takes the minimum image (q.nearest = 0): the separation
- * as it is, without the select (the row scan; in the list force loop it measured nothing). */
+ * as it is (the same value as dev_nearest's along such an axis). */
 template <int MI>
 __device__ __forceinline__ meso_real dev_nearest_t(const struct dev_params &q, int d, meso_real x) {
   return MI ? dev_nearest(q, d, x) : x;
 }
 
+/* AX: the axes (bit d for axis d) whose separations take the minimum image; the others' as they
+ * are. The row scan's slot loop is compiled for the quasi-2D boxes' one thin axis (y or z) and for
+ * any set (7: every axis through dev_nearest, exact along the others): q.near_axes picks. */
+template <int AX>
+__device__ __forceinline__ meso_real dev_nearest_ax(const struct dev_params &q, int d,
+                                                    meso_real x) {
+  return ((AX >> d) & 1) ? dev_nearest(q, d, x) : x;
+}
+
+/* The position of particle i as seen from a bin at offset o along an axis of bin width w: every
+ * pass computes the separation to a partner of that bin as dev_shifted(p_i, o, w) - p_j, so a list
+ * entry replays the traversal's value exactly. */
+__device__ __forceinline__ meso_real dev_shifted(meso_real p, int o, meso_real w) {
+  return p - (meso_real)o * w;
+}
+
 /* Separation of a partner at bin offset code (ox + 1) + 3 (oy + 1) + 9 (oz + 1): the same float
- * operations as the traversal below, so a list entry replays the traversal's value exactly. */
+ * operations as the traversal below. The code (< 27) is split with multiply-shifts: c / 9 =
+ * (57 c) >> 9 and r / 3 = (11 r) >> 5 hold for every c < 27 and r < 9. */
+template <int MI>
 __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const struct dev_pos &pi,
-                                               const struct dev_pos &pj, int code, meso_real *dx,
-                                               meso_real *dy, meso_real *dz) {
-  const int ox = code % 3 - 1, oy = (code / 3) % 3 - 1, oz = code / 9 - 1;
-  *dx = dev_nearest(q, 0, (pi.x - (meso_real)ox * q.bin_w[0]) - pj.x);
-  *dy = dev_nearest(q, 1, (pi.y - (meso_real)oy * q.bin_w[1]) - pj.y);
-  *dz = dev_nearest(q, 2, (pi.z - (meso_real)oz * q.bin_w[2]) - pj.z);
+                                               const struct dev_pos &pj, uint32_t code,
+                                               meso_real *dx, meso_real *dy, meso_real *dz) {
+  const uint32_t oz1 = (code * 57u) >> 9, r = code - 9u * oz1, oy1 = (r * 11u) >> 5;
+  const int ox = (int)(r - 3u * oy1) - 1, oy = (int)oy1 - 1, oz = (int)oz1 - 1;
+  *dx = dev_nearest_t<MI>(q, 0, dev_shifted(pi.x, ox, q.bin_w[0]) - pj.x);
+  *dy = dev_nearest_t<MI>(q, 1, dev_shifted(pi.y, oy, q.bin_w[1]) - pj.y);
+  *dz = dev_nearest_t<MI>(q, 2, dev_shifted(pi.z, oz, q.bin_w[2]) - pj.z);
 }
 
 /* Fine bin index along axis d at fine offset o from a particle in coarse bin b, fine bin r within
@@ -47,9 +68,9 @@ __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const
 __device__ __forceinline__ int dev_fine_bin(const struct dev_params &q, int d, int b, int r, int o,
                                             int *co) {
   const int u = r + o; /* fine offset from the coarse bin's first fine bin, >= -2 */
-  *co = (u + 2 * q.sub[d]) / q.sub[d] - 2;
+  *co = ((u + 2 * q.sub[d]) >> q.sub_shift[d]) - 2; /* floor(u / sub): sub is 1 or 2 */
   const int cb = dev_nbr_bin(q, d, b, *co);
-  return cb < 0 ? -1 : cb * q.sub[d] + (u - *co * q.sub[d]);
+  return cb < 0 ? -1 : (cb << q.sub_shift[d]) + (u - (*co << q.sub_shift[d]));
 }
 
 /* The fine offsets along axis d that can hold a partner: +-2 with half bins, else the coarse
@@ -80,6 +101,24 @@ __device__ __forceinline__ meso_real dev_gap(const struct dev_params &q, int d, 
  * within the caller's cutoff is skipped. Visit order: rows z, y, then slots; fixed, so every sum
  * is deterministic. MI = 0: no axis takes the minimum image (q.nearest = 0), so the separations
  * need no rint. */
+/* The slots [t0, t1) of one row (no wrap), coarse x offset -1 before s1, 0 in [s1, s2), +1 from
+ * s2: the particle's position shifted by that offset is picked (the values dev_shifted gives), the
+ * list code computed for partners only. AX: dev_nearest_ax. */
+template <int AX, class F>
+__device__ __forceinline__ void dev_scan_slots(const struct dev_params &q,
+                                               const struct dev_pos *__restrict__ pos, int t0,
+                                               int t1, int s1, int s2, const meso_real sx3[3],
+                                               meso_real sy, meso_real sz, int code_yz, F &f) {
+  for (int t = t0; t < t1; t++) {
+    const struct dev_pos pj = pos[t];
+    const meso_real sx = t < s1 ? sx3[0] : (t < s2 ? sx3[1] : sx3[2]);
+    const meso_real dx = dev_nearest_ax<AX>(q, 0, sx - pj.x);
+    const meso_real dy = dev_nearest_ax<AX>(q, 1, sy - pj.y);
+    const meso_real dz = dev_nearest_ax<AX>(q, 2, sz - pj.z);
+    f(t, (t >= s1) + (t >= s2) + code_yz, pj, dx, dy, dz);
+  }
+}
+
 template <int MI, class F>
 __device__ __forceinline__ void
 dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
@@ -87,22 +126,26 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
               meso_real trim2) {
   const int hx = (int)ci % q.nf[0], hy = ((int)ci / q.nf[0]) % q.nf[1],
             hz = (int)ci / (q.nf[0] * q.nf[1]);
-  const int bx = hx / q.sub[0], by = hy / q.sub[1], bz = hz / q.sub[2];
-  const int rx = hx - bx * q.sub[0], ry = hy - by * q.sub[1], rz = hz - bz * q.sub[2];
+  const int bx = hx >> q.sub_shift[0], by = hy >> q.sub_shift[1], bz = hz >> q.sub_shift[2];
+  const int rx = hx - (bx << q.sub_shift[0]), ry = hy - (by << q.sub_shift[1]),
+            rz = hz - (bz << q.sub_shift[2]);
   const int xlo = dev_fine_lo(q, 0), xhi = dev_fine_hi(q, 0);
   /* the row along x is one slot range unless it wraps or leaves the box */
   const int x_inside = hx + xlo >= 0 && hx + xhi < q.nf[0];
+  const meso_real sx_lo = dev_shifted(pi.x, -1, q.bin_w[0]),
+                  sx_mid = dev_shifted(pi.x, 0, q.bin_w[0]),
+                  sx_hi = dev_shifted(pi.x, 1, q.bin_w[0]);
   for (int oz = dev_fine_lo(q, 2); oz <= dev_fine_hi(q, 2); oz++) {
     int coz;
     const int fz = dev_fine_bin(q, 2, bz, rz, oz, &coz);
     if (fz < 0) continue;
-    const meso_real sz = pi.z - (meso_real)coz * q.bin_w[2];
+    const meso_real sz = dev_shifted(pi.z, coz, q.bin_w[2]);
     const meso_real gz = trim2 > MESO_R(0.0) ? dev_gap(q, 2, pi.z, rz + oz) : MESO_R(0.0);
     for (int oy = dev_fine_lo(q, 1); oy <= dev_fine_hi(q, 1); oy++) {
       int coy;
       const int fy = dev_fine_bin(q, 1, by, ry, oy, &coy);
       if (fy < 0) continue;
-      const meso_real sy = pi.y - (meso_real)coy * q.bin_w[1];
+      const meso_real sy = dev_shifted(pi.y, coy, q.bin_w[1]);
       const int code_yz = 3 * (coy + 1) + 9 * (coz + 1);
       const int row = q.nf[0] * (fy + q.nf[1] * fz);
       int olo = xlo, ohi = xhi;
@@ -120,21 +163,24 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
       if (x_inside) {
         /* slots of coarse x offset -1 before s1, 0 in [s1, s2), +1 from s2 */
         const int t0 = start[row + hx + olo], t1 = start[row + hx + ohi + 1];
-        const int s1 = start[row + bx * q.sub[0]], s2 = start[row + (bx + 1) * q.sub[0]];
-        for (int t = t0; t < t1; t++) {
-          const int ox = (t >= s1) + (t >= s2) - 1;
-          const meso_real sx = pi.x - (meso_real)ox * q.bin_w[0];
-          const struct dev_pos pj = pos[t];
-          f(t, (ox + 1) + code_yz, pj, dev_nearest_t<MI>(q, 0, sx - pj.x),
-            dev_nearest_t<MI>(q, 1, sy - pj.y), dev_nearest_t<MI>(q, 2, sz - pj.z));
-        }
+        const int s1 = start[row + (bx << q.sub_shift[0])],
+                  s2 = start[row + ((bx + 1) << q.sub_shift[0])];
+        const meso_real sx3[3] = {sx_lo, sx_mid, sx_hi};
+        if (!MI)
+          dev_scan_slots<0>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
+        else if (q.near_axes == 2)
+          dev_scan_slots<2>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
+        else if (q.near_axes == 4)
+          dev_scan_slots<4>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
+        else
+          dev_scan_slots<7>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
         continue;
       }
       for (int ox = olo; ox <= ohi; ox++) { /* bin by bin, wrapping (the box's x ends) */
         int cox;
         const int fx = dev_fine_bin(q, 0, bx, rx, ox, &cox);
         if (fx < 0) continue;
-        const meso_real sx = pi.x - (meso_real)cox * q.bin_w[0];
+        const meso_real sx = dev_shifted(pi.x, cox, q.bin_w[0]);
         const int code = (cox + 1) + code_yz;
         for (int t = start[row + fx]; t < start[row + fx + 1]; t++) {
           const struct dev_pos pj = pos[t];
@@ -172,11 +218,11 @@ dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start
   for (int oz = q.off_lo[2]; oz <= q.off_hi[2]; oz++) {
     const int cz = dev_nbr_bin(q, 2, bz, oz);
     if (cz < 0) continue;
-    const meso_real sz = pi.z - (meso_real)oz * q.bin_w[2];
+    const meso_real sz = dev_shifted(pi.z, oz, q.bin_w[2]);
     for (int oy = q.off_lo[1]; oy <= q.off_hi[1]; oy++) {
       const int cy = dev_nbr_bin(q, 1, by, oy);
       if (cy < 0) continue;
-      const meso_real sy = pi.y - (meso_real)oy * q.bin_w[1];
+      const meso_real sy = dev_shifted(pi.y, oy, q.bin_w[1]);
       if (!gstart && q.off_lo[0] == -1 && q.off_hi[0] == 1 && bx >= 1 && bx + 1 < q.nb[0]) {
         /* One rank, an x row that does not wrap: the three bins' slots are consecutive, so one
          * loop visits them in the same order as three (fewer loop heads, less lane imbalance). */
@@ -185,7 +231,7 @@ dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start
         const int code_yz = 3 * (oy + 1) + 9 * (oz + 1);
         for (int t = t0; t < t1; t++) {
           const int ox = (t >= s1) + (t >= s2) - 1;
-          const meso_real sx = pi.x - (meso_real)ox * q.bin_w[0];
+          const meso_real sx = dev_shifted(pi.x, ox, q.bin_w[0]);
           const struct dev_pos pj = pos[t];
           f(t, (ox + 1) + code_yz, pj, dev_nearest(q, 0, sx - pj.x), dev_nearest(q, 1, sy - pj.y),
             dev_nearest(q, 2, sz - pj.z));
@@ -195,7 +241,7 @@ dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start
       for (int ox = q.off_lo[0]; ox <= q.off_hi[0]; ox++) {
         const int cx = dev_nbr_bin(q, 0, bx, ox);
         if (cx < 0) continue;
-        const meso_real sx = pi.x - (meso_real)ox * q.bin_w[0];
+        const meso_real sx = dev_shifted(pi.x, ox, q.bin_w[0]);
         const int c = cx + q.nb[0] * (cy + q.nb[1] * cz);
         const int code = (ox + 1) + 3 * (oy + 1) + 9 * (oz + 1);
         for (int range = 0; range < (gstart ? 2 : 1); range++) {

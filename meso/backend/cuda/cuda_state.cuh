@@ -60,6 +60,10 @@ struct dev_params {
   int nb[3], ncell;
   double inv_bin[3];
   meso_real bin_w[3], box_L[3], inv_box_L[3]; /* in the pair math's precision */
+  /* The minimum image of a separation x along axis d is x - near_L rint(x near_inv_L): box_L and
+   * inv_box_L along an axis that takes it, 0 along the others (x as it is, without a branch). */
+  meso_real near_L[3], near_inv_L[3];
+  int near_axes;               /* bit d: axis d takes the minimum image */
   meso_real cut2_max, rd2_max; /* largest squared cutoffs of any pair (tested before the table) */
   /* Verlet skin (one rank only): lists hold the partners within list_cut2 = (cutoff + skin)^2 and
    * are kept until some particle has moved more than skin / 2 since they were built (then no pair
@@ -75,7 +79,7 @@ struct dev_params {
    * traversal (dev_scan_rows); trim_any: its rows cut to the caller's reach; scan_cut2, scan_rd2:
    * the list and density cutoffs squared with a margin over the float rounding of the trimming.
    * nearest: some axis takes the minimum image (the pair loops' separations need it). */
-  int sub[3], nf[3], row_scan, trim_any, nearest;
+  int sub[3], sub_shift[3], nf[3], row_scan, trim_any, nearest; /* sub = 1 << sub_shift */
   meso_real fine_w[3], inv_fine_w[3], scan_cut2, scan_rd2;
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
 };
@@ -250,8 +254,27 @@ struct cuda_sim {
  * sectors that serve the next 7 entries from L1. (Measured: entry-major k cap + i and one row per
  * particle, bench/RESULTS.md.) Strides are multiples of NBR_CHUNK. */
 #define NBR_CHUNK 8
+static_assert(NBR_CHUNK == 8, "nbr_for_each and the density pass's flush take 8 entries a chunk");
 __device__ __forceinline__ size_t nbr_index(int i, int k, int cap) {
   return ((size_t)(k / NBR_CHUNK) * (size_t)cap + (size_t)i) * NBR_CHUNK + (size_t)(k % NBR_CHUNK);
+}
+
+/* f(e) for the m entries of particle i's list, in order: each chunk read with two 16-byte loads
+ * (a chunk's room exists past m: strides are multiples of NBR_CHUNK), the entries taken from
+ * registers, so the pair loops pay no index arithmetic and one load per four entries. */
+template <class F>
+__device__ __forceinline__ void nbr_for_each(const uint32_t *__restrict__ nbr, int i, int m,
+                                             int cap, F &&f) {
+  const uint4 *chunk = (const uint4 *)(nbr + (size_t)i * NBR_CHUNK);
+  const size_t chunk_step = (size_t)cap * NBR_CHUNK / 4; /* uint4 from chunk c to c + 1 */
+  for (int k0 = 0; k0 < m; k0 += NBR_CHUNK, chunk += chunk_step) {
+    const uint4 lo = chunk[0], hi = chunk[1];
+    const uint32_t e[NBR_CHUNK] = {lo.x, lo.y, lo.z, lo.w, hi.x, hi.y, hi.z, hi.w};
+    const int left = m - k0;
+#pragma unroll
+    for (int k = 0; k < NBR_CHUNK; k++)
+      if (k < left) f(e[k]);
+  }
 }
 
 /* cuda_util.cu */

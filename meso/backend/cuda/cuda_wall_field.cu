@@ -37,13 +37,12 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   };
   if (LISTS) {
     const int m = q.mobile[pi.species] ? count[i] : 0;
-    for (int k = 0; k < m; k++) {
-      const uint32_t e = nbr[nbr_index(i, k, cap)];
+    nbr_for_each(nbr, i, m, cap, [&](uint32_t e) {
       const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
       meso_real dx, dy, dz;
-      dev_offset_sep(q, pi, pj, (int)(e >> NBR_SLOT_BITS), &dx, &dy, &dz);
+      dev_offset_sep<1>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
       partner(pj, dx, dy, dz);
-    }
+    });
   } else if (q.mobile[pi.species]) {
     dev_for_each_neighbour(
         q, start, gstart, n, pos, pi, key[i],
