@@ -1,6 +1,6 @@
 /* The device constants of a scene (dev_params) and the creation of the device state. Cells: nb[d]
- * bins of width >= the ghost cutoff over the box; a periodic axis needs at least 2 bins (box >= 2
- * cutoffs, so a pair meets at most one image of its partner). */
+ * bins of width >= the ghost cutoff over the box; a periodic axis too short for 3 bins has one, and
+ * the box must be >= 2 cutoffs along it (a pair meets at most one image of its partner). */
 #include "cuda_state.cuh"
 
 #include <limits.h>
@@ -73,7 +73,7 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     q->min_image[d] = q->periodic[d] && nb < 3;
     q->near_L[d] = q->min_image[d] ? q->box_L[d] : (meso_real)0;
     q->near_inv_L[d] = q->min_image[d] ? q->inv_box_L[d] : (meso_real)0;
-    q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* nb = 2, periodic: bins b and b + 1 */
+    q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* periodic, one bin: that bin only */
     q->off_hi[d] = nb >= 2 ? 1 : 0;
   }
   /* The scan (docs/engine-cuda.md "Neighbour scan"), MDPORE_CUDA_SCAN: auto (default: half bins on
@@ -85,9 +85,8 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   const char *scan = getenv("MDPORE_CUDA_SCAN");
   const int nested = scan && !strcmp(scan, "nested");
   /* an axis of fewer than 3 periodic bins: the pair loops take the minimum image (quasi-2D) */
-  q->nearest = q->min_image[0] || q->min_image[1] || q->min_image[2];
   q->near_axes = q->min_image[0] | q->min_image[1] << 1 | q->min_image[2] << 2;
-  const int quasi_2d = q->nearest;
+  const int quasi_2d = q->near_axes != 0;
   const int coarse = nested || (scan && !strcmp(scan, "coarse")) ||
                      (!quasi_2d && !(scan && !strcmp(scan, "fine")));
   q->row_scan = !nested;

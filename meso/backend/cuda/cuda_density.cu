@@ -18,7 +18,7 @@
 
 /* The term of a partner at squared distance r2 in rho_i: the kernel's weight when r2 is within the
  * pair's rd2, else 0, without a branch. r = r2 rsqrt(r2) (no sqrt slow path; r2 = 0 gives r = 0):
- * within a few float ulps of sqrt, and the bin scan and the list pass use this same function. */
+ * within a few float ulps of sqrt; the bin scan, the list pass and the static part all use it. */
 template <int KERNEL>
 __device__ __forceinline__ meso_real dev_w_rho(const struct dev_coef &c, meso_real r2) {
   const meso_real r = r2 * rsqrt(fmax(r2, MESO_R(1e-30)));
@@ -106,12 +106,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         (void)code;
         if (t == i || !q.static_frozen[pj.species]) return;
         const meso_real r2 = dx * dx + dy * dy + dz * dz;
-        const struct dev_coef &c = row[pj.species];
-        if (r2 >= c.rd2) return;
-        const meso_real r = meso_sqrt(r2);
-        const meso_real w = KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
-                                                       : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
-        fixed += llrint((double)w * STATIC_FIXED_SCALE);
+        if (r2 >= row[pj.species].rd2) return;
+        fixed += llrint((double)dev_w_rho<KERNEL>(row[pj.species], r2) * STATIC_FIXED_SCALE);
       },
       q.scan_rd2);
   dc.table[id_i] = (meso_real)((double)fixed / STATIC_FIXED_SCALE);
@@ -352,7 +348,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
     if (cached_i && q.static_frozen[pj.species]) return;
     meso_real dx, dy, dz;
-    dev_offset_sep<1>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
+    dev_offset_sep(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
     const meso_real r2 = dx * dx + dy * dy + dz * dz;
     if (r2 >= q.rd2_max) return;
     sum += dev_w_rho<KERNEL>(row[pj.species], r2);

@@ -135,7 +135,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
         const struct dev_pos pj = a.pos[t];
         meso_real dx, dy, dz;
-        dev_offset_sep<1>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
+        dev_offset_sep(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
         pair(t, pj, dx, dy, dz);
       });
     } else if (q.mobile[pi.species]) {

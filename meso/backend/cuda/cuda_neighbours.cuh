@@ -1,8 +1,9 @@
 /* Neighbour traversal of the device pair passes: the bins around a particle's bin, with periodic
  * wrap. Positions are packed relative to their own bin's lower corner (dev_pos), so the separation
  * to a particle of the bin at offset o along an axis is r_i - r_j = (x_i - x_j) - o w: a bin
- * reached across a periodic face gives exactly the image the CPU path's ghost copy gives. Along an
- * axis with only 2 bins both bins are visited once and the nearest image is taken. The visit order
+ * reached across a periodic face gives exactly the image the CPU path's ghost copy gives. A
+ * periodic axis too short for 3 bins has one bin the box long, packed from the box's lower face,
+ * and takes the nearest image (dev_nearest). The visit order
  * (bins z, y, x, then slots in bin order) is fixed, so every sum is deterministic. */
 #ifndef MESO_BACKEND_CUDA_NEIGHBOURS_CUH
 #define MESO_BACKEND_CUDA_NEIGHBOURS_CUH
@@ -25,16 +26,10 @@ __device__ __forceinline__ meso_real dev_nearest(const struct dev_params &q, int
   return x - q.near_L[d] * rint(x * q.near_inv_L[d]);
 }
 
-/* MI = 0: the caller knows that no axis takes the minimum image (q.nearest = 0): the separation
- * as it is (the same value as dev_nearest's along such an axis). */
-template <int MI>
-__device__ __forceinline__ meso_real dev_nearest_t(const struct dev_params &q, int d, meso_real x) {
-  return MI ? dev_nearest(q, d, x) : x;
-}
-
-/* AX: the axes (bit d for axis d) whose separations take the minimum image; the others' as they
- * are. The row scan's slot loop is compiled for the quasi-2D boxes' one thin axis (y or z) and for
- * any set (7: every axis through dev_nearest, exact along the others): q.near_axes picks. */
+/* AX: the axes (bit d for axis d) whose separations go through dev_nearest; the others' are taken
+ * as they are (the same value dev_nearest gives along an axis without the minimum image). 0: no
+ * axis takes it (q.near_axes = 0); the row scan's slot loop is also compiled for the quasi-2D boxes'
+ * one thin axis (2: y, 4: z); 7 serves any set. */
 template <int AX>
 __device__ __forceinline__ meso_real dev_nearest_ax(const struct dev_params &q, int d,
                                                     meso_real x) {
@@ -51,15 +46,14 @@ __device__ __forceinline__ meso_real dev_shifted(meso_real p, int o, meso_real w
 /* Separation of a partner at bin offset code (ox + 1) + 3 (oy + 1) + 9 (oz + 1): the same float
  * operations as the traversal below. The code (< 27) is split with multiply-shifts: c / 9 =
  * (57 c) >> 9 and r / 3 = (11 r) >> 5 hold for every c < 27 and r < 9. */
-template <int MI>
 __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const struct dev_pos &pi,
                                                const struct dev_pos &pj, uint32_t code,
                                                meso_real *dx, meso_real *dy, meso_real *dz) {
   const uint32_t oz1 = (code * 57u) >> 9, r = code - 9u * oz1, oy1 = (r * 11u) >> 5;
   const int ox = (int)(r - 3u * oy1) - 1, oy = (int)oy1 - 1, oz = (int)oz1 - 1;
-  *dx = dev_nearest_t<MI>(q, 0, dev_shifted(pi.x, ox, q.bin_w[0]) - pj.x);
-  *dy = dev_nearest_t<MI>(q, 1, dev_shifted(pi.y, oy, q.bin_w[1]) - pj.y);
-  *dz = dev_nearest_t<MI>(q, 2, dev_shifted(pi.z, oz, q.bin_w[2]) - pj.z);
+  *dx = dev_nearest(q, 0, dev_shifted(pi.x, ox, q.bin_w[0]) - pj.x);
+  *dy = dev_nearest(q, 1, dev_shifted(pi.y, oy, q.bin_w[1]) - pj.y);
+  *dz = dev_nearest(q, 2, dev_shifted(pi.z, oz, q.bin_w[2]) - pj.z);
 }
 
 /* Fine bin index along axis d at fine offset o from a particle in coarse bin b, fine bin r within
@@ -92,15 +86,6 @@ __device__ __forceinline__ meso_real dev_gap(const struct dev_params &q, int d, 
   return p < lo ? lo - p : (p > hi ? p - hi : MESO_R(0.0));
 }
 
-/* The traversal of one rank (or of the interior part of several): the rows of fine bins (z, then
- * y) around the particle's fine bin; each row's fine bins along x are consecutive slots, visited in
- * one loop (the coarse x offset of a slot from the two coarse-bin edges of the row). With trimming
- * (trim2 > 0: the caller's cutoff squared, with 1e-4 of the cutoff added for the float rounding of
- * the packed positions and bin edges: q.scan_cut2 or q.scan_rd2) a row farther than that from the
- * particle is skipped and a row's fine bins along x are cut to those within reach: no candidate
- * within the caller's cutoff is skipped. Visit order: rows z, y, then slots; fixed, so every sum
- * is deterministic. MI = 0: no axis takes the minimum image (q.nearest = 0), so the separations
- * need no rint. */
 /* The slots [t0, t1) of one row (no wrap), coarse x offset -1 before s1, 0 in [s1, s2), +1 from
  * s2: the particle's position shifted by that offset is picked (the values dev_shifted gives), the
  * list code computed for partners only. AX: dev_nearest_ax. */
@@ -119,6 +104,15 @@ __device__ __forceinline__ void dev_scan_slots(const struct dev_params &q,
   }
 }
 
+/* The traversal of one rank (or of the interior part of several): the rows of fine bins (z, then
+ * y) around the particle's fine bin; each row's fine bins along x are consecutive slots, visited in
+ * one loop (the coarse x offset of a slot from the two coarse-bin edges of the row). With trimming
+ * (trim2 > 0: the caller's cutoff squared, with 1e-4 of the cutoff added for the float rounding of
+ * the packed positions and bin edges: q.scan_cut2 or q.scan_rd2) a row farther than that from the
+ * particle is skipped and a row's fine bins along x are cut to those within reach: no candidate
+ * within the caller's cutoff is skipped. Visit order: rows z, y, then slots; fixed, so every sum
+ * is deterministic. MI = 0: no axis takes the minimum image (q.near_axes = 0), so the separations
+ * need no rint. */
 template <int MI, class F>
 __device__ __forceinline__ void
 dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
@@ -184,8 +178,9 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
         const int code = (cox + 1) + code_yz;
         for (int t = start[row + fx]; t < start[row + fx + 1]; t++) {
           const struct dev_pos pj = pos[t];
-          f(t, code, pj, dev_nearest_t<MI>(q, 0, sx - pj.x), dev_nearest_t<MI>(q, 1, sy - pj.y),
-            dev_nearest_t<MI>(q, 2, sz - pj.z));
+          f(t, code, pj, dev_nearest_ax < MI ? 7 : 0 > (q, 0, sx - pj.x),
+            dev_nearest_ax < MI ? 7 : 0 > (q, 1, sy - pj.y),
+            dev_nearest_ax < MI ? 7 : 0 > (q, 2, sz - pj.z));
         }
       }
     }
@@ -205,7 +200,7 @@ dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start
                        uint32_t ci, F &&f, meso_real trim2) {
   if (!gstart && q.row_scan) {
     if (!q.trim_any) trim2 = MESO_R(0.0);
-    if (q.nearest)
+    if (q.near_axes)
       dev_scan_rows<1>(q, start, pos, pi, ci, f, trim2);
     else
       dev_scan_rows<0>(q, start, pos, pi, ci, f, trim2);

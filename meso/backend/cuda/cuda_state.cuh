@@ -55,15 +55,15 @@ struct dev_params {
   int multi;    /* several ranks */
   int split[3]; /* axis cut between ranks: ghosts along it; other axes wrap on the device */
   double sub_lo[3], sub_hi[3], rcut;
-  /* Cells: nb[d] bins of width >= the cutoff; periodic axes wrap. An axis with fewer than 3 bins
-   * visits each bin once and takes the nearest image (minimum image; the box is >= 2 cutoffs). */
+  /* Cells: nb[d] bins of width >= the cutoff; periodic axes wrap. A periodic axis too short for 3
+   * bins has one bin the box long and takes the nearest image (the box is >= 2 cutoffs). */
   int nb[3], ncell;
   double inv_bin[3];
   meso_real bin_w[3], box_L[3], inv_box_L[3]; /* in the pair math's precision */
   /* The minimum image of a separation x along axis d is x - near_L rint(x near_inv_L): box_L and
    * inv_box_L along an axis that takes it, 0 along the others (x as it is, without a branch). */
   meso_real near_L[3], near_inv_L[3];
-  int near_axes;               /* bit d: axis d takes the minimum image */
+  int near_axes; /* bit d: axis d takes the minimum image; 0: none (3D boxes), else quasi-2D */
   meso_real cut2_max, rd2_max; /* largest squared cutoffs of any pair (tested before the table) */
   /* Verlet skin (one rank only): lists hold the partners within list_cut2 = (cutoff + skin)^2 and
    * are kept until some particle has moved more than skin / 2 since they were built (then no pair
@@ -77,9 +77,8 @@ struct dev_params {
    * keep the coarse offset code. sub = 2 on one rank along every axis that does not take the
    * minimum image in a quasi-2D box (some axis of fewer than 3 bins), else 1. row_scan: the row
    * traversal (dev_scan_rows); trim_any: its rows cut to the caller's reach; scan_cut2, scan_rd2:
-   * the list and density cutoffs squared with a margin over the float rounding of the trimming.
-   * nearest: some axis takes the minimum image (the pair loops' separations need it). */
-  int sub[3], sub_shift[3], nf[3], row_scan, trim_any, nearest; /* sub = 1 << sub_shift */
+   * the list and density cutoffs squared with a margin over the float rounding of the trimming. */
+  int sub[3], sub_shift[3], nf[3], row_scan, trim_any; /* sub = 1 << sub_shift */
   meso_real fine_w[3], inv_fine_w[3], scan_cut2, scan_rd2;
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
 };

@@ -40,7 +40,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     nbr_for_each(nbr, i, m, cap, [&](uint32_t e) {
       const struct dev_pos pj = pos[e & ((1u << NBR_SLOT_BITS) - 1)];
       meso_real dx, dy, dz;
-      dev_offset_sep<1>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
+      dev_offset_sep(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
       partner(pj, dx, dy, dz);
     });
   } else if (q.mobile[pi.species]) {
