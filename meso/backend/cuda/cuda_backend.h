@@ -58,14 +58,15 @@ int cuda_sim_count(const cuda_sim_t *g);
 /* The phases on one rank (cuda_step.cu; the glue in cuda_glue.c calls them in the plan's order):
  * kick + drift + constraints + wrap; sort by cell (set-up: with the loaded forces when keep_forces;
  * a step with a skin may keep the lists: cuda_sim_neighbours decides); prediction (v~ = v at
- * set-up); pack + neighbour scan with the densities; the pair forces at step index `step`; the
- * finishing kernel (particle forces when add_particle, finite check, second kick when kick); the
- * problem record of the step (synchronises). Each 0 or -1. */
+ * set-up); pack + neighbour scan with the densities; the pair forces at step index `step` (finish:
+ * the pass also does the finishing kernel's work with add_particle and kick, and the finish call
+ * that follows does nothing); the finishing kernel (particle forces when add_particle, finite
+ * check, second kick when kick); the problem record of the step (synchronises). Each 0 or -1. */
 int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial);
 int cuda_sim_sort(cuda_sim_t *g, int setup, int keep_forces, int want_virial);
 int cuda_sim_predict(cuda_sim_t *g, int setup);
 int cuda_sim_neighbours(cuda_sim_t *g);
-int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces);
+int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces, int finish);
 int cuda_sim_finish(cuda_sim_t *g, int add_particle, int kick);
 int cuda_sim_fetch_problems(cuda_sim_t *g, cuda_problem_t *pr);
 

@@ -5,15 +5,6 @@
 
 #include <cub/device/device_radix_sort.cuh>
 
-/* Fine bin along one axis: the coarse coordinate s scaled by sub (exact: sub is 1 or 2), so the
- * fine bin lies in coarse bin floor(s) (k_pack packs relative to that one). */
-__device__ __forceinline__ int bin_of(double x, double lo, double inv, int sub, int nf) {
-  const double s = (x - lo) * inv * sub;
-  if (!(s >= 0.0)) return 0; /* NaN goes to bin 0 (the step check stops the run) */
-  const int b = s < (double)nf ? (int)s : nf - 1;
-  return b;
-}
-
 /* (Fine) bin of each particle; with sentinel (several ranks, owned particles) a particle outside
  * this rank's subdomain gets bin ncell, so the stable sort puts the leavers last. */
 __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict__ x,
@@ -21,14 +12,51 @@ __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict
                             uint32_t *key, int *iota, int sentinel) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
-  const int bx = bin_of(x[i], q.lo[0], q.inv_bin[0], q.sub[0], q.nf[0]);
-  const int by = bin_of(y[i], q.lo[1], q.inv_bin[1], q.sub[1], q.nf[1]);
-  const int bz = bin_of(z[i], q.lo[2], q.inv_bin[2], q.sub[2], q.nf[2]);
-  key[i] = (uint32_t)(bx + q.nf[0] * (by + q.nf[1] * bz));
+  key[i] = dev_cell_key(q, x[i], y[i], z[i]);
   if (sentinel && !(x[i] >= q.sub_lo[0] && x[i] < q.sub_hi[0] && y[i] >= q.sub_lo[1] &&
                     y[i] < q.sub_hi[1] && z[i] >= q.sub_lo[2] && z[i] < q.sub_hi[2]))
     key[i] = (uint32_t)q.ncell;
   iota[i] = i;
+}
+
+/* Position relative to the lower corner of the bin the particle was sorted into. With a skin the
+ * particle may have left that bin, or crossed a periodic face, since the sort: along a wrapping
+ * axis the nearest image of the offset is taken, so the packed value stays continuous. */
+__device__ __forceinline__ meso_real rel_to_bin(const struct dev_params &q, int d, double x,
+                                                int b) {
+  double r = x - (q.lo[d] + b * (q.L[d] / q.nb[d]));
+  if (q.periodic[d]) {
+    if (r > 0.5 * q.L[d])
+      r -= q.L[d];
+    else if (r < -0.5 * q.L[d])
+      r += q.L[d];
+  }
+  return (meso_real)r;
+}
+
+/* The packed position of a particle at (x, y, z) sorted into fine bin c (relative to the coarse
+ * bin that holds it), with its species. */
+__device__ __forceinline__ struct dev_pos dev_packed_pos(const struct dev_params &q, uint32_t key,
+                                                         double x, double y, double z, int s) {
+  const int c = (int)key;
+  const int b[3] = {(c % q.nf[0]) / q.sub[0], ((c / q.nf[0]) % q.nf[1]) / q.sub[1],
+                    c / (q.nf[0] * q.nf[1]) / q.sub[2]};
+  struct dev_pos r;
+  r.x = rel_to_bin(q, 0, x, b[0]);
+  r.y = rel_to_bin(q, 1, y, b[1]);
+  r.z = rel_to_bin(q, 2, z, b[2]);
+  r.species = s;
+  return r;
+}
+
+/* The thermostat's packed velocity (pad: the density, written by the density pass). */
+__device__ __forceinline__ struct dev_vel dev_packed_vel(double vx, double vy, double vz) {
+  struct dev_vel u;
+  u.x = (meso_real)vx;
+  u.y = (meso_real)vy;
+  u.z = (meso_real)vz;
+  u.pad = 0;
+  return u;
 }
 
 /* dst[k] = src[perm[k]] for every field. */
@@ -46,6 +74,43 @@ __global__ void k_gather(int n, const int *__restrict__ perm, struct dev_fields 
     if (with_f) dst.f[d][k] = src.f[d][i];
     if (with_vpred) dst.vpred[d][k] = src.vpred[d][i];
   }
+}
+
+/* k_gather, the pack of the gathered slot (k_pack without a skin check) and, with starts, the bin
+ * starts of k_cell_start, in one pass (one rank, a step's sort): the sorted fields are packed while
+ * they are in registers instead of being read again. */
+__global__ void k_gather_pack(const struct dev_params q, int n, const int *__restrict__ perm,
+                              struct dev_fields src, struct dev_fields dst, int with_vpred,
+                              int with_f, const uint32_t *__restrict__ key, struct dev_pos *pos,
+                              struct dev_vel *vel, int *start) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const int i = perm[k];
+  const int s = src.species[i];
+  dst.id[k] = src.id[i];
+  dst.species[k] = s;
+  double x[3], v[3], vp[3];
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    x[d] = src.x[d][i];
+    v[d] = src.v[d][i];
+    dst.x[d][k] = x[d];
+    dst.v[d][k] = v[d];
+    if (with_f) dst.f[d][k] = src.f[d][i];
+    if (with_vpred) {
+      vp[d] = src.vpred[d][i];
+      dst.vpred[d][k] = vp[d];
+    }
+  }
+  const uint32_t c = key[k];
+  pos[k] = dev_packed_pos(q, c, x[0], x[1], x[2], s);
+  if (vel)
+    vel[k] = with_vpred ? dev_packed_vel(vp[0], vp[1], vp[2]) : dev_packed_vel(v[0], v[1], v[2]);
+  if (!start) return;
+  const int prev = k > 0 ? (int)key[k - 1] : -1;
+  for (int b = prev + 1; b <= (int)c; b++) start[b] = k;
+  if (k == n - 1)
+    for (int b = (int)c + 1; b <= q.ncell; b++) start[b] = n;
 }
 
 /* cell_start[c] = first sorted slot with key >= c, for c in [0, ncell]. */
@@ -91,15 +156,18 @@ __global__ void k_cell_start_search(int n, int ncell, const uint32_t *__restrict
 
 /* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start.
  * The owned particles of several ranks (sentinel) skip the predicted velocities: the prediction
- * follows the sort there and rewrites them. */
+ * follows the sort there and rewrites them. pack (one rank): the packed copies written by the
+ * gather (k_gather_pack). */
 static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct dev_fields src,
-                      struct dev_fields dst, int *start, int with_f) {
+                      struct dev_fields dst, int *start, int with_f, int pack) {
   const struct dev_params *q = &g->prm;
   if (n == 0) return cuda_check(cudaMemset(start, 0, (q->ncell + 1) * sizeof(int)), "sort");
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   src = shifted(src, off);
-  k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, src.x[0], src.x[1], src.x[2], g->key + off,
-                                      g->iota + off, sentinel);
+  if (!(g->keys_ready && off == 0 && !sentinel)) /* (else the kick-drift wrote them) */
+    k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, src.x[0], src.x[1], src.x[2], g->key + off,
+                                        g->iota + off, sentinel);
+  g->keys_ready = 0;
   int end_bit = 1;
   while (end_bit < 32 && (1u << end_bit) <= (unsigned)q->ncell) end_bit++; /* keys 0..ncell */
   size_t tmp = g->sort_tmp_bytes;
@@ -108,9 +176,19 @@ static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct d
                                                  n, 0, end_bit),
                  "cell sort"))
     return -1;
+  const int sparse = (long long)n * 4 < (long long)q->ncell;
+  if (pack) {
+    k_gather_pack<<<blocks, CUDA_BLOCK>>>(*q, n, g->perm + off, src, shifted(dst, off),
+                                          q->use_vpred, with_f, g->key_sorted + off, g->pos + off,
+                                          g->vel ? g->vel + off : NULL, sparse ? NULL : start);
+    if (sparse)
+      k_cell_start_search<<<(q->ncell + CUDA_BLOCK) / CUDA_BLOCK, CUDA_BLOCK>>>(
+          n, q->ncell, g->key_sorted + off, start);
+    return cuda_check(cudaGetLastError(), "cell sort kernels");
+  }
   k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off),
                                    q->use_vpred && !sentinel, with_f);
-  if ((long long)n * 4 < (long long)q->ncell)
+  if (sparse)
     k_cell_start_search<<<(q->ncell + CUDA_BLOCK) / CUDA_BLOCK, CUDA_BLOCK>>>(
         n, q->ncell, g->key_sorted + off, start);
   else
@@ -143,7 +221,9 @@ static int sort_one_set(struct cuda_sim *g, int with_f) {
   const int n = g->n;
   if (n == 0) return cuda_check(cudaMemset(g->cell_start, 0, (q->ncell + 1) * sizeof(int)), "sort");
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
-  k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota, 0);
+  if (!g->keys_ready) /* (else the kick-drift wrote them) */
+    k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota, 0);
+  g->keys_ready = 0;
   int end_bit = 1;
   while (end_bit < 32 && (1u << end_bit) <= (unsigned)q->ncell) end_bit++;
   cub::DoubleBuffer<uint32_t> keys(g->key, g->key_sorted);
@@ -172,34 +252,25 @@ static int sort_one_set(struct cuda_sim *g, int with_f) {
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
 
-int cuda_sort_cells(struct cuda_sim *g, int with_f) {
+int cuda_sort_cells(struct cuda_sim *g, int with_f, int pack) {
   g->lists_valid = 0;
-  if (g->sort_scratch) return sort_one_set(g, with_f);
-  if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start, with_f)) return -1;
+  if (g->sort_scratch) {
+    if (sort_one_set(g, with_f)) return -1;
+    if (pack) cuda_pack(g);
+    return 0;
+  }
+  const int fused = pack && !g->prm.multi; /* one rank: no ghosts to pack after */
+  if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start, with_f, fused)) return -1;
   struct dev_fields t = g->a;
   g->a = g->b;
   g->b = t;
+  if (pack && !fused) cuda_pack(g);
   return 0;
 }
 
 /* Ghosts uploaded into b's slots [n, n + n_ghost) go into a's, in bin order (multi). */
 int cuda_sort_ghosts(struct cuda_sim *g) {
-  return sort_range(g, g->n, g->n_ghost, 0, g->b, g->a, g->gcell_start, 0); /* ghosts: no f */
-}
-
-/* Position relative to the lower corner of the bin the particle was sorted into. With a skin the
- * particle may have left that bin, or crossed a periodic face, since the sort: along a wrapping
- * axis the nearest image of the offset is taken, so the packed value stays continuous. */
-__device__ __forceinline__ meso_real rel_to_bin(const struct dev_params &q, int d, double x,
-                                                int b) {
-  double r = x - (q.lo[d] + b * (q.L[d] / q.nb[d]));
-  if (q.periodic[d]) {
-    if (r > 0.5 * q.L[d])
-      r -= q.L[d];
-    else if (r < -0.5 * q.L[d])
-      r += q.L[d];
-  }
-  return (meso_real)r;
+  return sort_range(g, g->n, g->n_ghost, 0, g->b, g->a, g->gcell_start, 0, 0); /* ghosts: no f */
 }
 
 /* Packed positions and thermostat velocities; with pos0 (skin > 0) a particle that moved more than
@@ -209,14 +280,7 @@ __global__ void k_pack(const struct dev_params q, int k0, int n, struct dev_fiel
                        int use_vpred, const struct dev_pos *__restrict__ pos0, int *rebuild) {
   const int k = k0 + blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  const int c = (int)key[k]; /* fine bin; the coarse bin holds it */
-  const int b[3] = {(c % q.nf[0]) / q.sub[0], ((c / q.nf[0]) % q.nf[1]) / q.sub[1],
-                    c / (q.nf[0] * q.nf[1]) / q.sub[2]};
-  struct dev_pos r;
-  r.x = rel_to_bin(q, 0, p.x[0][k], b[0]);
-  r.y = rel_to_bin(q, 1, p.x[1][k], b[1]);
-  r.z = rel_to_bin(q, 2, p.x[2][k], b[2]);
-  r.species = p.species[k];
+  const struct dev_pos r = dev_packed_pos(q, key[k], p.x[0][k], p.x[1][k], p.x[2][k], p.species[k]);
   pos[k] = r;
   if (pos0) {
     const struct dev_pos o = pos0[k];
@@ -228,12 +292,7 @@ __global__ void k_pack(const struct dev_params q, int k0, int n, struct dev_fiel
   }
   if (vel) {
     double *const *v = use_vpred ? p.vpred : p.v;
-    struct dev_vel u;
-    u.x = (meso_real)v[0][k];
-    u.y = (meso_real)v[1][k];
-    u.z = (meso_real)v[2][k];
-    u.pad = 0;
-    vel[k] = u;
+    vel[k] = dev_packed_vel(v[0][k], v[1][k], v[2][k]);
   }
 }
 

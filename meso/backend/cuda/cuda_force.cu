@@ -8,6 +8,7 @@
  * block in double. The term set is a template parameter, so unused terms cost nothing (as in
  * backend/cpu), and so is the generator of xi_ij (RNG, enum pair_rng: dpd_thermostat's option
  * rng), so the default Philox4x32-10 kernel is the one it was, without a branch per pair. */
+#include "cuda_finish.cuh"
 #include "cuda_neighbours.cuh"
 #include "cuda_select.cuh"
 #include "physics/pair_forces.h"
@@ -42,6 +43,12 @@ struct force_args {
   int n_slots;
   /* With slots: their count on the device instead of n_slots (NULL: n_slots). */
   const int *n_slots_dev;
+  /* finish (one rank, a step): each thread ends its particle's step (dev_finish_particle: particle
+   * forces, finite check, second half kick on the fields fin, problems into problem), so no
+   * finishing kernel reads f, v and x again. */
+  int finish;
+  struct dev_fields fin;
+  struct dev_problem *problem;
 };
 
 /* Block sums of the pair virial in double, one row per block (reduced in fixed order later). */
@@ -147,7 +154,13 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
           },
           q.scan_cut2);
     }
-    if (a.write_f) {
+    if (a.write_f && a.finish) {
+      double f[3] = {sfx, sfy, sfz};
+      dev_finish_particle(q, a.fin, a.problem, i, (int)pi.species, f, 1, 1);
+      a.fx[i] = f[0];
+      a.fy[i] = f[1];
+      a.fz[i] = f[2];
+    } else if (a.write_f) {
       a.fx[i] = sfx;
       a.fy[i] = sfy;
       a.fz[i] = sfz;
@@ -214,10 +227,25 @@ __global__ void k_zero_frozen_f(const struct dev_params q, int n, const struct d
   fx[i] = fy[i] = fz[i] = 0.0;
 }
 
+/* The frozen particles' step ended as the force pass ends the mobile ones' when the named effects
+ * add particle forces (without them a zero force is all the finish leaves: k_zero_frozen_f). */
+__global__ void k_finish_frozen(const struct dev_params q, int n, const struct dev_pos *pos,
+                                struct dev_fields p, struct dev_problem *pb) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const int s = (int)pos[i].species;
+  if (q.mobile[s]) return;
+  double f[3] = {0.0, 0.0, 0.0};
+  dev_finish_particle(q, p, pb, i, s, f, 1, 1);
+  p.f[0][i] = f[0];
+  p.f[1][i] = f[1];
+  p.f[2][i] = f[2];
+}
+
 /* One rank with lists (g->mobile_slots_on): the mobile slots of this step's order into
  * g->mobile_slot, their count into g->mobile_count (device), and the frozen particles' f zeroed
- * (what the full pass writes for them). 0 or -1. */
-static int select_mobile(struct cuda_sim *g, int write_f) {
+ * (what the full pass writes for them; with finish, their step ended). 0 or -1. */
+static int select_mobile(struct cuda_sim *g, int write_f, int finish) {
   const int n = g->n;
   struct is_mobile pred = {g->pos, 0u};
   for (int s = 0; s < g->prm.n_species; s++)
@@ -226,9 +254,11 @@ static int select_mobile(struct cuda_sim *g, int write_f) {
       (!g->mobile_count && cuda_alloc(g, (void **)&g->mobile_count, sizeof(int))) ||
       cuda_select_slots_if(g, pred, g->mobile_slot, g->mobile_count, n, "mobile slots"))
     return -1;
-  if (write_f)
-    k_zero_frozen_f<<<(n + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a.f[0],
-                                                                       g->a.f[1], g->a.f[2]);
+  const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  if (write_f && finish && g->prm.particle_forces)
+    k_finish_frozen<<<blocks, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a, g->problem);
+  else if (write_f)
+    k_zero_frozen_f<<<blocks, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a.f[0], g->a.f[1], g->a.f[2]);
   return 0;
 }
 
@@ -240,10 +270,12 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                           int part, cudaStream_t stream) {
   const int n = g->n;
   const int virial = want_virial && g->virial != NULL;
+  /* one rank, a step: the threads end their particles' steps (cuda_sim_pair_forces) */
+  const int finish = g->finish_in_force && part < 0 && !keep_forces && !g->prm.multi;
   /* one rank, lists, no per-particle virial (whose frozen rows the full pass writes): over the
    * mobile slots, the grid still sized for every slot (threads past the device count leave) */
   const int mobile = part < 0 && n > 0 && g->mobile_slots_on && !g->prm.multi && !g->compact &&
-                     !virial && g->nbr && select_mobile(g, !keep_forces) == 0;
+                     !virial && g->nbr && select_mobile(g, !keep_forces, finish) == 0;
   const int *slots = part == 0 ? g->boundary_slots : mobile ? g->mobile_slot : NULL;
   const int threads = part == 0 && slots ? g->n_bslots : n,
             blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
@@ -278,7 +310,10 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                          g->key_sorted,
                          slots,
                          threads,
-                         mobile ? g->mobile_count : NULL};
+                         mobile ? g->mobile_count : NULL,
+                         finish,
+                         g->a,
+                         g->problem};
   switch (g->prm.terms & 15) { /* 8 (wall no slip) comes with 4 (its check) */
   case 0:
     launch<0>(g->prm, a, blocks, virial, pv, stream);

@@ -159,10 +159,12 @@ static int neighbours(sim_state_t *st) {
   return cuda_sim_neighbours(cuda_glue(st)->g);
 }
 
+/* A step's force pass also ends each particle's step (particle forces, finite check, second half
+ * kick: the kick phase that follows finds it done); the set-up's leaves it to the check. */
 static int pair_forces(sim_state_t *st) {
   if (st->failed) return 0;
   return cuda_sim_pair_forces(cuda_glue(st)->g, st->step, st->want_virial,
-                              st->in_setup && st->forces_loaded);
+                              st->in_setup && st->forces_loaded, !st->in_setup);
 }
 
 /* --explain remarks shared by both tables: where the fused phases run. */
@@ -198,6 +200,11 @@ static const char *phase_note(const plan_t *plan, int phase) {
            "when the lists would not fit: no lists, the force pass scans the bins again)";
   case PHASE_RHO_SYNC:
     return "one rank: no ghosts";
+  case PHASE_PARTICLE_FORCES:
+    return "at the end of the force pass's thread, with the kick (at set-up: the finishing kernel, "
+           "before the check)";
+  case PHASE_KICK:
+    return "in the force pass (its thread holds the particle's whole force): no kernel of its own";
   default:
     return cuda_glue_phase_note(phase);
   }

@@ -241,7 +241,7 @@ extern "C" int cuda_halo_add_owned(cuda_sim_t *g, const particles_t *in) {
  * before the force pass rewrites them: by the prediction (Groot-Warren lambda != 1/2), or kept
  * from a checkpoint at set-up (keep_forces). */
 extern "C" int cuda_halo_resort(cuda_sim_t *g, int keep_forces) {
-  if (cuda_sort_cells(g, g->prm.use_vpred || keep_forces)) return -1;
+  if (cuda_sort_cells(g, g->prm.use_vpred || keep_forces, 0)) return -1;
   g->n -= g->n_leaving;
   g->n_leaving = 0;
   return 0;

@@ -3,15 +3,18 @@
  * position constraints and particle forces of the named effects (effects/effect_list.h:
  * box_walls, body_force), Groot-Warren prediction, second kick. Problems are recorded on the
  * device and fetched once per step. */
-#include "cuda_state.cuh"
+#include "cuda_finish.cuh"
+#include "cuda_neighbours.cuh"
 #include "physics/verlet.h"
 
 #include <string.h>
 
 /* leaver (several ranks, else NULL): 1 for a particle outside this rank's subdomain after the
- * drift, k_leaver_flags' test (cuda_halo.cu) folded in here: no second pass over x. */
+ * drift, k_leaver_flags' test (cuda_halo.cu) folded in here: no second pass over x. key (one rank,
+ * else NULL): the bin each particle is sorted into next (k_cell_keys' key and iota, written here
+ * while x is in registers). */
 __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields p,
-                             struct dev_problem *pb, int *leaver) {
+                             struct dev_problem *pb, int *leaver, uint32_t *key, int *iota) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const int s = p.species[i];
@@ -64,6 +67,10 @@ __global__ void k_kick_drift(const struct dev_params q, int n, struct dev_fields
   if (leaver)
     leaver[i] = !(x[0] >= q.sub_lo[0] && x[0] < q.sub_hi[0] && x[1] >= q.sub_lo[1] &&
                   x[1] < q.sub_hi[1] && x[2] >= q.sub_lo[2] && x[2] < q.sub_hi[2]);
+  if (key) {
+    key[i] = dev_cell_key(q, x[0], x[1], x[2]);
+    iota[i] = i;
+  }
 }
 
 __global__ void k_predict(const struct dev_params q, int n, struct dev_fields p, int setup) {
@@ -79,24 +86,17 @@ __global__ void k_predict(const struct dev_params q, int n, struct dev_fields p,
 }
 
 /* Particle forces of the named effects (when add_particle), finite check of f, second half kick
- * (when kick). */
+ * (when kick): dev_finish_particle. On one rank a step's force pass does this itself
+ * (cuda_force.cu); this kernel serves the set-up and several ranks. */
 __global__ void k_finish(const struct dev_params q, int n, struct dev_fields p,
                          struct dev_problem *pb, int add_particle, int kick) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   const int s = p.species[i];
   double f[3] = {p.f[0][i], p.f[1][i], p.f[2][i]};
-  if (add_particle && q.particle_forces) {
-    const double x[3] = {p.x[0][i], p.x[1][i], p.x[2][i]};
-    particle_effects_force(&q.pe, s, x, f);
+  dev_finish_particle(q, p, pb, i, s, f, add_particle, kick);
+  if (add_particle && q.particle_forces)
     for (int d = 0; d < 3; d++) p.f[d][i] = f[d];
-  }
-  if (!isfinite(f[0] + f[1] + f[2]))
-    dev_note(pb, CUDA_NONFINITE, 0, p.id[i], p.x[0][i], p.x[1][i], p.x[2][i], 0.0);
-  if (!kick || !q.mobile[s]) return;
-  double v[3] = {p.v[0][i], p.v[1][i], p.v[2][i]};
-  verlet_kick(v, f, q.half_dt, q.inv_mass[s]);
-  for (int d = 0; d < 3; d++) p.v[d][i] = v[d];
 }
 
 /* One value of one particle (the test-only fault hook). */
@@ -113,10 +113,15 @@ static int blocks_of(int n) {
 }
 
 void cuda_kick_drift(struct cuda_sim *g) {
-  /* several ranks: the leavers' flags into iota, for cuda_halo_find_leavers */
-  int *leaver = g->prm.multi ? g->iota : NULL;
-  if (g->n) k_kick_drift<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, leaver);
+  /* several ranks: the leavers' flags into iota, for cuda_halo_find_leavers; one rank: the sort
+   * keys of the step's sort (cuda_sort_cells takes them while keys_ready) */
+  const int multi = g->prm.multi;
+  int *leaver = multi ? g->iota : NULL;
+  if (g->n)
+    k_kick_drift<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, leaver,
+                                                  multi ? NULL : g->key, multi ? NULL : g->iota);
   g->leaver_flags_ready = leaver != NULL;
+  g->keys_ready = g->n > 0 && !multi;
 }
 
 void cuda_predict(struct cuda_sim *g, int setup) {
@@ -132,6 +137,7 @@ void cuda_finish_forces(struct cuda_sim *g, int add_particle, int kick) {
 extern "C" int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int axis, double value,
                                     int add) {
   if (!g->n) return 0;
+  g->keys_ready = 0; /* (a position may have changed since the kick-drift's keys) */
   k_fault_write<<<blocks_of(g->n), CUDA_BLOCK>>>(g->n, g->a, id, field, axis, value, add);
   return cuda_check(cudaDeviceSynchronize(), "test fault");
 }

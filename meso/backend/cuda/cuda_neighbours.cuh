@@ -10,6 +10,24 @@
 
 #include "cuda_state.cuh"
 
+/* Fine bin along one axis: the coarse coordinate s scaled by sub (exact: sub is 1 or 2), so the
+ * fine bin lies in coarse bin floor(s) (the pack packs relative to that one). */
+__device__ __forceinline__ int dev_bin_of(double x, double lo, double inv, int sub, int nf) {
+  const double s = (x - lo) * inv * sub;
+  if (!(s >= 0.0)) return 0; /* NaN goes to bin 0 (the step check stops the run) */
+  const int b = s < (double)nf ? (int)s : nf - 1;
+  return b;
+}
+
+/* The (fine) bin a particle at (x, y, z) is sorted into: its key. */
+__device__ __forceinline__ uint32_t dev_cell_key(const struct dev_params &q, double x, double y,
+                                                 double z) {
+  const int bx = dev_bin_of(x, q.lo[0], q.inv_bin[0], q.sub[0], q.nf[0]);
+  const int by = dev_bin_of(y, q.lo[1], q.inv_bin[1], q.sub[1], q.nf[1]);
+  const int bz = dev_bin_of(z, q.lo[2], q.inv_bin[2], q.sub[2], q.nf[2]);
+  return (uint32_t)(bx + q.nf[0] * (by + q.nf[1] * bz));
+}
+
 /* Neighbour bin along axis d at offset o from bin b; -1 outside a non-periodic box. */
 __device__ __forceinline__ int dev_nbr_bin(const struct dev_params &q, int d, int b, int o) {
   int c = b + o;

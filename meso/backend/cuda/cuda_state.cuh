@@ -228,7 +228,15 @@ struct cuda_sim {
   /* One rank with a skin: the sort phase left the choice (keep the lists or sort and rebuild) to
    * the neighbour phase, which decides after the prediction, as the displacement check needs it. */
   int lists_maybe_valid;
-  int sort_pending;    /* a step's sort, done by the neighbour phase (after the prediction) */
+  int sort_pending; /* a step's sort, done by the neighbour phase (after the prediction) */
+  /* One rank, a step: the force pass ends each particle's step (cuda_finish.cuh), so the finishing
+   * kernel is not launched: finish_in_force asks it of the pass, finished_in_force says it was
+   * done (cleared by the finish phase it replaces, or by the next kick-drift). */
+  int finish_in_force, finished_in_force;
+  /* One rank: the kick-drift wrote this step's sort keys (key, iota) for the particles as they
+   * are; cleared by the sort that takes them and by anything that changes the particles besides
+   * the step (an upload, the test fault hook). */
+  int keys_ready;
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
   size_t bytes;
@@ -318,8 +326,9 @@ void cuda_rho_scatter(int n0, int ng, const int *perm, const meso_real *in, meso
 
 /* cuda_cells.cu: sort the particles by cell and build cell_start. */
 /* with_f: carry the forces along (they are needed after the sort only when kept from a checkpoint
- * or when particles leave for another rank; a step recomputes them). */
-int cuda_sort_cells(struct cuda_sim *g, int with_f);
+ * or when particles leave for another rank; a step recomputes them). pack: the packed copies
+ * (cuda_pack) made too, on one rank by the sort's gather itself. */
+int cuda_sort_cells(struct cuda_sim *g, int with_f, int pack);
 int cuda_sort_ghosts(struct cuda_sim *g);
 /* Pack positions (bin-relative) and thermostat velocities for the pair passes (after the
  * prediction). */

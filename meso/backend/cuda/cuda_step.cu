@@ -13,6 +13,7 @@ extern "C" int cuda_sim_fetch_problems(cuda_sim_t *g, cuda_problem_t *pr) {
 
 extern "C" int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial) {
   if (cuda_set_virial(g, want_virial)) return -1;
+  g->finished_in_force = 0;
   g->n_steps++;
   cuda_kick_drift(g);
   return 0;
@@ -22,7 +23,7 @@ extern "C" int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial) {
  * waits for the neighbour phase, after the prediction, since it does not carry the forces that the
  * prediction reads; with a skin that phase may keep the lists and skip it. */
 extern "C" int cuda_sim_sort(cuda_sim_t *g, int setup, int keep_forces, int want_virial) {
-  if (setup) return cuda_set_virial(g, want_virial) || cuda_sort_cells(g, keep_forces) ? -1 : 0;
+  if (setup) return cuda_set_virial(g, want_virial) || cuda_sort_cells(g, keep_forces, 0) ? -1 : 0;
   g->lists_maybe_valid = g->prm.skin > 0.0 && g->lists_valid;
   g->sort_pending = 1;
   return 0;
@@ -49,21 +50,31 @@ extern "C" int cuda_sim_neighbours(cuda_sim_t *g) {
       return 0;
     }
   }
-  if (sort && cuda_sort_cells(g, 0)) return -1; /* the force pass rewrites f */
-  cuda_pack(g);
+  if (sort) {
+    if (cuda_sort_cells(g, 0, 1)) return -1; /* the force pass rewrites f; packed by the sort */
+  } else {
+    cuda_pack(g);
+  }
   if (cuda_density_pass(g)) return -1;
   cuda_wall_field(g);
   return 0;
 }
 
-extern "C" int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces) {
+extern "C" int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces,
+                                    int finish) {
+  g->finish_in_force = finish && !keep_forces;
   cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+  g->finished_in_force = g->finish_in_force;
+  g->finish_in_force = 0;
   return 0;
 }
 
-/* Particle forces of the named effects (add_particle), finite check of f, second half kick. */
+/* Particle forces of the named effects (add_particle), finite check of f, second half kick; nothing
+ * when the force pass did it all (cuda_sim_pair_forces with finish). */
 extern "C" int cuda_sim_finish(cuda_sim_t *g, int add_particle, int kick) {
-  cuda_finish_forces(g, add_particle, kick);
+  const int done = g->finished_in_force && add_particle && kick;
+  g->finished_in_force = 0;
+  if (!done) cuda_finish_forces(g, add_particle, kick);
   return 0;
 }
 
