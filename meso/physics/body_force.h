@@ -14,7 +14,11 @@ typedef struct {
 
 MESO_HD void body_force_particle_force(const body_force_params_t *b, int species, const double x[3],
                                        double f[3]) {
-  const double sign = (b->reverse_axis >= 0 && x[b->reverse_axis] >= b->centre) ? -1.0 : 1.0;
+  /* (the coordinate picked by selects, not x[axis]: a runtime index would put x in the GPU
+   * threads' local memory) */
+  const int k = b->reverse_axis;
+  const double xk = k == 0 ? x[0] : (k == 1 ? x[1] : x[2]);
+  const double sign = (k >= 0 && xk >= b->centre) ? -1.0 : 1.0;
   for (int d = 0; d < 3; d++) f[d] += sign * b->g[species][d];
 }
 

@@ -27,7 +27,9 @@ MESO_HD int inlet_force_in_slab(const inlet_force_params_t *b, double u) {
 
 MESO_HD void inlet_force_particle_force(const inlet_force_params_t *b, int species,
                                         const double x[3], double f[3]) {
-  if (!inlet_force_in_slab(b, x[b->axis])) return;
+  /* (the coordinate picked by selects: a runtime index would put x in GPU local memory) */
+  const double u = b->axis == 0 ? x[0] : (b->axis == 1 ? x[1] : x[2]);
+  if (!inlet_force_in_slab(b, u)) return;
   for (int d = 0; d < 3; d++) f[d] += b->g[species][d];
 }
 

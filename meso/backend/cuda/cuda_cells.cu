@@ -254,6 +254,7 @@ static int sort_one_set(struct cuda_sim *g, int with_f) {
 
 int cuda_sort_cells(struct cuda_sim *g, int with_f, int pack) {
   g->lists_valid = 0;
+  g->mobile_slots_ready = 0;
   if (g->sort_scratch) {
     if (sort_one_set(g, with_f)) return -1;
     if (pack) cuda_pack(g);

@@ -126,7 +126,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
    * conflicts), then stores them as one chunk (no barrier: no thread reads another's slots). */
   __shared__ uint32_t chunk_buf[CUDA_BLOCK * (NBR_CHUNK + 1)];
   uint32_t *mine = chunk_buf + threadIdx.x * (NBR_CHUNK + 1);
-  /* slots (the boundary part of several ranks): thread t_id computes slot slots[t_id] */
+  /* slots (the boundary part of several ranks, or one rank's mobile-then-frozen partition): thread
+   * t_id computes slot slots[t_id] */
   const int t_id = blockIdx.x * blockDim.x + threadIdx.x;
   if (t_id >= (slots ? n_slots : n)) return;
   const int i = slots ? slots[t_id] : t_id;
@@ -249,11 +250,20 @@ static int cache_prepare(struct cuda_sim *g) {
   return 0;
 }
 
+/* One rank with lists and frozen particles: the whole pass over the partition of the slots, the
+ * mobile ones first (cuda_mobile_partition, which the force pass uses again), so that a warp holds
+ * either fluid particles (lists to the largest cutoff) or wall particles (densities to rd, often
+ * from the cache alone), not both. */
+static const int *partitioned_slots(struct cuda_sim *g, int part) {
+  if (part >= 0 || g->compact || g->prm.multi || !g->mobile_slots_on || g->n == 0) return NULL;
+  return cuda_mobile_partition(g) ? NULL : g->mobile_slot;
+}
+
 template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim *g, int part) {
   /* the boundary part over its slot list when the ghost selection made one (cuda_halo_device.cu),
    * else over every slot, the others leaving at once */
-  const int *slots = part == 0 ? g->boundary_slots : NULL;
-  const int threads = slots ? g->n_bslots : g->n;
+  const int *slots = part == 0 ? g->boundary_slots : partitioned_slots(g, part);
+  const int threads = part == 0 && slots ? g->n_bslots : g->n;
   if (slots && threads == 0) return;
   const int blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (g->compact) {

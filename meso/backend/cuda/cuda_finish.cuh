@@ -17,12 +17,8 @@ __device__ __forceinline__ void dev_finish_particle(const struct dev_params &q,
                                                     struct dev_problem *pb, int i, int s,
                                                     double f[3], int add_particle, int kick) {
   if (add_particle && q.particle_forces) {
-    /* (copies: an effect may index x by a runtime axis, which puts the array in local memory; f
-     * stays in registers on the path without particle forces) */
     const double x[3] = {p.x[0][i], p.x[1][i], p.x[2][i]};
-    double g[3] = {f[0], f[1], f[2]};
-    particle_effects_force(&q.pe, s, x, g);
-    for (int d = 0; d < 3; d++) f[d] = g[d];
+    particle_effects_force(&q.pe, s, x, f);
   }
   if (!isfinite(f[0] + f[1] + f[2]))
     dev_note(pb, CUDA_NONFINITE, 0, p.id[i], p.x[0][i], p.x[1][i], p.x[2][i], 0.0);

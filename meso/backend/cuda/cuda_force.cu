@@ -242,18 +242,28 @@ __global__ void k_finish_frozen(const struct dev_params q, int n, const struct d
   p.f[2][i] = f[2];
 }
 
-/* One rank with lists (g->mobile_slots_on): the mobile slots of this step's order into
- * g->mobile_slot, their count into g->mobile_count (device), and the frozen particles' f zeroed
- * (what the full pass writes for them; with finish, their step ended). 0 or -1. */
-static int select_mobile(struct cuda_sim *g, int write_f, int finish) {
+/* One rank with lists (g->mobile_slots_on): this build's slots into g->mobile_slot, the mobile ones
+ * first (slot order; their count into g->mobile_count, on the device), then the frozen ones; once
+ * per build (g->mobile_slots_ready). 0 or -1. */
+int cuda_mobile_partition(struct cuda_sim *g) {
+  if (g->mobile_slots_ready) return 0;
   const int n = g->n;
   struct is_mobile pred = {g->pos, 0u};
   for (int s = 0; s < g->prm.n_species; s++)
     if (g->prm.mobile[s]) pred.mask |= 1u << s;
   if (cuda_dev_room(g, (char **)&g->mobile_slot, &g->mobile_slot_bytes, (size_t)n * sizeof(int)) ||
       (!g->mobile_count && cuda_alloc(g, (void **)&g->mobile_count, sizeof(int))) ||
-      cuda_select_slots_if(g, pred, g->mobile_slot, g->mobile_count, n, "mobile slots"))
+      cuda_partition_slots_if(g, pred, g->mobile_slot, g->mobile_count, n, "mobile slots"))
     return -1;
+  g->mobile_slots_ready = 1;
+  return 0;
+}
+
+/* The force pass over the mobile slots (cuda_mobile_partition), and the frozen particles' f zeroed
+ * (what the full pass writes for them; with finish, their step ended). 0 or -1. */
+static int select_mobile(struct cuda_sim *g, int write_f, int finish) {
+  const int n = g->n;
+  if (cuda_mobile_partition(g)) return -1;
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (write_f && finish && g->prm.particle_forces)
     k_finish_frozen<<<blocks, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a, g->problem);

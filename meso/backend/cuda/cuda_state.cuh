@@ -180,6 +180,9 @@ struct cuda_sim {
   int *mobile_slot; /* room of mobile_slot_bytes (cuda_dev_room) */
   size_t mobile_slot_bytes;
   int *mobile_count; /* [1] */
+  /* mobile_slot holds this build's partition (the mobile slots, then the frozen ones): made by the
+   * density pass, used again by the force pass; cleared by a sort or an upload. */
+  int mobile_slots_ready;
   /* Pinned host staging buffer of the halo transfers (cuda_halo.cu). */
   char *pinned;
   size_t pinned_bytes;
@@ -352,6 +355,9 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
                           int part, cudaStream_t stream);
 int cuda_force_boundary_rows_fit(const struct cuda_sim *g);
 void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
+/* cuda_force.cu: the mobile slots first, then the frozen ones, into g->mobile_slot (once per build,
+ * one rank with lists). 0 or -1. */
+int cuda_mobile_partition(struct cuda_sim *g);
 /* cuda_wall_field.cu: the wall field of every owned particle from the lists of this step. */
 void cuda_wall_field(struct cuda_sim *g);
 
