@@ -220,23 +220,25 @@ struct is_mobile {
   }
 };
 
-__global__ void k_zero_frozen_f(const struct dev_params q, int n, const struct dev_pos *pos,
+/* The frozen particles' f zeroed: threads [*n_mobile, n) over the frozen part of the partition
+ * (cuda_mobile_partition), so no lane reads a mobile slot. */
+__global__ void k_zero_frozen_f(int n, const int *__restrict__ part, const int *n_mobile,
                                 double *fx, double *fy, double *fz) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n || q.mobile[pos[i].species]) return;
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= n || t < *n_mobile) return;
+  const int i = part[t];
   fx[i] = fy[i] = fz[i] = 0.0;
 }
 
-/* The frozen particles' step ended as the force pass ends the mobile ones' when the named effects
- * add particle forces (without them a zero force is all the finish leaves: k_zero_frozen_f). */
-__global__ void k_finish_frozen(const struct dev_params q, int n, const struct dev_pos *pos,
-                                struct dev_fields p, struct dev_problem *pb) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n) return;
-  const int s = (int)pos[i].species;
-  if (q.mobile[s]) return;
+/* The same with the named effects' particle forces: the frozen particles' step ended as the force
+ * pass ends the mobile ones'. */
+__global__ void k_finish_frozen(const struct dev_params q, int n, const int *__restrict__ part,
+                                const int *n_mobile, struct dev_fields p, struct dev_problem *pb) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= n || t < *n_mobile) return;
+  const int i = part[t];
   double f[3] = {0.0, 0.0, 0.0};
-  dev_finish_particle(q, p, pb, i, s, f, 1, 1);
+  dev_finish_particle(q, p, pb, i, p.species[i], f, 1, 1);
   p.f[0][i] = f[0];
   p.f[1][i] = f[1];
   p.f[2][i] = f[2];
@@ -265,10 +267,11 @@ static int select_mobile(struct cuda_sim *g, int write_f, int finish) {
   const int n = g->n;
   if (cuda_mobile_partition(g)) return -1;
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
+  const int *part = g->mobile_slot, *n_mobile = g->mobile_count;
   if (write_f && finish && g->prm.particle_forces)
-    k_finish_frozen<<<blocks, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a, g->problem);
+    k_finish_frozen<<<blocks, CUDA_BLOCK>>>(g->prm, n, part, n_mobile, g->a, g->problem);
   else if (write_f)
-    k_zero_frozen_f<<<blocks, CUDA_BLOCK>>>(g->prm, n, g->pos, g->a.f[0], g->a.f[1], g->a.f[2]);
+    k_zero_frozen_f<<<blocks, CUDA_BLOCK>>>(n, part, n_mobile, g->a.f[0], g->a.f[1], g->a.f[2]);
   return 0;
 }
 
