@@ -1,9 +1,7 @@
 /* Device memory of the CUDA backend: allocation with byte accounting, growth, error reporting. */
-#include "cuda_state.cuh"
+#include "cuda_select.cuh"
 
 #include <cub/device/device_radix_sort.cuh>
-#include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -249,13 +247,13 @@ int cuda_select_room(struct cuda_sim *g, size_t need) {
 
 int cuda_select_slots(struct cuda_sim *g, const int *flag, int *out, int *count_dev, int n,
                       const char *what) {
-  thrust::counting_iterator<int> slots(0);
-  size_t need = 0;
-  cub::DeviceSelect::Flagged(NULL, need, slots, flag, out, count_dev, n);
-  if (cuda_select_room(g, need)) return -1;
-  size_t tmp = g->select_tmp_bytes;
-  return cuda_check(cub::DeviceSelect::Flagged(g->select_tmp, tmp, slots, flag, out, count_dev, n),
-                    what);
+  const thrust::counting_iterator<int> slots(0);
+  return cuda_cub_call(
+      g,
+      [&](void *tmp, size_t &bytes) {
+        return cub::DeviceSelect::Flagged(tmp, bytes, slots, flag, out, count_dev, n);
+      },
+      what);
 }
 
 /* Neighbour-list room for stride entries per particle. When the device has no room for it, the
