@@ -59,9 +59,9 @@ int cuda_sim_count(const cuda_sim_t *g);
  * kick + drift + constraints + wrap; sort by cell (set-up: with the loaded forces when keep_forces;
  * a step with a skin may keep the lists: cuda_sim_neighbours decides); prediction (v~ = v at
  * set-up); pack + neighbour scan with the densities; the pair forces at step index `step` (finish:
- * the pass also does the finishing kernel's work with add_particle and kick, and the finish call
- * that follows does nothing); the finishing kernel (particle forces when add_particle, finite
- * check, second kick when kick); the problem record of the step (synchronises). Each 0 or -1. */
+ * the pass also does the finishing kernel's work with add_particle and kick, so the caller skips
+ * the finishing kernel); the finishing kernel (particle forces when add_particle, finite check,
+ * second kick when kick); the problem record of the step (synchronises). Each 0 or -1. */
 int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial);
 int cuda_sim_sort(cuda_sim_t *g, int setup, int keep_forces, int want_virial);
 int cuda_sim_predict(cuda_sim_t *g, int setup);

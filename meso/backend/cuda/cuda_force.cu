@@ -278,13 +278,12 @@ static int select_mobile(struct cuda_sim *g, int write_f, int finish) {
 /* part < 0: every owned particle; 1 / 0: only the interior / boundary particles (several ranks,
  * overlap: cuda_halo.cu), the boundary part second. The boundary part over its slot list when
  * there is one; on `stream` (not the default stream: concurrent with the interior part) its
- * virial rows follow the interior part's, else they add to the interior part's first rows. */
-void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
-                          int part, cudaStream_t stream) {
+ * virial rows follow the interior part's, else they add to the interior part's first rows.
+ * finish (one rank, every particle, forces written): the threads end their particles' steps. */
+static void force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
+                       int part, cudaStream_t stream, int finish) {
   const int n = g->n;
   const int virial = want_virial && g->virial != NULL;
-  /* one rank, a step: the threads end their particles' steps (cuda_sim_pair_forces) */
-  const int finish = g->finish_in_force && part < 0 && !keep_forces && !g->prm.multi;
   /* one rank, lists, no per-particle virial (whose frozen rows the full pass writes): over the
    * mobile slots, the grid still sized for every slot (threads past the device count leave) */
   const int mobile = part < 0 && n > 0 && g->mobile_slots_on && !g->prm.multi && !g->compact &&
@@ -367,11 +366,17 @@ void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, in
   }
 }
 
-void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces) {
+void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
+                          int part, cudaStream_t stream) {
+  force_pass(g, step, want_virial, keep_forces, part, stream, 0);
+}
+
+void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
+                     int finish) {
   /* The density pass stored the owned densities in vel.pad already; the ghosts' arrived since. */
   if (g->n > 0 && g->prm.multi && (g->prm.terms & PAIR_TERM_THERMOSTAT))
     cuda_rho_to_vel(g, g->n, g->n + g->n_ghost, 0);
-  cuda_force_pass_part(g, step, want_virial, keep_forces, -1, 0);
+  force_pass(g, step, want_virial, keep_forces, -1, 0, finish && !keep_forces && !g->prm.multi);
 }
 
 /* Whether the boundary part's virial rows fit after the interior part's (block_virial_cap). */

@@ -80,7 +80,8 @@ int cuda_glue_predict(sim_state_t *st) {
                            : cuda_sim_predict(cuda_glue(st)->g, st->in_setup);
 }
 
-/* A step: the particle forces of the named effects and the second half kick, in one kernel. */
+/* A step on several ranks: the particle forces of the named effects and the second half kick, in
+ * one kernel (one rank: the force pass does it, kick_done). */
 int cuda_glue_kick(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
   if (st->failed) return 0;
@@ -160,11 +161,17 @@ static int neighbours(sim_state_t *st) {
 }
 
 /* A step's force pass also ends each particle's step (particle forces, finite check, second half
- * kick: the kick phase that follows finds it done); the set-up's leaves it to the check. */
+ * kick: kick_done below); the set-up's leaves it to the check. */
 static int pair_forces(sim_state_t *st) {
   if (st->failed) return 0;
   return cuda_sim_pair_forces(cuda_glue(st)->g, st->step, st->want_virial,
                               st->in_setup && st->forces_loaded, !st->in_setup);
+}
+
+/* The kick phase of a step on one rank: the force pass did its work (pair_forces). */
+static int kick_done(sim_state_t *st) {
+  if (!st->failed) cuda_glue(st)->finished = 1;
+  return 0;
 }
 
 /* --explain remarks shared by both tables: where the fused phases run. */
@@ -222,7 +229,7 @@ const backend_ops_t cuda_ops_one_rank = {
             [PHASE_PREDICT] = cuda_glue_predict,
             [PHASE_NEIGHBOURS] = neighbours,
             [PHASE_PAIR_FORCES] = pair_forces,
-            [PHASE_KICK] = cuda_glue_kick,
+            [PHASE_KICK] = kick_done,
             [PHASE_CHECK] = cuda_glue_check,
         },
     .phase_note = phase_note,

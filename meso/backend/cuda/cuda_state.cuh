@@ -232,10 +232,6 @@ struct cuda_sim {
    * the neighbour phase, which decides after the prediction, as the displacement check needs it. */
   int lists_maybe_valid;
   int sort_pending; /* a step's sort, done by the neighbour phase (after the prediction) */
-  /* One rank, a step: the force pass ends each particle's step (cuda_finish.cuh), so the finishing
-   * kernel is not launched: finish_in_force asks it of the pass, finished_in_force says it was
-   * done (cleared by the finish phase it replaces, or by the next kick-drift). */
-  int finish_in_force, finished_in_force;
   /* One rank: the kick-drift wrote this step's sort keys (key, iota) for the particles as they
    * are; cleared by the sort that takes them and by anything that changes the particles besides
    * the step (an upload, the test fault hook). */
@@ -354,7 +350,10 @@ int cuda_density_pass_rest(struct cuda_sim *g);
 void cuda_force_pass_part(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
                           int part, cudaStream_t stream);
 int cuda_force_boundary_rows_fit(const struct cuda_sim *g);
-void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces);
+/* finish (one rank, a step; not with keep_forces): the force threads also end their particles'
+ * steps (cuda_finish.cuh), so no finishing kernel follows. */
+void cuda_force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int keep_forces,
+                     int finish);
 /* cuda_force.cu: the mobile slots first, then the frozen ones, into g->mobile_slot (once per build,
  * one rank with lists). 0 or -1. */
 int cuda_mobile_partition(struct cuda_sim *g);

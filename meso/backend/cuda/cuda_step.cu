@@ -13,7 +13,6 @@ extern "C" int cuda_sim_fetch_problems(cuda_sim_t *g, cuda_problem_t *pr) {
 
 extern "C" int cuda_sim_kick_drift(cuda_sim_t *g, int want_virial) {
   if (cuda_set_virial(g, want_virial)) return -1;
-  g->finished_in_force = 0;
   g->n_steps++;
   cuda_kick_drift(g);
   return 0;
@@ -62,19 +61,13 @@ extern "C" int cuda_sim_neighbours(cuda_sim_t *g) {
 
 extern "C" int cuda_sim_pair_forces(cuda_sim_t *g, long step, int want_virial, int keep_forces,
                                     int finish) {
-  g->finish_in_force = finish && !keep_forces;
-  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
-  g->finished_in_force = g->finish_in_force;
-  g->finish_in_force = 0;
+  cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces, finish);
   return 0;
 }
 
-/* Particle forces of the named effects (add_particle), finite check of f, second half kick; nothing
- * when the force pass did it all (cuda_sim_pair_forces with finish). */
+/* Particle forces of the named effects (add_particle), finite check of f, second half kick. */
 extern "C" int cuda_sim_finish(cuda_sim_t *g, int add_particle, int kick) {
-  const int done = g->finished_in_force && add_particle && kick;
-  g->finished_in_force = 0;
-  if (!done) cuda_finish_forces(g, add_particle, kick);
+  cuda_finish_forces(g, add_particle, kick);
   return 0;
 }
 
@@ -157,7 +150,7 @@ extern "C" int cuda_halo_forces(cuda_sim_t *g, long step, int want_virial, int k
     cuda_force_pass_part(g, (uint64_t)step, want_virial, keep_forces, 0, s);
     if (concurrent && join_copies(g)) return -1;
   } else {
-    cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces);
+    cuda_force_pass(g, (uint64_t)step, want_virial, keep_forces, 0);
   }
   g->split_passes = 0;
   return cuda_check(cudaGetLastError(), "forces");

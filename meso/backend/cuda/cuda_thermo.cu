@@ -91,7 +91,7 @@ extern "C" int cuda_sim_thermo_sums(cuda_sim_t *g, double sums[THERMO_SUMS]) {
      * virial only; the forces are kept, and the same step keys the same random numbers. */
     const int w = g->want_pressure;
     g->want_pressure = 1;
-    cuda_force_pass(g, g->last_force_step, 0, 1);
+    cuda_force_pass(g, g->last_force_step, 0, 1, 0);
     g->want_pressure = w;
   }
   k_thermo_part<<<THERMO_BLOCKS, 256>>>(g->prm, g->n, g->a, g->n_force_blocks, g->block_virial,
