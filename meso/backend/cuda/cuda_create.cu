@@ -76,28 +76,37 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
     q->off_lo[d] = nb >= 3 || !q->periodic[d] ? -1 : 0; /* periodic, one bin: that bin only */
     q->off_hi[d] = nb >= 2 ? 1 : 0;
   }
-  /* The scan (docs/engine-cuda.md "Neighbour scan"), MDPORE_CUDA_SCAN: auto (default: half bins on
-   * one rank in a quasi-2D box, one axis of fewer than 3 bins; else bins of the cutoff's size, as
-   * measured faster in 3D: bench/RESULTS.md, session 14), fine (half bins), coarse (bins of the
-   * cutoff's size), nested (the bin-by-bin loops of coarse bins, as before the row traversal).
-   * Several ranks keep coarse keys (the ghosts' bins). Every row scan is trimmed to its caller's
-   * reach unless MDPORE_CUDA_TRIM=0. (The switches are for measuring.) */
+  /* The scan (docs/engine-cuda.md "Neighbour scan"), MDPORE_CUDA_SCAN: auto (default: on one
+   * rank, quarter bins along x, whose rows stay those of y and z; half bins along y and z in a
+   * quasi-2D box, one axis of fewer than 3 bins, else bins of the cutoff's size, as measured faster
+   * in 3D: bench/RESULTS.md, sessions 14 and 17), fine (half bins along y and z in 3D too), coarse
+   * (bins of the cutoff's size along every axis), nested (the bin-by-bin loops of coarse bins, as
+   * before the row traversal). MDPORE_CUDA_XSUB = 1, 2, 4 or 8 sets the fine bins per bin along x
+   * alone. Several ranks keep coarse keys (the ghosts' bins). Every row scan is trimmed to its
+   * caller's reach unless MDPORE_CUDA_TRIM=0. (The switches are for measuring.) */
   const char *scan = getenv("MDPORE_CUDA_SCAN");
   const int nested = scan && !strcmp(scan, "nested");
+  const int all_coarse = nested || (scan && !strcmp(scan, "coarse"));
   /* an axis of fewer than 3 periodic bins: the pair loops take the minimum image (quasi-2D) */
   q->near_axes = q->min_image[0] | q->min_image[1] << 1 | q->min_image[2] << 2;
   const int quasi_2d = q->near_axes != 0;
-  const int coarse = nested || (scan && !strcmp(scan, "coarse")) ||
-                     (!quasi_2d && !(scan && !strcmp(scan, "fine")));
+  const int yz_halves = !all_coarse && (quasi_2d || (scan && !strcmp(scan, "fine")));
   q->row_scan = !nested;
   const char *trim_env = getenv("MDPORE_CUDA_TRIM");
   q->trim_any = !(trim_env && !strcmp(trim_env, "0"));
-  /* keys are 32-bit, bin starts int (the sentinel key is ncell): half bins only where they fit */
+  int x_shift = all_coarse ? 0 : 2;
+  const char *xsub_env = getenv("MDPORE_CUDA_XSUB");
+  if (xsub_env && !nested)
+    for (int k = 0; k <= 3; k++)
+      if (atoi(xsub_env) == 1 << k) x_shift = k;
+  /* keys are 32-bit, bin starts int (the sentinel key is ncell): fine bins only where they fit
+   * (level 2: as chosen; 1: x as y and z; 0: coarse) */
   long long ncell = 1;
-  for (int halves = !(multi || coarse); halves >= 0; halves--) {
+  for (int level = multi ? 0 : 2; level >= 0; level--) {
     ncell = 1;
     for (int d = 0; d < 3; d++) {
-      q->sub_shift[d] = halves && !q->min_image[d] ? 1 : 0;
+      const int yz_shift = level >= 1 && yz_halves ? 1 : 0;
+      q->sub_shift[d] = q->min_image[d] ? 0 : d == 0 && level == 2 ? x_shift : yz_shift;
       q->sub[d] = 1 << q->sub_shift[d];
       q->nf[d] = q->sub[d] * q->nb[d];
       q->fine_w[d] = (meso_real)(q->L[d] / q->nf[d]);

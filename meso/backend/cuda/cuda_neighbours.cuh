@@ -10,7 +10,7 @@
 
 #include "cuda_state.cuh"
 
-/* Fine bin along one axis: the coarse coordinate s scaled by sub (exact: sub is 1 or 2), so the
+/* Fine bin along one axis: the coarse coordinate s scaled by sub (exact: sub is a power of 2), so the
  * fine bin lies in coarse bin floor(s) (the pack packs relative to that one). */
 __device__ __forceinline__ int dev_bin_of(double x, double lo, double inv, int sub, int nf) {
   const double s = (x - lo) * inv * sub;
@@ -80,18 +80,18 @@ __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const
 __device__ __forceinline__ int dev_fine_bin(const struct dev_params &q, int d, int b, int r, int o,
                                             int *co) {
   const int u = r + o; /* fine offset from the coarse bin's first fine bin, >= -2 */
-  *co = ((u + 2 * q.sub[d]) >> q.sub_shift[d]) - 2; /* floor(u / sub): sub is 1 or 2 */
+  *co = ((u + 2 * q.sub[d]) >> q.sub_shift[d]) - 2; /* floor(u / sub): u >= -sub */
   const int cb = dev_nbr_bin(q, d, b, *co);
   return cb < 0 ? -1 : (cb << q.sub_shift[d]) + (u - (*co << q.sub_shift[d]));
 }
 
-/* The fine offsets along axis d that can hold a partner: +-2 with half bins, else the coarse
- * offsets. */
+/* The fine offsets along axis d that can hold a partner: +-sub with fine bins (a bin is at least
+ * the cutoff wide), else the coarse offsets. */
 __device__ __forceinline__ int dev_fine_lo(const struct dev_params &q, int d) {
-  return q.sub[d] == 2 ? -2 : q.off_lo[d];
+  return q.sub[d] > 1 ? -q.sub[d] : q.off_lo[d];
 }
 __device__ __forceinline__ int dev_fine_hi(const struct dev_params &q, int d) {
-  return q.sub[d] == 2 ? 2 : q.off_hi[d];
+  return q.sub[d] > 1 ? q.sub[d] : q.off_hi[d];
 }
 
 /* Shortest distance along axis d from a position p (relative to its coarse bin's corner) to the
