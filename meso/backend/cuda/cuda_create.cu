@@ -251,6 +251,7 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
     cuda_sim_destroy(g);
     return NULL;
   }
+  g->fixed_bytes = g->bytes;
   /* MDPORE_CUDA_IDLE=1: the GPU idle probes (cuda_idle_mark; measuring only, off by default) */
   const char *idle = getenv("MDPORE_CUDA_IDLE");
   if (idle && !strcmp(idle, "1")) {

@@ -238,7 +238,10 @@ struct cuda_sim {
   int keys_ready;
   double *thermo_part; /* [THERMO_SUMS * THERMO_BLOCKS] then [THERMO_SUMS] */
   struct dev_problem *problem;
-  size_t bytes;
+  /* device bytes held: fixed_bytes (the effect arrays, bin starts and small records made once at
+   * creation) plus the arrays made for the particles (reset to fixed_bytes when they are made
+   * again); the benchmark's bytes per particle */
+  size_t bytes, fixed_bytes;
   char device_name[256];
   /* Device copies of the plan's per-particle effect arrays (plan.arrays), pointed at by prm.pe. */
   void *effect_arrays[PLAN_MAX_ARRAYS];

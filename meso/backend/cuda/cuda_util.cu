@@ -83,7 +83,7 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   g->lists_valid = 0;
   g->nbr_stride = 0;
   g->virial_cap = 0;
-  g->bytes = 0;
+  g->bytes = g->fixed_bytes;
   if (!g->compact && n >= (1 << NBR_SLOT_BITS) - 4096) {
     fprintf(stderr, "mdpore: CUDA backend: %d particles on one GPU: at most %d\n", n,
             (1 << NBR_SLOT_BITS) - 4096);
