@@ -79,7 +79,7 @@ __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const
  * and the list code use). -1 outside a non-periodic box. */
 __device__ __forceinline__ int dev_fine_bin(const struct dev_params &q, int d, int b, int r, int o,
                                             int *co) {
-  const int u = r + o; /* fine offset from the coarse bin's first fine bin, >= -2 */
+  const int u = r + o; /* fine offset from the coarse bin's first fine bin, >= -sub */
   *co = ((u + 2 * q.sub[d]) >> q.sub_shift[d]) - 2; /* floor(u / sub): u >= -sub */
   const int cb = dev_nbr_bin(q, d, b, *co);
   return cb < 0 ? -1 : (cb << q.sub_shift[d]) + (u - (*co << q.sub_shift[d]));

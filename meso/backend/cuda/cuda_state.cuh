@@ -74,10 +74,11 @@ struct dev_params {
   /* The bins the particles are sorted into (the keys): sub[d] fine bins of width fine_w[d] per bin
    * along each axis, nf[d] = sub[d] nb[d] of them, ncell = nf[0] nf[1] nf[2] (docs/engine-cuda.md
    * "Neighbour scan"). Positions stay packed relative to their coarse bin (nb), and list entries
-   * keep the coarse offset code. sub = 2 on one rank along every axis that does not take the
-   * minimum image in a quasi-2D box (some axis of fewer than 3 bins), else 1. row_scan: the row
-   * traversal (dev_scan_rows); trim_any: its rows cut to the caller's reach; scan_cut2, scan_rd2:
-   * the list and density cutoffs squared with a margin over the float rounding of the trimming. */
+   * keep the coarse offset code. On one rank sub = 4 along x; along y and z 2 in a quasi-2D box
+   * (some axis of fewer than 3 bins), else 1; 1 along an axis that takes the minimum image and on
+   * several ranks (cuda_create.cu fill_cells). row_scan: the row traversal (dev_scan_rows);
+   * trim_any: its rows cut to the caller's reach; scan_cut2, scan_rd2: the list and density
+   * cutoffs squared with a margin over the float rounding of the trimming. */
   int sub[3], sub_shift[3], nf[3], row_scan, trim_any; /* sub = 1 << sub_shift */
   meso_real fine_w[3], inv_fine_w[3], scan_cut2, scan_rd2;
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
