@@ -59,30 +59,13 @@ __device__ __forceinline__ struct dev_vel dev_packed_vel(double vx, double vy, d
   return u;
 }
 
-/* dst[k] = src[perm[k]] for every field. */
-__global__ void k_gather(int n, const int *__restrict__ perm, struct dev_fields src,
-                         struct dev_fields dst, int with_vpred, int with_f) {
-  const int k = blockIdx.x * blockDim.x + threadIdx.x;
-  if (k >= n) return;
-  const int i = perm[k];
-  dst.id[k] = src.id[i];
-  dst.species[k] = src.species[i];
-#pragma unroll
-  for (int d = 0; d < 3; d++) {
-    dst.x[d][k] = src.x[d][i];
-    dst.v[d][k] = src.v[d][i];
-    if (with_f) dst.f[d][k] = src.f[d][i];
-    if (with_vpred) dst.vpred[d][k] = src.vpred[d][i];
-  }
-}
-
-/* k_gather, the pack of the gathered slot (k_pack without a skin check) and, with starts, the bin
- * starts of k_cell_start, in one pass (one rank, a step's sort): the sorted fields are packed while
- * they are in registers instead of being read again. */
-__global__ void k_gather_pack(const struct dev_params q, int n, const int *__restrict__ perm,
-                              struct dev_fields src, struct dev_fields dst, int with_vpred,
-                              int with_f, const uint32_t *__restrict__ key, struct dev_pos *pos,
-                              struct dev_vel *vel, int *start) {
+/* dst[k] = src[perm[k]] for every field; with pos (one rank, a step's sort) the pack of the
+ * gathered slot (k_pack without a skin check) while the fields are in registers, instead of a
+ * second read; with start the bin starts of k_cell_start, in the same pass. */
+__global__ void k_gather(const struct dev_params q, int n, const int *__restrict__ perm,
+                         struct dev_fields src, struct dev_fields dst, int with_vpred, int with_f,
+                         const uint32_t *__restrict__ key, struct dev_pos *pos, struct dev_vel *vel,
+                         int *start) {
   const int k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const int i = perm[k];
@@ -103,9 +86,11 @@ __global__ void k_gather_pack(const struct dev_params q, int n, const int *__res
     }
   }
   const uint32_t c = key[k];
-  pos[k] = dev_packed_pos(q, c, x[0], x[1], x[2], s);
-  if (vel)
-    vel[k] = with_vpred ? dev_packed_vel(vp[0], vp[1], vp[2]) : dev_packed_vel(v[0], v[1], v[2]);
+  if (pos) {
+    pos[k] = dev_packed_pos(q, c, x[0], x[1], x[2], s);
+    if (vel)
+      vel[k] = with_vpred ? dev_packed_vel(vp[0], vp[1], vp[2]) : dev_packed_vel(v[0], v[1], v[2]);
+  }
   if (!start) return;
   const int prev = k > 0 ? (int)key[k - 1] : -1;
   for (int b = prev + 1; b <= (int)c; b++) start[b] = k;
@@ -156,8 +141,8 @@ __global__ void k_cell_start_search(int n, int ncell, const uint32_t *__restrict
 
 /* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start.
  * The owned particles of several ranks (sentinel) skip the predicted velocities: the prediction
- * follows the sort there and rewrites them. pack (one rank): the packed copies written by the
- * gather (k_gather_pack). */
+ * follows the sort there and rewrites them. pack (one rank, no sentinel): the packed copies
+ * written by the gather. */
 static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct dev_fields src,
                       struct dev_fields dst, int *start, int with_f, int pack) {
   const struct dev_params *q = &g->prm;
@@ -177,22 +162,13 @@ static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct d
                  "cell sort"))
     return -1;
   const int sparse = (long long)n * 4 < (long long)q->ncell;
-  if (pack) {
-    k_gather_pack<<<blocks, CUDA_BLOCK>>>(*q, n, g->perm + off, src, shifted(dst, off),
-                                          q->use_vpred, with_f, g->key_sorted + off, g->pos + off,
-                                          g->vel ? g->vel + off : NULL, sparse ? NULL : start);
-    if (sparse)
-      k_cell_start_search<<<(q->ncell + CUDA_BLOCK) / CUDA_BLOCK, CUDA_BLOCK>>>(
-          n, q->ncell, g->key_sorted + off, start);
-    return cuda_check(cudaGetLastError(), "cell sort kernels");
-  }
-  k_gather<<<blocks, CUDA_BLOCK>>>(n, g->perm + off, src, shifted(dst, off),
-                                   q->use_vpred && !sentinel, with_f);
+  k_gather<<<blocks, CUDA_BLOCK>>>(*q, n, g->perm + off, src, shifted(dst, off),
+                                   q->use_vpred && !sentinel, with_f, g->key_sorted + off,
+                                   pack ? g->pos + off : NULL, pack && g->vel ? g->vel + off : NULL,
+                                   sparse ? NULL : start);
   if (sparse)
     k_cell_start_search<<<(q->ncell + CUDA_BLOCK) / CUDA_BLOCK, CUDA_BLOCK>>>(
         n, q->ncell, g->key_sorted + off, start);
-  else
-    k_cell_start<<<blocks, CUDA_BLOCK>>>(n, q->ncell, g->key_sorted + off, start);
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
 
