@@ -89,6 +89,17 @@ static int run_case(int wall_boundary, int rng, double *f0) {
     cuda_sim_t *dev = cuda_backend_device(sim_state(gpu), sim_backend_name(gpu));
     CHECK(!strcmp(cuda_sim_memory_mode(dev), variant == 3 ? "compact" : "fast"), "memory mode %s",
           cuda_sim_memory_mode(dev));
+    /* The static tail (one rank, lists, no skin, static frozen particles present): the wall
+     * particles are sorted once into the slots after the fluid and left there; the forces above
+     * and the trajectories below are checked with it. MDPORE_CUDA_TAIL=0: the variant without. */
+    const char *tail_env = getenv("MDPORE_CUDA_TAIL"), *scan_env = getenv("MDPORE_CUDA_SCAN");
+    const long tail = cuda_sim_static_tail(dev);
+    printf("static tail: %ld particles\n", tail);
+    if (variant == 0 && !(tail_env && !strcmp(tail_env, "0")) &&
+        !(scan_env && !strcmp(scan_env, "nested"))) /* (the nested scan has no tail) */
+      CHECK(tail > 0 && tail < n, "static tail of %ld particles (of %d)", tail, n);
+    else
+      CHECK(tail == 0, "static tail of %ld particles where it is off", tail);
     if (variant == 0) {
       f_fast = malloc(3 * (size_t)n * sizeof *f_fast);
       CHECK(f_fast, "out of memory");

@@ -158,6 +158,9 @@ int cuda_sim_overlap(const cuda_sim_t *g);
 const char *cuda_sim_memory_mode(const cuda_sim_t *g);
 /* Bytes of device memory this state holds. */
 size_t cuda_sim_bytes(const cuda_sim_t *g);
+/* Static frozen particles kept in the static tail (sorted once, never drifted; docs/engine-cuda.md
+ * step 2), 0 when the tail is off. */
+long cuda_sim_static_tail(const cuda_sim_t *g);
 /* 1 when the pair math was built in double (MDPORE_DOUBLE), 0 for single precision. */
 int cuda_sim_double_precision(void);
 /* Name of the device (for summaries and the benchmark). */

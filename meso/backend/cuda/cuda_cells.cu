@@ -6,13 +6,17 @@
 #include <cub/device/device_radix_sort.cuh>
 
 /* (Fine) bin of each particle; with sentinel (several ranks, owned particles) a particle outside
- * this rank's subdomain gets bin ncell, so the stable sort puts the leavers last. */
+ * this rank's subdomain gets bin ncell, so the stable sort puts the leavers last. With
+ * tail_species (the first sort with the static tail) a static frozen particle's key is its bin +
+ * tail_off: those particles go last, in bin order. */
 __global__ void k_cell_keys(struct dev_params q, int n, const double *__restrict__ x,
                             const double *__restrict__ y, const double *__restrict__ z,
-                            uint32_t *key, int *iota, int sentinel) {
+                            uint32_t *key, int *iota, int sentinel,
+                            const int *__restrict__ tail_species) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= n) return;
   key[i] = dev_cell_key(q, x[i], y[i], z[i]);
+  if (tail_species && q.static_frozen[tail_species[i]]) key[i] += (uint32_t)q.tail_off;
   if (sentinel && !(x[i] >= q.sub_lo[0] && x[i] < q.sub_hi[0] && y[i] >= q.sub_lo[1] &&
                     y[i] < q.sub_hi[1] && z[i] >= q.sub_lo[2] && z[i] < q.sub_hi[2]))
     key[i] = (uint32_t)q.ncell;
@@ -65,7 +69,7 @@ __device__ __forceinline__ struct dev_vel dev_packed_vel(double vx, double vy, d
 __global__ void k_gather(const struct dev_params q, int n, const int *__restrict__ perm,
                          struct dev_fields src, struct dev_fields dst, int with_vpred, int with_f,
                          const uint32_t *__restrict__ key, struct dev_pos *pos, struct dev_vel *vel,
-                         int *start) {
+                         int *start, int top) {
   const int k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const int i = perm[k];
@@ -95,7 +99,13 @@ __global__ void k_gather(const struct dev_params q, int n, const int *__restrict
   const int prev = k > 0 ? (int)key[k - 1] : -1;
   for (int b = prev + 1; b <= (int)c; b++) start[b] = k;
   if (k == n - 1)
-    for (int b = (int)c + 1; b <= q.ncell; b++) start[b] = n;
+    for (int b = (int)c + 1; b <= top; b++) start[b] = n;
+}
+
+/* The static tail's sort keys made bins again, once its bin starts are written. */
+__global__ void k_tail_keys(int n0, int n, uint32_t *key, uint32_t off) {
+  const int k = n0 + blockIdx.x * blockDim.x + threadIdx.x;
+  if (k < n) key[k] -= off;
 }
 
 /* cell_start[c] = first sorted slot with key >= c, for c in [0, ncell]. */
@@ -142,30 +152,32 @@ __global__ void k_cell_start_search(int n, int ncell, const uint32_t *__restrict
 /* Sort slots [off, off + n) of src by bin into dst, bin starts (relative to off) into start.
  * The owned particles of several ranks (sentinel) skip the predicted velocities: the prediction
  * follows the sort there and rewrites them. pack (one rank, no sentinel): the packed copies
- * written by the gather. */
+ * written by the gather. tail: the first sort with the static tail (keys up to 2 ncell + 1, the
+ * tail's bin starts from start + tail_off). */
 static int sort_range(struct cuda_sim *g, int off, int n, int sentinel, struct dev_fields src,
-                      struct dev_fields dst, int *start, int with_f, int pack) {
+                      struct dev_fields dst, int *start, int with_f, int pack, int tail = 0) {
   const struct dev_params *q = &g->prm;
-  if (n == 0) return cuda_check(cudaMemset(start, 0, (q->ncell + 1) * sizeof(int)), "sort");
+  const int top = tail ? 2 * q->ncell + 1 : q->ncell; /* the last key */
+  if (n == 0) return cuda_check(cudaMemset(start, 0, (top + 1) * sizeof(int)), "sort");
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   src = shifted(src, off);
-  if (!(g->keys_ready && off == 0 && !sentinel)) /* (else the kick-drift wrote them) */
+  if (tail || !(g->keys_ready && off == 0 && !sentinel)) /* (else the kick-drift wrote them) */
     k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, src.x[0], src.x[1], src.x[2], g->key + off,
-                                        g->iota + off, sentinel);
+                                        g->iota + off, sentinel, tail ? src.species : NULL);
   g->keys_ready = 0;
   int end_bit = 1;
-  while (end_bit < 32 && (1u << end_bit) <= (unsigned)q->ncell) end_bit++; /* keys 0..ncell */
+  while (end_bit < 32 && (1u << end_bit) <= (unsigned)top) end_bit++; /* keys 0..top */
   size_t tmp = g->sort_tmp_bytes;
   if (cuda_check(cub::DeviceRadixSort::SortPairs(g->sort_tmp, tmp, g->key + off,
                                                  g->key_sorted + off, g->iota + off, g->perm + off,
                                                  n, 0, end_bit),
                  "cell sort"))
     return -1;
-  const int sparse = (long long)n * 4 < (long long)q->ncell;
+  const int sparse = !tail && (long long)n * 4 < (long long)q->ncell;
   k_gather<<<blocks, CUDA_BLOCK>>>(*q, n, g->perm + off, src, shifted(dst, off),
                                    q->use_vpred && !sentinel, with_f, g->key_sorted + off,
                                    pack ? g->pos + off : NULL, pack && g->vel ? g->vel + off : NULL,
-                                   sparse ? NULL : start);
+                                   sparse ? NULL : start, top);
   if (sparse)
     k_cell_start_search<<<(q->ncell + CUDA_BLOCK) / CUDA_BLOCK, CUDA_BLOCK>>>(
         n, q->ncell, g->key_sorted + off, start);
@@ -198,7 +210,8 @@ static int sort_one_set(struct cuda_sim *g, int with_f) {
   if (n == 0) return cuda_check(cudaMemset(g->cell_start, 0, (q->ncell + 1) * sizeof(int)), "sort");
   const int blocks = (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (!g->keys_ready) /* (else the kick-drift wrote them) */
-    k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota, 0);
+    k_cell_keys<<<blocks, CUDA_BLOCK>>>(*q, n, g->a.x[0], g->a.x[1], g->a.x[2], g->key, g->iota, 0,
+                                        NULL);
   g->keys_ready = 0;
   int end_bit = 1;
   while (end_bit < 32 && (1u << end_bit) <= (unsigned)q->ncell) end_bit++;
@@ -228,6 +241,35 @@ static int sort_one_set(struct cuda_sim *g, int with_f) {
   return cuda_check(cudaGetLastError(), "cell sort kernels");
 }
 
+/* After the first sort with the static tail (now in a): n_dyn from the tail's first bin start,
+ * the tail's keys made bins, and its fields copied into b too, so that the later sorts, which
+ * swap a and b and cover only the slots before it, find it in either set. 0 or -1. */
+static int tail_settle(struct cuda_sim *g) {
+  const int n = g->n;
+  if (cuda_check(cudaMemcpy(&g->n_dyn, g->cell_start + g->prm.tail_off, sizeof(int),
+                            cudaMemcpyDeviceToHost),
+                 "static tail"))
+    return -1;
+  const size_t k = (size_t)g->n_dyn, m = (size_t)(n - g->n_dyn);
+  if (m > 0)
+    k_tail_keys<<<(int)((m + CUDA_BLOCK - 1) / CUDA_BLOCK), CUDA_BLOCK>>>(
+        g->n_dyn, n, g->key_sorted, (uint32_t)g->prm.tail_off);
+  const cudaMemcpyKind dd = cudaMemcpyDeviceToDevice;
+  int rc = cuda_check(cudaMemcpy(g->b.id + k, g->a.id + k, m * 8, dd), "static tail");
+  rc |= cuda_check(cudaMemcpy(g->b.species + k, g->a.species + k, m * 4, dd), "static tail");
+  for (int d = 0; d < 3 && !rc; d++) {
+    rc |= cuda_check(cudaMemcpy(g->b.x[d] + k, g->a.x[d] + k, m * 8, dd), "static tail");
+    rc |= cuda_check(cudaMemcpy(g->b.v[d] + k, g->a.v[d] + k, m * 8, dd), "static tail");
+    rc |= cuda_check(cudaMemcpy(g->b.f[d] + k, g->a.f[d] + k, m * 8, dd), "static tail");
+    if (g->prm.use_vpred)
+      rc |= cuda_check(cudaMemcpy(g->b.vpred[d] + k, g->a.vpred[d] + k, m * 8, dd), "static tail");
+  }
+  if (rc) return -1;
+  g->tail_ready = 1;
+  g->prm.tail = 1;
+  return 0;
+}
+
 int cuda_sort_cells(struct cuda_sim *g, int with_f, int pack) {
   g->lists_valid = 0;
   g->mobile_slots_ready = 0;
@@ -237,10 +279,19 @@ int cuda_sort_cells(struct cuda_sim *g, int with_f, int pack) {
     return 0;
   }
   const int fused = pack && !g->prm.multi; /* one rank: no ghosts to pack after */
-  if (sort_range(g, 0, g->n, g->prm.multi, g->a, g->b, g->cell_start, with_f, fused)) return -1;
+  const int tail_sort = g->tail_on && !g->tail_ready;
+  const int n_sort = g->tail_ready ? g->n_dyn : g->n; /* (the tail stays where it is) */
+  if (sort_range(g, 0, n_sort, g->prm.multi, g->a, g->b, g->cell_start, with_f, fused && !tail_sort,
+                 tail_sort))
+    return -1;
   struct dev_fields t = g->a;
   g->a = g->b;
   g->b = t;
+  if (tail_sort) {
+    if (tail_settle(g)) return -1;
+    if (pack) cuda_pack(g);
+    return 0;
+  }
   if (pack && !fused) cuda_pack(g);
   return 0;
 }

@@ -208,6 +208,19 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
     free(g);
     return NULL;
   }
+  /* The static tail (cuda_state.cuh; docs/engine-cuda.md step 2). MDPORE_CUDA_TAIL=0 turns it off
+   * (the mobile-first partition of every build instead: bench/RESULTS.md, session 18). */
+  const char *tail_env = getenv("MDPORE_CUDA_TAIL");
+  int any_static = 0, any_moving = 0;
+  for (int a = 0; a < plan->n_species; a++) {
+    any_static |= plan->static_frozen[a];
+    any_moving |= plan->moving[a];
+  }
+  g->tail_on = !(tail_env && !strcmp(tail_env, "0")) && !q->multi && !g->compact &&
+               q->skin == 0.0 && q->row_scan && any_static && !any_moving && !q->density_cache;
+  q->tail = 0; /* (set by the first sort) */
+  q->tail_off = q->ncell + 1;
+  if (g->tail_on) g->mobile_slots_on = 0;
   /* One GPU per rank: the ranks of a node take the visible GPUs in turn (local rank from the MPI
    * launcher, else 0). */
   const int ngpu = cuda_device_count(why, sizeof why);
@@ -239,7 +252,8 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
     g->n_effect_arrays = k + 1;
     *(void **)((char *)&q->pe + plan->arrays[k].offset) = g->effect_arrays[k];
   }
-  if (cuda_alloc(g, (void **)&g->cell_start, (size_t)(q->ncell + 1) * sizeof(int)) ||
+  if (cuda_alloc(g, (void **)&g->cell_start,
+                 (size_t)(q->ncell + 1) * (g->tail_on ? 2 : 1) * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->gcell_start, /* the ghosts' bins: several ranks only */
                  (q->multi ? (size_t)q->ncell + 1 : 1) * sizeof(int)) ||
       cuda_alloc(g, (void **)&g->counter, sizeof(int)) ||

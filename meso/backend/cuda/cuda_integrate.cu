@@ -117,11 +117,12 @@ void cuda_kick_drift(struct cuda_sim *g) {
    * keys of the step's sort (cuda_sort_cells takes them while keys_ready) */
   const int multi = g->prm.multi;
   int *leaver = multi ? g->iota : NULL;
-  if (g->n)
-    k_kick_drift<<<blocks_of(g->n), CUDA_BLOCK>>>(g->prm, g->n, g->a, g->problem, leaver,
-                                                  multi ? NULL : g->key, multi ? NULL : g->iota);
+  const int n_move = g->tail_ready ? g->n_dyn : g->n; /* (the tail never moves) */
+  if (n_move)
+    k_kick_drift<<<blocks_of(n_move), CUDA_BLOCK>>>(g->prm, n_move, g->a, g->problem, leaver,
+                                                    multi ? NULL : g->key, multi ? NULL : g->iota);
   g->leaver_flags_ready = leaver != NULL;
-  g->keys_ready = g->n > 0 && !multi;
+  g->keys_ready = n_move > 0 && !multi;
 }
 
 void cuda_predict(struct cuda_sim *g, int setup) {
@@ -138,6 +139,8 @@ extern "C" int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int ax
                                     int add) {
   if (!g->n) return 0;
   g->keys_ready = 0; /* (a position may have changed since the kick-drift's keys) */
+  g->tail_ready = 0; /* (and a static particle's: the next sort places the tail again) */
+  g->prm.tail = 0;
   k_fault_write<<<blocks_of(g->n), CUDA_BLOCK>>>(g->n, g->a, id, field, axis, value, add);
   return cuda_check(cudaDeviceSynchronize(), "test fault");
 }

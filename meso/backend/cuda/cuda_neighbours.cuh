@@ -122,6 +122,31 @@ __device__ __forceinline__ void dev_scan_slots(const struct dev_params &q,
   }
 }
 
+/* The same over [t0, t1) and then the static tail's slots [u0, u1) of the row (its coarse edges
+ * v1, v2) in one loop, so a warp runs as long as its longest lane's sum of the two ranges, not the
+ * sum of each range's longest (two loops cost the density scan 495 -> 638 us on porous 33, one
+ * loop 557: bench/RESULTS.md, session 18). */
+template <int AX, class F>
+__device__ __forceinline__ void
+dev_scan_slots2(const struct dev_params &q, const struct dev_pos *__restrict__ pos, int t0, int t1,
+                int s1, int s2, int u0, int u1, int v1, int v2, const meso_real sx3[3],
+                meso_real sy, meso_real sz, int code_yz, F &f) {
+  int t = t0, a1 = s1, a2 = s2;
+  for (int k = (t1 - t0) + (u1 - u0); k > 0; k--, t++) {
+    if (t == t1) { /* (once: the tail's slots are all above t1) */
+      t = u0;
+      a1 = v1;
+      a2 = v2;
+    }
+    const struct dev_pos pj = pos[t];
+    const meso_real sx = t < a1 ? sx3[0] : (t < a2 ? sx3[1] : sx3[2]);
+    const meso_real dx = dev_nearest_ax<AX>(q, 0, sx - pj.x);
+    const meso_real dy = dev_nearest_ax<AX>(q, 1, sy - pj.y);
+    const meso_real dz = dev_nearest_ax<AX>(q, 2, sz - pj.z);
+    f(t, (t >= a1) + (t >= a2) + code_yz, pj, dx, dy, dz);
+  }
+}
+
 /* The traversal of one rank (or of the interior part of several): the rows of fine bins (z, then
  * y) around the particle's fine bin; each row's fine bins along x are consecutive slots, visited in
  * one loop (the coarse x offset of a slot from the two coarse-bin edges of the row). With trimming
@@ -178,6 +203,21 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
         const int s1 = start[row + (bx << q.sub_shift[0])],
                   s2 = start[row + ((bx + 1) << q.sub_shift[0])];
         const meso_real sx3[3] = {sx_lo, sx_mid, sx_hi};
+        if (q.tail) { /* the static tail's slots of the row after the others */
+          const int *st = start + q.tail_off;
+          const int u0 = st[row + hx + olo], u1 = st[row + hx + ohi + 1];
+          const int v1 = st[row + (bx << q.sub_shift[0])],
+                    v2 = st[row + ((bx + 1) << q.sub_shift[0])];
+          if (!MI)
+            dev_scan_slots2<0>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
+          else if (q.near_axes == 2)
+            dev_scan_slots2<2>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
+          else if (q.near_axes == 4)
+            dev_scan_slots2<4>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
+          else
+            dev_scan_slots2<7>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
+          continue;
+        }
         if (!MI)
           dev_scan_slots<0>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
         else if (q.near_axes == 2)
@@ -194,11 +234,14 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
         if (fx < 0) continue;
         const meso_real sx = dev_shifted(pi.x, cox, q.bin_w[0]);
         const int code = (cox + 1) + code_yz;
-        for (int t = start[row + fx]; t < start[row + fx + 1]; t++) {
-          const struct dev_pos pj = pos[t];
-          f(t, code, pj, dev_nearest_ax < MI ? 7 : 0 > (q, 0, sx - pj.x),
-            dev_nearest_ax < MI ? 7 : 0 > (q, 1, sy - pj.y),
-            dev_nearest_ax < MI ? 7 : 0 > (q, 2, sz - pj.z));
+        for (int part = 0; part <= q.tail; part++) { /* the static tail's slots second */
+          const int *st = part ? start + q.tail_off : start;
+          for (int t = st[row + fx]; t < st[row + fx + 1]; t++) {
+            const struct dev_pos pj = pos[t];
+            f(t, code, pj, dev_nearest_ax < MI ? 7 : 0 > (q, 0, sx - pj.x),
+              dev_nearest_ax < MI ? 7 : 0 > (q, 1, sy - pj.y),
+              dev_nearest_ax < MI ? 7 : 0 > (q, 2, sz - pj.z));
+          }
         }
       }
     }

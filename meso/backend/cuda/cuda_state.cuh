@@ -80,6 +80,10 @@ struct dev_params {
    * trim_any: its rows cut to the caller's reach; scan_cut2, scan_rd2: the list and density
    * cutoffs squared with a margin over the float rounding of the trimming. */
   int sub[3], sub_shift[3], nf[3], row_scan, trim_any; /* sub = 1 << sub_shift */
+  /* tail: the static frozen particles sit in the slots after every other (the static tail, sorted
+   * by bin once per upload), their bin starts at cell_start + tail_off (= ncell + 1); every scan
+   * visits a row's slots of both ranges (cuda_sim.tail_on). */
+  int tail, tail_off;
   meso_real fine_w[3], inv_fine_w[3], scan_cut2, scan_rd2;
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
 };
@@ -181,6 +185,12 @@ struct cuda_sim {
   int *mobile_slot; /* room of mobile_slot_bytes (cuda_dev_room) */
   size_t mobile_slot_bytes;
   int *mobile_count; /* [1] */
+  /* The static tail (one rank, lists, no skin, static frozen species and no moving ones; off with
+   * MDPORE_CUDA_TAIL=0): the first sort after an upload puts the static frozen particles last, in
+   * bin order, into both field sets; later sorts, gathers and kick-drifts cover only the n_dyn
+   * slots before them, which never change. tail_ready: that first sort is done. With the tail the
+   * frozen particles are a contiguous part already, so mobile_slots_on is 0. */
+  int tail_on, tail_ready, n_dyn;
   /* mobile_slot holds this build's partition (the mobile slots, then the frozen ones): made by the
    * density pass, used again by the force pass; cleared by a sort or an upload. */
   int mobile_slots_ready;

@@ -192,7 +192,8 @@ int cuda_go_compact(struct cuda_sim *g, const char *why) {
   if (g->compact) return 0;
   fprintf(stderr, "mdpore: CUDA backend: compact memory mode (no neighbour lists): %s\n", why);
   g->compact = 1;
-  g->prm.skin = 0.0; /* no lists to keep */
+  g->tail_on = g->tail_ready = g->prm.tail = 0; /* (one field set: no tail) */
+  g->prm.skin = 0.0;                            /* no lists to keep */
   g->prm.list_cut2 = g->prm.cut2_max;
   g->lists_valid = g->lists_maybe_valid = 0;
   return g->cap > 0 ? realloc_keep(g, g->cap) : 0;
@@ -370,6 +371,10 @@ extern "C" const char *cuda_sim_memory_mode(const cuda_sim_t *g) {
 
 extern "C" size_t cuda_sim_bytes(const cuda_sim_t *g) {
   return g->bytes;
+}
+
+extern "C" long cuda_sim_static_tail(const cuda_sim_t *g) {
+  return g->tail_ready ? (long)(g->n - g->n_dyn) : 0;
 }
 
 extern "C" const char *cuda_sim_device_name(const cuda_sim_t *g) {
