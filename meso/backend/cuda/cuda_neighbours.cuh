@@ -104,22 +104,28 @@ __device__ __forceinline__ meso_real dev_gap(const struct dev_params &q, int d, 
   return p < lo ? lo - p : (p > hi ? p - hi : MESO_R(0.0));
 }
 
-/* The slots [t0, t1) of one row (no wrap), coarse x offset -1 before s1, 0 in [s1, s2), +1 from
- * s2: the particle's position shifted by that offset is picked (the values dev_shifted gives), the
- * list code computed for partners only. AX: dev_nearest_ax. */
+/* Slot t of a row, coarse x offset -1 before slot s1, 0 in [s1, s2), +1 from s2: the particle's
+ * position shifted by that offset is picked (the values dev_shifted gives), the list code computed
+ * for partners only. AX: dev_nearest_ax. */
+template <int AX, class F>
+__device__ __forceinline__ void
+dev_visit_slot(const struct dev_params &q, const struct dev_pos *__restrict__ pos, int t, int s1,
+               int s2, const meso_real sx3[3], meso_real sy, meso_real sz, int code_yz, F &f) {
+  const struct dev_pos pj = pos[t];
+  const meso_real sx = t < s1 ? sx3[0] : (t < s2 ? sx3[1] : sx3[2]);
+  const meso_real dx = dev_nearest_ax<AX>(q, 0, sx - pj.x);
+  const meso_real dy = dev_nearest_ax<AX>(q, 1, sy - pj.y);
+  const meso_real dz = dev_nearest_ax<AX>(q, 2, sz - pj.z);
+  f(t, (t >= s1) + (t >= s2) + code_yz, pj, dx, dy, dz);
+}
+
+/* The slots [t0, t1) of one row (no wrap), coarse edges s1, s2 (dev_visit_slot). */
 template <int AX, class F>
 __device__ __forceinline__ void dev_scan_slots(const struct dev_params &q,
                                                const struct dev_pos *__restrict__ pos, int t0,
                                                int t1, int s1, int s2, const meso_real sx3[3],
                                                meso_real sy, meso_real sz, int code_yz, F &f) {
-  for (int t = t0; t < t1; t++) {
-    const struct dev_pos pj = pos[t];
-    const meso_real sx = t < s1 ? sx3[0] : (t < s2 ? sx3[1] : sx3[2]);
-    const meso_real dx = dev_nearest_ax<AX>(q, 0, sx - pj.x);
-    const meso_real dy = dev_nearest_ax<AX>(q, 1, sy - pj.y);
-    const meso_real dz = dev_nearest_ax<AX>(q, 2, sz - pj.z);
-    f(t, (t >= s1) + (t >= s2) + code_yz, pj, dx, dy, dz);
-  }
+  for (int t = t0; t < t1; t++) dev_visit_slot<AX>(q, pos, t, s1, s2, sx3, sy, sz, code_yz, f);
 }
 
 /* The same over [t0, t1) and then the static tail's slots [u0, u1) of the row (its coarse edges
@@ -138,12 +144,7 @@ dev_scan_slots2(const struct dev_params &q, const struct dev_pos *__restrict__ p
       a1 = v1;
       a2 = v2;
     }
-    const struct dev_pos pj = pos[t];
-    const meso_real sx = t < a1 ? sx3[0] : (t < a2 ? sx3[1] : sx3[2]);
-    const meso_real dx = dev_nearest_ax<AX>(q, 0, sx - pj.x);
-    const meso_real dy = dev_nearest_ax<AX>(q, 1, sy - pj.y);
-    const meso_real dz = dev_nearest_ax<AX>(q, 2, sz - pj.z);
-    f(t, (t >= a1) + (t >= a2) + code_yz, pj, dx, dy, dz);
+    dev_visit_slot<AX>(q, pos, t, a1, a2, sx3, sy, sz, code_yz, f);
   }
 }
 
