@@ -266,6 +266,7 @@ static int tail_settle(struct cuda_sim *g) {
   }
   if (rc) return -1;
   g->tail_ready = 1;
+  g->tail_rho_ready = 0;
   g->prm.tail = 1;
   return 0;
 }

@@ -221,6 +221,8 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   q->tail = 0; /* (set by the first sort) */
   q->tail_off = q->ncell + 1;
   if (g->tail_on) g->mobile_slots_on = 0;
+  const char *tail_rho_env = getenv("MDPORE_CUDA_TAIL_RHO");
+  g->tail_rho_on = !(tail_rho_env && !strcmp(tail_rho_env, "0"));
   /* One GPU per rank: the ranks of a node take the visible GPUs in turn (local rank from the MPI
    * launcher, else 0). */
   const int ngpu = cuda_device_count(why, sizeof why);

@@ -113,6 +113,31 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   dc.table[id_i] = (meso_real)((double)fixed / STATIC_FIXED_SCALE);
 }
 
+/* The static tail's own density part: for each tail slot i (from tail_from), the sum over its tail
+ * partners within rd, in the scan's order (once per placement of the tail; no mobile or moving
+ * particle is among them, so it stays valid while the tail stays). */
+template <int KERNEL>
+__global__ void __launch_bounds__(CUDA_BLOCK)
+    k_tail_static(const struct dev_params q, int tail_from, int n, const int *__restrict__ start,
+                  const struct dev_pos *__restrict__ pos, const uint32_t *__restrict__ key,
+                  meso_real *__restrict__ tail_rho) {
+  const int i = tail_from + blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const struct dev_pos pi = pos[i];
+  const struct dev_coef *row = q.coef[pi.species];
+  meso_real sum = MESO_R(0.0);
+  dev_for_each_neighbour(
+      q, start, NULL, n, pos, pi, key[i],
+      [&](int t, int code, const struct dev_pos &pj, meso_real dx, meso_real dy, meso_real dz) {
+        (void)code;
+        const meso_real r2 = dx * dx + dy * dy + dz * dz;
+        if (r2 >= q.rd2_max || t == i) return;
+        sum += dev_w_rho<KERNEL>(row[pj.species], r2);
+      },
+      q.scan_rd2, 2);
+  tail_rho[i - tail_from] = sum;
+}
+
 /* LISTS 0: the compact memory mode (no lists; the force pass scans the bins again). */
 template <int KERNEL, int DENSITY, int CACHE, int LISTS>
 __global__ void __launch_bounds__(CUDA_BLOCK)
@@ -121,7 +146,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
               uint32_t *__restrict__ nbr, int *__restrict__ count, int *most,
               const uint32_t *__restrict__ part, uint32_t part_flag, struct dev_vel *vel,
-              const struct density_cache_args dc, const int *__restrict__ slots, int n_slots) {
+              const struct density_cache_args dc, const int *__restrict__ slots, int n_slots,
+              const meso_real *__restrict__ tail_rho, int tail_from) {
   /* Each thread gathers NBR_CHUNK entries in its own shared-memory slots (padded: no bank
    * conflicts), then stores them as one chunk (no barrier: no thread reads another's slots). */
   __shared__ uint32_t chunk_buf[CUDA_BLOCK * (NBR_CHUNK + 1)];
@@ -159,6 +185,10 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   }
   const meso_real keep2 = list_me ? q.list_cut2 : q.rd2_max;
   const meso_real trim2 = list_me ? q.scan_cut2 : q.scan_rd2;
+  /* a static tail particle (tail_rho: one rank, the static tail): its tail partners' part was
+   * summed once (k_tail_static); only the other slots are scanned */
+  const int tail_me = DENSITY && tail_rho && i >= tail_from && !list_me;
+  if (tail_me) sum = tail_rho[i - tail_from];
   int m = 0;
   dev_for_each_neighbour(
       q, start, gstart, n, pos, pi, key[i],
@@ -175,7 +205,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         if (!DENSITY || r2 >= q.rd2_max) return;
         sum += dev_w_rho<KERNEL>(row[pj.species], r2);
       },
-      trim2);
+      trim2, tail_me ? 1 : 3);
   if (CACHE && mode == 1) sum = cached + sum;
   if (DENSITY) rho[i] = sum;
   if (DENSITY && vel) vel[i].pad = sum; /* one rank: the force pass reads it there */
@@ -259,10 +289,28 @@ static const int *partitioned_slots(struct cuda_sim *g, int part) {
   return cuda_mobile_partition(g) ? NULL : g->mobile_slot;
 }
 
+/* The static tail's own density part, once per placement (k_tail_static); the tail's threads of
+ * the density pass start from it. NULL: no tail (or no room: the whole scan, as without it). */
+template <int KERNEL> static const meso_real *tail_static(struct cuda_sim *g) {
+  if (!g->prm.tail || !g->tail_ready || g->compact || !g->tail_rho_on) return NULL;
+  const int n_tail = g->n - g->n_dyn;
+  if (n_tail <= 0) return NULL;
+  if (!g->tail_rho_ready) {
+    if (cuda_dev_room(g, (char **)&g->tail_rho, &g->tail_rho_bytes,
+                      (size_t)n_tail * sizeof(meso_real)))
+      return NULL;
+    k_tail_static<KERNEL><<<(n_tail + CUDA_BLOCK - 1) / CUDA_BLOCK, CUDA_BLOCK>>>(
+        g->prm, g->n_dyn, g->n, g->cell_start, g->pos, g->key_sorted, g->tail_rho);
+    g->tail_rho_ready = 1;
+  }
+  return g->tail_rho;
+}
+
 template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim *g, int part) {
   /* the boundary part over its slot list when the ghost selection made one (cuda_halo_device.cu),
    * else over every slot, the others leaving at once */
   const int *slots = part == 0 ? g->boundary_slots : partitioned_slots(g, part);
+  const meso_real *tail_rho = DENSITY && part < 0 ? tail_static<KERNEL>(g) : NULL;
   const int threads = part == 0 && slots ? g->n_bslots : g->n;
   if (slots && threads == 0) return;
   const int blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
@@ -270,14 +318,15 @@ template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim
     k_density<KERNEL, DENSITY, CACHE, 0><<<blocks, CUDA_BLOCK>>>(
         g->prm, g->n, g->cap, 0, g->cell_start, g->prm.multi && part != 1 ? g->gcell_start : NULL,
         g->pos, g->key_sorted, g->rho, NULL, NULL, NULL, part >= 0 ? g->key : NULL,
-        (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads);
+        (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads, NULL, g->n);
     return;
   }
   k_density<KERNEL, DENSITY, CACHE, 1><<<blocks, CUDA_BLOCK>>>(
       g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
       g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,
-      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads);
+      (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads, tail_rho,
+      tail_rho ? g->n_dyn : g->n);
 }
 
 static void launch_part(struct cuda_sim *g, int part) {

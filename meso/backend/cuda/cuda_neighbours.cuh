@@ -161,7 +161,7 @@ template <int MI, class F>
 __device__ __forceinline__ void
 dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
               const struct dev_pos *__restrict__ pos, const struct dev_pos &pi, uint32_t ci, F &f,
-              meso_real trim2) {
+              meso_real trim2, int ranges) {
   const int hx = (int)ci % q.nf[0], hy = ((int)ci / q.nf[0]) % q.nf[1],
             hz = (int)ci / (q.nf[0] * q.nf[1]);
   const int bx = hx >> q.sub_shift[0], by = hy >> q.sub_shift[1], bz = hz >> q.sub_shift[2];
@@ -199,12 +199,14 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
         }
       }
       if (x_inside) {
-        /* slots of coarse x offset -1 before s1, 0 in [s1, s2), +1 from s2 */
-        const int t0 = start[row + hx + olo], t1 = start[row + hx + ohi + 1];
-        const int s1 = start[row + (bx << q.sub_shift[0])],
-                  s2 = start[row + ((bx + 1) << q.sub_shift[0])];
+        /* slots of coarse x offset -1 before s1, 0 in [s1, s2), +1 from s2 (the tail's alone
+         * with ranges 2) */
+        const int *st0 = q.tail && ranges == 2 ? start + q.tail_off : start;
+        const int t0 = st0[row + hx + olo], t1 = st0[row + hx + ohi + 1];
+        const int s1 = st0[row + (bx << q.sub_shift[0])],
+                  s2 = st0[row + ((bx + 1) << q.sub_shift[0])];
         const meso_real sx3[3] = {sx_lo, sx_mid, sx_hi};
-        if (q.tail) { /* the static tail's slots of the row after the others */
+        if (q.tail && ranges == 3) { /* the static tail's slots of the row after the others */
           const int *st = start + q.tail_off;
           const int u0 = st[row + hx + olo], u1 = st[row + hx + ohi + 1];
           const int v1 = st[row + (bx << q.sub_shift[0])],
@@ -236,6 +238,7 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
         const meso_real sx = dev_shifted(pi.x, cox, q.bin_w[0]);
         const int code = (cox + 1) + code_yz;
         for (int part = 0; part <= q.tail; part++) { /* the static tail's slots second */
+          if (q.tail && !((ranges >> part) & 1)) continue;
           const int *st = part ? start + q.tail_off : start;
           for (int t = st[row + fx]; t < st[row + fx + 1]; t++) {
             const struct dev_pos pj = pos[t];
@@ -250,7 +253,8 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
 }
 
 /* (gstart: the ghosts' bin starts, relative to slot goff, with several ranks; else NULL. trim2:
- * see dev_scan_rows; 0 visits every bin around the particle.)
+ * see dev_scan_rows; 0 visits every bin around the particle. ranges, with the static tail: 1 the
+ * slots before the tail only, 2 the tail's only, 3 both.)
  * Call f(t, code, pj, dx, dy, dz) for every slot t of the bins around particle i (slot i, packed
  * position pi, bin key ci), i itself included (callers skip it); d = r_i - r_j of the nearest
  * image. */
@@ -259,13 +263,13 @@ __device__ __forceinline__ void
 dev_for_each_neighbour(const struct dev_params &q, const int *__restrict__ start,
                        const int *__restrict__ gstart, int goff,
                        const struct dev_pos *__restrict__ pos, const struct dev_pos &pi,
-                       uint32_t ci, F &&f, meso_real trim2) {
+                       uint32_t ci, F &&f, meso_real trim2, int ranges = 3) {
   if (!gstart && q.row_scan) {
     if (!q.trim_any) trim2 = MESO_R(0.0);
     if (q.near_axes)
-      dev_scan_rows<1>(q, start, pos, pi, ci, f, trim2);
+      dev_scan_rows<1>(q, start, pos, pi, ci, f, trim2, ranges);
     else
-      dev_scan_rows<0>(q, start, pos, pi, ci, f, trim2);
+      dev_scan_rows<0>(q, start, pos, pi, ci, f, trim2, ranges);
     return;
   }
   /* the nested loops over coarse bins (sub = 1 here: the ghosts of several ranks, or

@@ -191,6 +191,11 @@ struct cuda_sim {
    * slots before them, which never change. tail_ready: that first sort is done. With the tail the
    * frozen particles are a contiguous part already, so mobile_slots_on is 0. */
   int tail_on, tail_ready, n_dyn;
+  /* The tail's static density part (its tail partners within rd), per tail slot, summed once per
+   * placement (tail_rho_ready); the density pass then scans only the other slots for them. */
+  meso_real *tail_rho;
+  size_t tail_rho_bytes;
+  int tail_rho_ready, tail_rho_on; /* (on unless MDPORE_CUDA_TAIL_RHO=0) */
   /* mobile_slot holds this build's partition (the mobile slots, then the frozen ones): made by the
    * density pass, used again by the force pass; cleared by a sort or an upload. */
   int mobile_slots_ready;

@@ -78,6 +78,9 @@ static int reserve_cap(struct cuda_sim *g, int n, int cap) {
   cuda_free_ptr(g, (void **)&g->sort_scratch);
   cuda_free_ptr(g, (void **)&g->mobile_slot); /* (made again by the next force pass) */
   cuda_free_ptr(g, (void **)&g->mobile_count);
+  cuda_free_ptr(g, (void **)&g->tail_rho);
+  g->tail_rho_bytes = 0;
+  g->tail_rho_ready = 0;
   g->mobile_slot_bytes = 0;
   g->prm.pe.wall_boundary.field = NULL;
   g->lists_valid = 0;
@@ -340,6 +343,7 @@ extern "C" void cuda_sim_destroy(cuda_sim_t *g) {
                    (void **)&g->bslots,
                    &g->select_tmp,
                    (void **)&g->mobile_slot,
+                   (void **)&g->tail_rho,
                    (void **)&g->mobile_count};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; k++) cuda_free_ptr(g, ptrs[k]);
   for (int k = 0; k < g->n_effect_arrays; k++) cuda_free_ptr(g, &g->effect_arrays[k]);
