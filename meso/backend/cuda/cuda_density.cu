@@ -10,7 +10,10 @@
  * static-static part, summed once (in fixed point, so independent of the traversal order) and kept
  * by particle id, plus its mobile and moving partners' part; its list holds only those partners (no
  * pass reads a frozen particle's list otherwise), and when none of the bins around it holds a mobile
- * or moving particle it does no scan at all. */
+ * or moving particle it does no scan at all. The static tail (one rank, cuda_cells.cu) does the
+ * same without the cache's table and per-candidate test: a tail particle's part from the tail is
+ * summed once per placement of the tail (k_tail_static, by slot), and its thread of the density
+ * pass scans only the slots before the tail. */
 #include "cuda_neighbours.cuh"
 #include "physics/density_kernels.h"
 
