@@ -158,6 +158,9 @@ int cuda_sim_overlap(const cuda_sim_t *g);
 const char *cuda_sim_memory_mode(const cuda_sim_t *g);
 /* Bytes of device memory this state holds. */
 size_t cuda_sim_bytes(const cuda_sim_t *g);
+/* Whether the plan allows the static tail (static frozen species, no moving ones); the device
+ * adds one rank, lists, no skin (cuda_sim_create). */
+int cuda_plan_static_tail(const plan_t *plan);
 /* Static frozen particles kept in the static tail (sorted once, never drifted; docs/engine-cuda.md
  * step 2), 0 when the tail is off. */
 long cuda_sim_static_tail(const cuda_sim_t *g);

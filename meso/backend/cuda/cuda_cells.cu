@@ -254,18 +254,7 @@ static int tail_settle(struct cuda_sim *g) {
   if (m > 0)
     k_tail_keys<<<(int)((m + CUDA_BLOCK - 1) / CUDA_BLOCK), CUDA_BLOCK>>>(
         g->n_dyn, n, g->key_sorted, (uint32_t)g->prm.tail_off);
-  const cudaMemcpyKind dd = cudaMemcpyDeviceToDevice;
-  int rc = cuda_check(cudaMemcpy(g->b.id + k, g->a.id + k, m * 8, dd), "static tail");
-  rc |= cuda_check(cudaMemcpy(g->b.species + k, g->a.species + k, m * 4, dd), "static tail");
-  for (int d = 0; d < 3 && !rc; d++) {
-    rc |= cuda_check(cudaMemcpy(g->b.x[d] + k, g->a.x[d] + k, m * 8, dd), "static tail");
-    rc |= cuda_check(cudaMemcpy(g->b.v[d] + k, g->a.v[d] + k, m * 8, dd), "static tail");
-    rc |= cuda_check(cudaMemcpy(g->b.f[d] + k, g->a.f[d] + k, m * 8, dd), "static tail");
-    if (g->prm.use_vpred)
-      rc |= cuda_check(cudaMemcpy(g->b.vpred[d] + k, g->a.vpred[d] + k, m * 8, dd), "static tail");
-  }
-  if (rc) return -1;
-  g->tail_ready = 1;
+  if (cuda_copy_fields(&g->b, &g->a, k, m, "static tail")) return -1;
   g->tail_rho_ready = 0;
   g->prm.tail = 1;
   return 0;
@@ -280,8 +269,8 @@ int cuda_sort_cells(struct cuda_sim *g, int with_f, int pack) {
     return 0;
   }
   const int fused = pack && !g->prm.multi; /* one rank: no ghosts to pack after */
-  const int tail_sort = g->tail_on && !g->tail_ready;
-  const int n_sort = g->tail_ready ? g->n_dyn : g->n; /* (the tail stays where it is) */
+  const int tail_sort = g->tail_on && !g->prm.tail;
+  const int n_sort = g->prm.tail ? g->n_dyn : g->n; /* (the tail stays where it is) */
   if (sort_range(g, 0, n_sort, g->prm.multi, g->a, g->b, g->cell_start, with_f, fused && !tail_sort,
                  tail_sort))
     return -1;

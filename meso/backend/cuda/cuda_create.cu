@@ -131,6 +131,15 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   return 0;
 }
 
+extern "C" int cuda_plan_static_tail(const plan_t *plan) {
+  int any_static = 0, any_moving = 0;
+  for (int a = 0; a < plan->n_species; a++) {
+    any_static |= plan->static_frozen[a];
+    any_moving |= plan->moving[a];
+  }
+  return any_static && !any_moving;
+}
+
 extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, const double sub_lo[3],
                                        const double sub_hi[3], const int dims[3], char *err,
                                        size_t len) {
@@ -211,13 +220,8 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   /* The static tail (cuda_state.cuh; docs/engine-cuda.md step 2). MDPORE_CUDA_TAIL=0 turns it off
    * (the mobile-first partition of every build instead: bench/RESULTS.md, session 18). */
   const char *tail_env = getenv("MDPORE_CUDA_TAIL");
-  int any_static = 0, any_moving = 0;
-  for (int a = 0; a < plan->n_species; a++) {
-    any_static |= plan->static_frozen[a];
-    any_moving |= plan->moving[a];
-  }
   g->tail_on = !(tail_env && !strcmp(tail_env, "0")) && !q->multi && !g->compact &&
-               q->skin == 0.0 && q->row_scan && any_static && !any_moving && !q->density_cache;
+               q->skin == 0.0 && q->row_scan && cuda_plan_static_tail(plan) && !q->density_cache;
   q->tail = 0; /* (set by the first sort) */
   q->tail_off = q->ncell + 1;
   if (g->tail_on) g->mobile_slots_on = 0;

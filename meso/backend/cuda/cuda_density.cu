@@ -295,7 +295,7 @@ static const int *partitioned_slots(struct cuda_sim *g, int part) {
 /* The static tail's own density part, once per placement (k_tail_static); the tail's threads of
  * the density pass start from it. NULL: no tail (or no room: the whole scan, as without it). */
 template <int KERNEL> static const meso_real *tail_static(struct cuda_sim *g) {
-  if (!g->prm.tail || !g->tail_ready || g->compact || !g->tail_rho_on) return NULL;
+  if (!g->prm.tail || !g->tail_rho_on) return NULL; /* (the compact mode has no tail) */
   const int n_tail = g->n - g->n_dyn;
   if (n_tail <= 0) return NULL;
   if (!g->tail_rho_ready) {

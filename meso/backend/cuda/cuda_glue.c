@@ -192,23 +192,12 @@ const char *cuda_glue_phase_note(int phase) {
   }
 }
 
-/* Whether the plan has static frozen species and no moving ones (the static tail's condition
- * that the plan knows; cuda_create.cu adds one rank, lists, no skin). */
-static int static_tail_possible(const plan_t *plan) {
-  int any_static = 0, any_moving = 0;
-  for (int a = 0; a < plan->n_species; a++) {
-    any_static |= plan->static_frozen[a];
-    any_moving |= plan->moving[a];
-  }
-  return any_static && !any_moving;
-}
-
 static const char *phase_note(const plan_t *plan, int phase) {
   switch (phase) {
   case PHASE_MIGRATE:
     return "one rank: the periodic wrap runs in the kick_drift kernel";
   case PHASE_SORT:
-    if (static_tail_possible(plan))
+    if (cuda_plan_static_tail(plan))
       return "a step's radix sort by cell runs in the neighbour phase, after the prediction (it "
              "does not carry the forces); the static frozen particles are sorted once into the "
              "slots after the others and never sorted or drifted again (the static tail; not with "

@@ -117,7 +117,7 @@ void cuda_kick_drift(struct cuda_sim *g) {
    * keys of the step's sort (cuda_sort_cells takes them while keys_ready) */
   const int multi = g->prm.multi;
   int *leaver = multi ? g->iota : NULL;
-  const int n_move = g->tail_ready ? g->n_dyn : g->n; /* (the tail never moves) */
+  const int n_move = g->prm.tail ? g->n_dyn : g->n; /* (the tail never moves) */
   if (n_move)
     k_kick_drift<<<blocks_of(n_move), CUDA_BLOCK>>>(g->prm, n_move, g->a, g->problem, leaver,
                                                     multi ? NULL : g->key, multi ? NULL : g->iota);
@@ -139,8 +139,7 @@ extern "C" int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int ax
                                     int add) {
   if (!g->n) return 0;
   g->keys_ready = 0; /* (a position may have changed since the kick-drift's keys) */
-  g->tail_ready = 0; /* (and a static particle's: the next sort places the tail again) */
-  g->prm.tail = 0;
+  g->prm.tail = 0;   /* (and a static particle's: the next sort places the tail again) */
   k_fault_write<<<blocks_of(g->n), CUDA_BLOCK>>>(g->n, g->a, id, field, axis, value, add);
   return cuda_check(cudaDeviceSynchronize(), "test fault");
 }

@@ -81,8 +81,8 @@ struct dev_params {
    * cutoffs squared with a margin over the float rounding of the trimming. */
   int sub[3], sub_shift[3], nf[3], row_scan, trim_any; /* sub = 1 << sub_shift */
   /* tail: the static frozen particles sit in the slots after every other (the static tail, sorted
-   * by bin once per upload), their bin starts at cell_start + tail_off (= ncell + 1); every scan
-   * visits a row's slots of both ranges (cuda_sim.tail_on). */
+   * by bin once per upload; cuda_sim.tail_on), their bin starts at cell_start + tail_off (= ncell +
+   * 1); every scan visits a row's slots of both ranges. */
   int tail, tail_off;
   meso_real fine_w[3], inv_fine_w[3], scan_cut2, scan_rd2;
   struct dev_coef coef[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES];
@@ -188,9 +188,10 @@ struct cuda_sim {
   /* The static tail (one rank, lists, no skin, static frozen species and no moving ones; off with
    * MDPORE_CUDA_TAIL=0): the first sort after an upload puts the static frozen particles last, in
    * bin order, into both field sets; later sorts, gathers and kick-drifts cover only the n_dyn
-   * slots before them, which never change. tail_ready: that first sort is done. With the tail the
-   * frozen particles are a contiguous part already, so mobile_slots_on is 0. */
-  int tail_on, tail_ready, n_dyn;
+   * slots before them, which never change. prm.tail: that first sort is done (cleared by an
+   * upload, the test fault hook and the compact mode). With the tail the frozen particles are a
+   * contiguous part already, so mobile_slots_on is 0. */
+  int tail_on, n_dyn;
   /* The tail's static density part (its tail partners within rd), per tail slot, summed once per
    * placement (tail_rho_ready); the density pass then scans only the other slots for them. */
   meso_real *tail_rho;
@@ -313,6 +314,10 @@ int cuda_nbr_reserve(struct cuda_sim *g, int stride);
 /* Device room of at least bytes in *buf, *cap its size (grown with a margin; contents not kept).
  * 0 or -1. */
 int cuda_dev_room(struct cuda_sim *g, char **buf, size_t *cap, size_t bytes);
+/* Slots [k, k + m) of every field of src into dst (device to device; vpred where src has it;
+ * what names the step in an error). 0 or -1. */
+int cuda_copy_fields(struct dev_fields *dst, const struct dev_fields *src, size_t k, size_t m,
+                     const char *what);
 /* The cub selections' temporary storage, at least need bytes (g->select_tmp). 0 or -1. */
 int cuda_select_room(struct cuda_sim *g, size_t need);
 /* The slots i < n with flag[i] != 0, in slot order, into out; their count into *count_dev (device).

@@ -11,8 +11,7 @@ extern "C" int cuda_sim_upload(cuda_sim_t *g, const particles_t *p) {
   g->lists_valid = 0; /* a new set of particles: the next step sorts and builds */
   g->keys_ready = 0;
   g->mobile_slots_ready = 0;
-  g->tail_ready = 0;
-  g->prm.tail = 0;
+  g->prm.tail = 0; /* (the next sort places the static tail) */
   const size_t nd = (size_t)n * sizeof(double);
   int rc = cuda_check(cudaMemcpy(g->a.id, p->id, (size_t)n * 8, cudaMemcpyHostToDevice), "upload");
   rc |= cuda_check(cudaMemcpy(g->a.species, p->species, (size_t)n * 4, cudaMemcpyHostToDevice),

@@ -174,8 +174,24 @@ int cuda_reserve(struct cuda_sim *g, int n) {
   return reserve_cap(g, n, room_for(g, n));
 }
 
+static int copy_on_device(void *dst, const void *src, size_t bytes, const char *what) {
+  return bytes ? cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToDevice), what) : 0;
+}
+
 static int copy_back(void *dst, const void *src, size_t bytes) {
-  return bytes ? cuda_check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToDevice), "grow") : 0;
+  return copy_on_device(dst, src, bytes, "grow");
+}
+
+int cuda_copy_fields(struct dev_fields *dst, const struct dev_fields *src, size_t k, size_t m,
+                     const char *what) {
+  int rc = copy_on_device(dst->id + k, src->id + k, m * 8, what) ||
+           copy_on_device(dst->species + k, src->species + k, m * 4, what);
+  for (int d = 0; d < 3 && !rc; d++)
+    rc = copy_on_device(dst->x[d] + k, src->x[d] + k, m * 8, what) ||
+         copy_on_device(dst->v[d] + k, src->v[d] + k, m * 8, what) ||
+         copy_on_device(dst->f[d] + k, src->f[d] + k, m * 8, what) ||
+         (src->vpred[d] && copy_on_device(dst->vpred[d] + k, src->vpred[d] + k, m * 8, what));
+  return rc ? -1 : 0;
 }
 
 /* Room for need slots, keeping the owned particles [0, n), their bins (key_sorted), boundary flags
@@ -195,8 +211,8 @@ int cuda_go_compact(struct cuda_sim *g, const char *why) {
   if (g->compact) return 0;
   fprintf(stderr, "mdpore: CUDA backend: compact memory mode (no neighbour lists): %s\n", why);
   g->compact = 1;
-  g->tail_on = g->tail_ready = g->prm.tail = 0; /* (one field set: no tail) */
-  g->prm.skin = 0.0;                            /* no lists to keep */
+  g->tail_on = g->prm.tail = 0; /* (one field set: no tail) */
+  g->prm.skin = 0.0;            /* no lists to keep */
   g->prm.list_cut2 = g->prm.cut2_max;
   g->lists_valid = g->lists_maybe_valid = 0;
   return g->cap > 0 ? realloc_keep(g, g->cap) : 0;
@@ -214,13 +230,8 @@ static int realloc_keep(struct cuda_sim *g, int need) {
   const int cap_was = g->cap;
   int rc = reserve_cap(g, need, need > cap_was ? room_for(g, need) : cap_was);
   if (!rc) {
-    rc = copy_back(g->a.id, old.id, n * 8) || copy_back(g->a.species, old.species, n * 4) ||
-         copy_back(g->key, okey, n * 4) || copy_back(g->key_sorted, oks, n * 4) ||
-         copy_back(g->perm, operm, nb * 4);
-    for (int d = 0; d < 3 && !rc; d++)
-      rc = copy_back(g->a.x[d], old.x[d], n * 8) || copy_back(g->a.v[d], old.v[d], n * 8) ||
-           copy_back(g->a.f[d], old.f[d], n * 8) ||
-           (old.vpred[d] && copy_back(g->a.vpred[d], old.vpred[d], n * 8));
+    rc = cuda_copy_fields(&g->a, &old, 0, n, "grow") || copy_back(g->key, okey, n * 4) ||
+         copy_back(g->key_sorted, oks, n * 4) || copy_back(g->perm, operm, nb * 4);
   }
   free_fields(g, &old);
   cuda_free_ptr(g, (void **)&okey);
@@ -378,7 +389,7 @@ extern "C" size_t cuda_sim_bytes(const cuda_sim_t *g) {
 }
 
 extern "C" long cuda_sim_static_tail(const cuda_sim_t *g) {
-  return g->tail_ready ? (long)(g->n - g->n_dyn) : 0;
+  return g->prm.tail ? (long)(g->n - g->n_dyn) : 0;
 }
 
 extern "C" const char *cuda_sim_device_name(const cuda_sim_t *g) {
