@@ -120,6 +120,87 @@ MESO_HD uint32_t pair_random_bits(int rng, uint64_t seed, uint64_t step, int64_t
   return pair_random_bits_philox(seed, step, id_i, id_j);
 }
 
+/* The same bits with the key schedule done once per (seed, step) instead of once per pair: the
+ * round keys of Random123's Philox (the key plus r W in round r, PHILOX_W32_0 and _1) are computed
+ * by pair_random_keys, and pair_random_bits_keyed runs the rounds with them. The result equals
+ * pair_random_bits bit for bit (tests/engine/test_physics_random.c checks it for every generator).
+ * The CUDA force pass uses it: its round keys are kernel parameters, so no pair recomputes them,
+ * and each round's 32 x 32 -> 64 multiply is one wide multiply (Random123's 64-bit product left an
+ * add of zero after each on the device: bench/RESULTS.md, session 19). */
+#define PAIR_RNG_MAX_ROUNDS 10
+struct pair_rng_keys {
+  uint32_t k0[PAIR_RNG_MAX_ROUNDS], k1[PAIR_RNG_MAX_ROUNDS];
+};
+
+MESO_HD struct pair_rng_keys pair_random_keys(int rng, uint64_t seed, uint64_t step) {
+  struct pair_rng_keys k;
+  const uint32_t seed32 = (uint32_t)(seed ^ (seed >> 32));
+  uint32_t k0 = rng == PAIR_RNG_FAST         ? pair_random_fast_key(seed, step)
+                : rng == PAIR_RNG_PHILOX2X32 ? seed32 + (uint32_t)step * 0x9E3779B9u
+                                             : seed32;
+  uint32_t k1 = (uint32_t)step; /* (Philox4x32's second key word) */
+  for (int r = 0; r < PAIR_RNG_MAX_ROUNDS; r++) {
+    k.k0[r] = k0;
+    k.k1[r] = k1;
+    k0 += PHILOX_W32_0;
+    k1 += PHILOX_W32_1;
+  }
+  return k;
+}
+
+/* a b as (hi, lo) 32-bit words: one wide multiply on the device */
+MESO_HD uint32_t pair_mulhilo32(uint32_t a, uint32_t b, uint32_t *hi) {
+#ifdef __CUDA_ARCH__
+  uint32_t lo, h;
+  asm("{\n\t.reg .u64 p;\n\tmul.wide.u32 p, %2, %3;\n\tmov.b64 {%0, %1}, p;\n\t}"
+      : "=r"(lo), "=r"(h)
+      : "r"(a), "r"(b));
+  *hi = h;
+  return lo;
+#else
+  const uint64_t p = (uint64_t)a * b;
+  *hi = (uint32_t)(p >> 32);
+  return (uint32_t)p;
+#endif
+}
+
+MESO_HD uint32_t pair_random_bits_keyed(int rng, struct pair_rng_keys k, int64_t id_i,
+                                        int64_t id_j) {
+  if (rng == PAIR_RNG_PHILOX) { /* Philox4x32-10, counter (min id, max id) as four words */
+    const uint64_t lo = (uint64_t)(id_i < id_j ? id_i : id_j);
+    const uint64_t hi = (uint64_t)(id_i < id_j ? id_j : id_i);
+    uint32_t c0 = (uint32_t)lo, c1 = (uint32_t)(lo >> 32), c2 = (uint32_t)hi,
+             c3 = (uint32_t)(hi >> 32);
+#ifdef __CUDA_ARCH__
+#pragma unroll
+#endif
+    for (int r = 0; r < 10; r++) {
+      uint32_t hi0, hi1;
+      const uint32_t lo0 = pair_mulhilo32(PHILOX_M4x32_0, c0, &hi0);
+      const uint32_t lo1 = pair_mulhilo32(PHILOX_M4x32_1, c2, &hi1);
+      c0 = hi1 ^ c1 ^ k.k0[r];
+      c1 = lo1;
+      c2 = hi0 ^ c3 ^ k.k1[r];
+      c3 = lo0;
+    }
+    return c0;
+  }
+  /* Philox2x32, counter (min id, max id) as two words: 7 rounds (fast) or 10 */
+  uint32_t c0 = (uint32_t)(id_i < id_j ? id_i : id_j), c1 = (uint32_t)(id_i < id_j ? id_j : id_i);
+  const int rounds = rng == PAIR_RNG_FAST ? 7 : 10;
+#ifdef __CUDA_ARCH__
+#pragma unroll
+#endif
+  for (int r = 0; r < 10; r++) {
+    if (r >= rounds) break;
+    uint32_t hi0;
+    const uint32_t lo0 = pair_mulhilo32(PHILOX_M2x32_0, c0, &hi0);
+    c0 = hi0 ^ k.k0[r] ^ c1;
+    c1 = lo0;
+  }
+  return c0;
+}
+
 /* xi_ij of generator rng: uniform with zero mean and unit variance, sqrt(3) U(-1, 1). */
 MESO_HD meso_real pair_random_xi_rng(int rng, uint64_t seed, uint64_t step, int64_t id_i,
                                      int64_t id_j) {

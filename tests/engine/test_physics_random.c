@@ -6,7 +6,10 @@
  * rounding (F_ij = -F_ji, random and dissipative parts included), with each generator of
  * dpd_thermostat's option rng (tests/engine/test_pair_rng_stats.c has their statistics), and the
  * generators give different forces;
- *  - the 2x32 generators (philox2x32, fast) refuse particle ids of 2^32 and above. */
+ *  - the 2x32 generators (philox2x32, fast) refuse particle ids of 2^32 and above;
+ *  - the keyed form the CUDA force pass draws with (round keys once per step,
+ * pair_random_bits_keyed) gives every generator's bits exactly, over random seeds, steps and ids
+ * (the full 64-bit range for philox, below 2^32 for the 2x32 generators). */
 #include "effects/dpd_thermostat.h"
 #include "physics/pair_random.h"
 #include "test_engine_common.h"
@@ -33,6 +36,23 @@ int main(int argc, char **argv) {
   CHECK(fabs(mean) < 5 / sqrt((double)n), "mean %.3e", mean);
   CHECK(fabs(var - 1) < 5 * sqrt(0.8 / n), "variance %.5f", var);
   CHECK(fabs(c) < 5 / sqrt((double)n), "correlation between steps %.3e", c);
+
+  for (int rng = 0; rng < PAIR_RNG_COUNT; rng++) {
+    long differ = 0;
+    for (long k = 0; k < 200000; k++) {
+      const uint64_t seed = test_rng_next(&st) >> (k % 2 ? 0 : 40), step = test_rng_next(&st) >> 30;
+      int64_t i = (int64_t)(test_rng_next(&st) >> 1), j = (int64_t)(test_rng_next(&st) >> 1);
+      if (rng != PAIR_RNG_PHILOX || k % 3 == 0) { /* ids < 2^32 (and small ones for philox) */
+        i &= 0xffffffffLL;
+        j &= 0xffffffffLL;
+      }
+      const struct pair_rng_keys keys = pair_random_keys(rng, seed, step);
+      differ += pair_random_bits_keyed(rng, keys, i, j) != pair_random_bits(rng, seed, step, i, j);
+    }
+    printf("rng %s: keyed bits differ from Random123's in %ld of 200000 draws\n",
+           pair_rng_word(rng), differ);
+    CHECK(differ == 0, "rng %s: keyed bits differ in %ld draws", pair_rng_word(rng), differ);
+  }
 
   double fx0[3] = {0, 0, 0};
   for (int rng = 0; rng < PAIR_RNG_COUNT; rng++) {

@@ -27,6 +27,8 @@ struct force_args {
   const meso_real *rho;
   double *fx, *fy, *fz, *virial, *block_virial;
   uint64_t step;
+  /* the generator's round keys for (seed, step) (pair_random_keys: once per pass, not per pair) */
+  struct pair_rng_keys keys;
   int n, write_f;
   /* Several ranks with overlap: only slots whose boundary flag (cuda_halo.cu) equals part_flag;
    * NULL: every slot. accumulate: add to the block virial rows (the second part). */
@@ -115,7 +117,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
         const meso_real e_dot_v =
             (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
-        const meso_real xi_ij = pair_random_xi_rng(RNG, q.seed, a.step, id_i, a.id[t]);
+        const meso_real xi_ij =
+            pair_random_from_bits(pair_random_bits_keyed(RNG, a.keys, id_i, a.id[t]));
         const bool wall = (TERMS & PAIR_TERM_WALL_NO_SLIP) && c.wall_phi2 > MESO_R(0.0);
         fp += pair_thermostat(wall ? wall_ratio * c.gamma : c.gamma,
                               wall ? wall_sqrt_ratio * c.sigma : c.sigma, wR, e_dot_v, xi_ij,
@@ -312,6 +315,7 @@ static void force_pass(struct cuda_sim *g, uint64_t step, int want_virial, int k
                          g->virial,
                          rows,
                          step,
+                         pair_random_keys(g->prm.rng, g->prm.seed, step),
                          n,
                          !keep_forces,
                          part >= 0 ? g->key : NULL,
