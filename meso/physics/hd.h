@@ -12,14 +12,17 @@
 
 /* meso_real: the type of the pair math. The CPU path uses double; the CUDA path defines
  * MESO_REAL_FLOAT (single precision, the default there) unless built with MDPORE_DOUBLE. */
+#include <float.h>
 #ifdef MESO_REAL_FLOAT
 typedef float meso_real;
 #define MESO_R(x) x##f
 #define meso_sqrt sqrtf
+#define MESO_R_MIN_NORMAL FLT_MIN /* the smallest normal meso_real */
 #else
 typedef double meso_real;
 #define MESO_R(x) x
 #define meso_sqrt sqrt
+#define MESO_R_MIN_NORMAL DBL_MIN
 #endif
 
 #define MESO_PI 3.14159265358979323846

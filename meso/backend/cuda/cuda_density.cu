@@ -24,7 +24,7 @@
  * within a few float ulps of sqrt; the bin scan, the list pass and the static part all use it. */
 template <int KERNEL>
 __device__ __forceinline__ meso_real dev_w_rho(const struct dev_coef &c, meso_real r2) {
-  const meso_real r = r2 * rsqrt(fmax(r2, MESO_R(1e-30)));
+  const meso_real r = r2 * dev_rsqrt_normal(fmax(r2, MESO_R(1e-30)));
   const meso_real w = KERNEL == MESO_KERNEL_LUCY ? w_rho_lucy_inv(r, c.inv_rd, c.wnorm)
                                                  : w_rho_warren_inv(r, c.inv_rd, c.wnorm);
   return r2 < c.rd2 ? w : MESO_R(0.0);

@@ -16,6 +16,7 @@
 #include "physics/wall_boundary.h"
 
 #include <cub/block/block_reduce.cuh>
+#include <type_traits>
 
 struct force_args {
   const uint32_t *nbr;
@@ -103,8 +104,9 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
                           meso_real dz) {
       const meso_real r2 = dx * dx + dy * dy + dz * dz;
       const struct dev_coef &c = row[pj.species];
-      if (r2 >= c.cut2 || r2 == MESO_R(0.0)) return;        /* r2 == 0: coincident, no direction */
-      const meso_real inv_r = rsqrt(r2), dist = r2 * inv_r; /* no division */
+      /* r2 below the smallest normal float (r < 1.1e-19 rc): coincident, no direction */
+      if (r2 >= c.cut2 || !(r2 >= MESO_R_MIN_NORMAL)) return;
+      const meso_real inv_r = dev_rsqrt_normal(r2), dist = r2 * inv_r; /* no division */
       struct dev_vel vj = {0, 0, 0, 0};
       if (TERMS & PAIR_TERM_THERMOSTAT) vj = a.vel[t];
       meso_real fp = 0;
@@ -141,13 +143,27 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
      * are evaluated from their side), so wall-wall pairs are never computed */
     if (LISTS) {
       const int m = q.mobile[pi.species] ? a.count[i] : 0;
-      nbr_for_each(a.nbr, i, m, a.cap, [&](uint32_t e) {
-        const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
-        const struct dev_pos pj = a.pos[t];
-        meso_real dx, dy, dz;
-        dev_offset_sep(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
-        pair(t, pj, dx, dy, dz);
-      });
+      /* AX: the minimum-image axes of dev_offset_sep; the every-step kernels (no virial) are
+       * compiled for boxes with none (3D) and with the thin y axis of the ring medium too */
+      const auto over_list = [&](auto ax) {
+        nbr_for_each(a.nbr, i, m, a.cap, [&](uint32_t e) {
+          const int t = (int)(e & ((1u << NBR_SLOT_BITS) - 1));
+          const struct dev_pos pj = a.pos[t];
+          meso_real dx, dy, dz;
+          dev_offset_sep<decltype(ax)::value>(q, pi, pj, e >> NBR_SLOT_BITS, &dx, &dy, &dz);
+          pair(t, pj, dx, dy, dz);
+        });
+      };
+      if constexpr (!VIRIAL && !PV) {
+        if (q.near_axes == 0)
+          over_list(std::integral_constant<int, 0>());
+        else if (q.near_axes == 2)
+          over_list(std::integral_constant<int, 2>());
+        else
+          over_list(std::integral_constant<int, 7>());
+      } else {
+        over_list(std::integral_constant<int, 7>());
+      }
     } else if (q.mobile[pi.species]) {
       dev_for_each_neighbour(
           q, a.start, a.gstart, a.n, a.pos, pi, a.key[i],
