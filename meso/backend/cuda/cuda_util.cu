@@ -210,12 +210,26 @@ int cuda_grow(struct cuda_sim *g, int need) {
 int cuda_go_compact(struct cuda_sim *g, const char *why) {
   if (g->compact) return 0;
   fprintf(stderr, "mdpore: CUDA backend: compact memory mode (no neighbour lists): %s\n", why);
+  /* a static tail already placed (a list that did not fit during a run): the tail's particles
+   * sit after the others with bin starts of their own, which the compact mode does not keep */
+  const int tail_placed = g->prm.tail && g->n > 0;
   g->compact = 1;
+  if (g->tail_on) { /* the static tail's second set of bin starts (cuda_sim_create): not needed */
+    const size_t one = (size_t)(g->prm.ncell + 1) * sizeof(int);
+    cuda_free_ptr(g, (void **)&g->cell_start);
+    g->bytes -= 2 * one;
+    g->fixed_bytes -= 2 * one;
+    if (cuda_alloc(g, (void **)&g->cell_start, one)) return -1;
+    g->fixed_bytes += one;
+  }
   g->tail_on = g->prm.tail = 0; /* (one field set: no tail) */
   g->prm.skin = 0.0;            /* no lists to keep */
   g->prm.list_cut2 = g->prm.cut2_max;
   g->lists_valid = g->lists_maybe_valid = 0;
-  return g->cap > 0 ? realloc_keep(g, g->cap) : 0;
+  if (g->cap > 0 && realloc_keep(g, g->cap)) return -1;
+  if (!tail_placed) return 0;
+  g->keys_ready = 0; /* every particle into bin order again, one set of bin starts */
+  return cuda_sort_cells(g, 0, 0);
 }
 
 static int realloc_keep(struct cuda_sim *g, int need) {
@@ -280,7 +294,10 @@ int cuda_nbr_reserve(struct cuda_sim *g, int stride) {
   cuda_free_ptr(g, (void **)&g->nbr);
   g->nbr_stride = 0;
   const size_t bytes = (size_t)g->cap * (size_t)stride * sizeof(uint32_t);
-  const cudaError_t e = cudaMalloc((void **)&g->nbr, bytes);
+  /* test hook: the lists' allocation fails as on a full device (ctest cuda_memory_auto) */
+  const char *fail = getenv("MDPORE_CUDA_TEST_LIST_FAIL");
+  const cudaError_t e =
+      fail && !strcmp(fail, "1") ? cudaErrorMemoryAllocation : cudaMalloc((void **)&g->nbr, bytes);
   if (e == cudaErrorMemoryAllocation && g->memory_request == SCENE_GPU_MEMORY_AUTO &&
       !g->prm.multi) { /* (several ranks decide before the upload only: cuda_reserve) */
     g->nbr = NULL;
