@@ -10,6 +10,8 @@
 
 #include "cuda_state.cuh"
 
+#include <type_traits>
+
 /* Fine bin along one axis: the coarse coordinate s scaled by sub (exact: sub is a power of 2), so the
  * fine bin lies in coarse bin floor(s) (the pack packs relative to that one). */
 __device__ __forceinline__ int dev_bin_of(double x, double lo, double inv, int sub, int nf) {
@@ -87,6 +89,21 @@ __device__ __forceinline__ void dev_offset_sep(const struct dev_params &q, const
   *dx = dev_nearest_ax<AX>(q, 0, dev_shifted(pi.x, ox, q.bin_w[0]) - pj.x);
   *dy = dev_nearest_ax<AX>(q, 1, dev_shifted(pi.y, oy, q.bin_w[1]) - pj.y);
   *dz = dev_nearest_ax<AX>(q, 2, dev_shifted(pi.z, oz, q.bin_w[2]) - pj.z);
+}
+
+/* g(std::integral_constant<int, AX>()) with AX the minimum-image axes of the slot loops
+ * (dev_nearest_ax): 0 where no axis takes it (MI 0), the quasi-2D boxes' one thin axis (2: y,
+ * 4: z), or every axis (7). */
+template <int MI, class G>
+__device__ __forceinline__ void dev_with_ax(const struct dev_params &q, G &&g) {
+  if (!MI)
+    g(std::integral_constant<int, 0>());
+  else if (q.near_axes == 2)
+    g(std::integral_constant<int, 2>());
+  else if (q.near_axes == 4)
+    g(std::integral_constant<int, 4>());
+  else
+    g(std::integral_constant<int, 7>());
 }
 
 /* Fine bin index along axis d at fine offset o from a particle in coarse bin b, fine bin r within
@@ -226,24 +243,15 @@ dev_scan_rows(const struct dev_params &q, const int *__restrict__ start,
           const int u0 = st[row + hx + olo], u1 = st[row + hx + ohi + 1];
           const int v1 = st[row + (bx << q.sub_shift[0])],
                     v2 = st[row + ((bx + 1) << q.sub_shift[0])];
-          if (!MI)
-            dev_scan_slots2<0>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
-          else if (q.near_axes == 2)
-            dev_scan_slots2<2>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
-          else if (q.near_axes == 4)
-            dev_scan_slots2<4>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
-          else
-            dev_scan_slots2<7>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy, sz, code_yz, f);
+          dev_with_ax<MI>(q, [&](auto ax) {
+            dev_scan_slots2<decltype(ax)::value>(q, pos, t0, t1, s1, s2, u0, u1, v1, v2, sx3, sy,
+                                                 sz, code_yz, f);
+          });
           continue;
         }
-        if (!MI)
-          dev_scan_slots<0>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
-        else if (q.near_axes == 2)
-          dev_scan_slots<2>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
-        else if (q.near_axes == 4)
-          dev_scan_slots<4>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
-        else
-          dev_scan_slots<7>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
+        dev_with_ax<MI>(q, [&](auto ax) {
+          dev_scan_slots<decltype(ax)::value>(q, pos, t0, t1, s1, s2, sx3, sy, sz, code_yz, f);
+        });
         continue;
       }
       for (int ox = olo; ox <= ohi; ox++) { /* bin by bin, wrapping (the box's x ends) */
