@@ -141,9 +141,17 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
   tail_rho[i - tail_from] = sum;
 }
 
+/* Threads per block of the scan with lists: 64 (porous 72 2300/2302 -> 2333/2335, bulk 118 1421 ->
+ * 1440, the scan on porous 33 611 -> 595 us; 256: 2253/2255; bench/RESULTS.md, session 20). The
+ * compact mode's scan keeps CUDA_BLOCK (64 everywhere made it 4% slower there). */
+#ifndef CUDA_SCAN_BLOCK
+#define CUDA_SCAN_BLOCK 64
+#endif
+#define DENSITY_BLOCK(LISTS) ((LISTS) ? CUDA_SCAN_BLOCK : CUDA_BLOCK)
+
 /* LISTS 0: the compact memory mode (no lists; the force pass scans the bins again). */
 template <int KERNEL, int DENSITY, int CACHE, int LISTS>
-__global__ void __launch_bounds__(CUDA_BLOCK)
+__global__ void __launch_bounds__(DENSITY_BLOCK(LISTS))
     k_density(const struct dev_params q, int n, int cap, int stride, const int *__restrict__ start,
               const int *__restrict__ gstart, const struct dev_pos *__restrict__ pos,
               const uint32_t *__restrict__ key, meso_real *__restrict__ rho,
@@ -153,7 +161,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
               const meso_real *__restrict__ tail_rho, int tail_from) {
   /* Each thread gathers NBR_CHUNK entries in its own shared-memory slots (padded: no bank
    * conflicts), then stores them as one chunk (no barrier: no thread reads another's slots). */
-  __shared__ uint32_t chunk_buf[CUDA_BLOCK * (NBR_CHUNK + 1)];
+  __shared__ uint32_t chunk_buf[DENSITY_BLOCK(LISTS) * (NBR_CHUNK + 1)];
   uint32_t *mine = chunk_buf + threadIdx.x * (NBR_CHUNK + 1);
   /* slots (the boundary part of several ranks, or one rank's mobile-then-frozen partition): thread
    * t_id computes slot slots[t_id] */
@@ -316,15 +324,16 @@ template <int KERNEL, int DENSITY, int CACHE> static void launch(struct cuda_sim
   const meso_real *tail_rho = DENSITY && part < 0 ? tail_static<KERNEL>(g) : NULL;
   const int threads = part == 0 && slots ? g->n_bslots : g->n;
   if (slots && threads == 0) return;
-  const int blocks = (threads + CUDA_BLOCK - 1) / CUDA_BLOCK;
   if (g->compact) {
-    k_density<KERNEL, DENSITY, CACHE, 0><<<blocks, CUDA_BLOCK>>>(
+    const int blocks = (threads + DENSITY_BLOCK(0) - 1) / DENSITY_BLOCK(0);
+    k_density<KERNEL, DENSITY, CACHE, 0><<<blocks, DENSITY_BLOCK(0)>>>(
         g->prm, g->n, g->cap, 0, g->cell_start, g->prm.multi && part != 1 ? g->gcell_start : NULL,
         g->pos, g->key_sorted, g->rho, NULL, NULL, NULL, part >= 0 ? g->key : NULL,
         (uint32_t)(part > 0 ? 1 : 0), rho_vel(g), cache_args(g), slots, threads, NULL, g->n);
     return;
   }
-  k_density<KERNEL, DENSITY, CACHE, 1><<<blocks, CUDA_BLOCK>>>(
+  const int blocks = (threads + DENSITY_BLOCK(1) - 1) / DENSITY_BLOCK(1);
+  k_density<KERNEL, DENSITY, CACHE, 1><<<blocks, DENSITY_BLOCK(1)>>>(
       g->prm, g->n, g->cap, g->nbr_stride, g->cell_start,
       g->prm.multi && part != 1 ? g->gcell_start : NULL, /* the interior part meets no ghost */
       g->pos, g->key_sorted, g->rho, g->nbr, g->nbr_count, g->nbr_most, part >= 0 ? g->key : NULL,

@@ -13,7 +13,11 @@
 #include <stdio.h>
 #include <stdint.h>
 
+/* Threads per block of the per-particle kernels (a build option only for measuring:
+ * -DCUDA_BLOCK=N in CMAKE_CUDA_FLAGS; bench/RESULTS.md, session 20). */
+#ifndef CUDA_BLOCK
 #define CUDA_BLOCK 128
+#endif
 /* Verlet skin of the lists on one GPU when --skin is not given (rc units). bench/RESULTS.md has the
  * time-vs-skin curve this was chosen from: at dt = 0.01 the fastest of millions of particles moves
  * ~0.06 rc per step, so a list outlives only 2-3 steps, and the longer lists cost the pair passes
