@@ -6,19 +6,13 @@
  * made of these), same kernel shape. The pair kernels are judged against these in bench/RESULTS.md.
  * Median of 9 timed repeats, CUDA events, after a warm-up; inputs are non-zero. Not a test. usage:
  * gpu_ceilings */
+#define BENCH_NAME "gpu_ceilings"
+#include "bench_cuda.cuh"
+
 #include <cuda_runtime.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-#define CHECK(call)                                                                                \
-  do {                                                                                             \
-    cudaError_t e_ = (call);                                                                       \
-    if (e_ != cudaSuccess) {                                                                       \
-      fprintf(stderr, "gpu_ceilings: %s: %s\n", #call, cudaGetErrorString(e_));                    \
-      exit(1);                                                                                     \
-    }                                                                                              \
-  } while (0)
 
 #define CHAINS 8
 #define ITERS 4096
@@ -45,31 +39,6 @@ __global__ void k_mulhi(uint32_t *out, uint32_t m) {
   uint32_t s = 0;
   for (int c = 0; c < CHAINS; c++) s ^= x[c];
   if (s == 0x12345678u) out[0] = s;
-}
-
-static int cmp(const void *a, const void *b) {
-  const float x = *(const float *)a, y = *(const float *)b;
-  return (x > y) - (x < y);
-}
-
-/* Median time in ms of 9 repeats of what launch() enqueues. */
-template <class F> static float median_ms(F launch) {
-  cudaEvent_t t0, t1;
-  CHECK(cudaEventCreate(&t0));
-  CHECK(cudaEventCreate(&t1));
-  launch(); /* warm-up */
-  CHECK(cudaDeviceSynchronize());
-  float ms[9];
-  for (int r = 0; r < 9; r++) {
-    CHECK(cudaEventRecord(t0));
-    launch();
-    CHECK(cudaEventRecord(t1));
-    CHECK(cudaEventSynchronize(t1));
-    CHECK(cudaEventElapsedTime(&ms[r], t0, t1));
-  }
-  CHECK(cudaGetLastError());
-  qsort(ms, 9, sizeof(float), cmp);
-  return ms[4];
 }
 
 int main(void) {
