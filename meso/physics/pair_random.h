@@ -46,25 +46,36 @@ MESO_HD meso_real pair_random_from_bits(uint32_t bits) {
   return (meso_real)1.7320508075688772 * u;
 }
 
+/* The seed folded to 32 bits (the Philox generators' key word). */
+MESO_HD uint32_t pair_random_seed32(uint64_t seed) {
+  return (uint32_t)(seed ^ (seed >> 32));
+}
+
+/* Philox2x32-10's key: the folded seed plus the step times an odd constant (a bijection of the step
+ * for one seed). */
+MESO_HD uint32_t pair_random_philox2x32_key(uint64_t seed, uint64_t step) {
+  return pair_random_seed32(seed) + (uint32_t)step * 0x9E3779B9u;
+}
+
 /* Philox4x32-10 (the default): counter = (min id, max id) as four 32-bit words, key = the seed
  * folded to 32 bits and the step (runs shorter than 2^32 steps). */
 MESO_HD uint32_t pair_random_bits_philox(uint64_t seed, uint64_t step, int64_t id_i, int64_t id_j) {
   const uint64_t lo = (uint64_t)(id_i < id_j ? id_i : id_j);
   const uint64_t hi = (uint64_t)(id_i < id_j ? id_j : id_i);
   philox4x32_ctr_t ctr = {{(uint32_t)lo, (uint32_t)(lo >> 32), (uint32_t)hi, (uint32_t)(hi >> 32)}};
-  philox4x32_key_t key = {{(uint32_t)(seed ^ (seed >> 32)), (uint32_t)step}};
+  philox4x32_key_t key = {{pair_random_seed32(seed), (uint32_t)step}};
   return philox4x32(ctr, key).v[0];
 }
 
 /* Philox2x32-10 (half the multiplies of Philox4x32-10): counter = (min id, max id) as 32-bit words
- * (ids < 2^32, checked at setup), key = the seed folded to 32 bits plus the step times an odd
- * constant (a bijection of the step for one seed). Kept bitwise as the former build option. */
+ * (ids < 2^32, checked at setup), key pair_random_philox2x32_key. Kept bitwise as the former build
+ * option. */
 MESO_HD uint32_t pair_random_bits_philox2x32(uint64_t seed, uint64_t step, int64_t id_i,
                                              int64_t id_j) {
   const uint32_t lo = (uint32_t)(id_i < id_j ? id_i : id_j);
   const uint32_t hi = (uint32_t)(id_i < id_j ? id_j : id_i);
   philox2x32_ctr_t ctr = {{lo, hi}};
-  philox2x32_key_t key = {{(uint32_t)(seed ^ (seed >> 32)) + (uint32_t)step * 0x9E3779B9u}};
+  philox2x32_key_t key = {{pair_random_philox2x32_key(seed, step)}};
   return philox2x32(ctr, key).v[0];
 }
 
@@ -134,10 +145,9 @@ struct pair_rng_keys {
 
 MESO_HD struct pair_rng_keys pair_random_keys(int rng, uint64_t seed, uint64_t step) {
   struct pair_rng_keys k;
-  const uint32_t seed32 = (uint32_t)(seed ^ (seed >> 32));
   uint32_t k0 = rng == PAIR_RNG_FAST         ? pair_random_fast_key(seed, step)
-                : rng == PAIR_RNG_PHILOX2X32 ? seed32 + (uint32_t)step * 0x9E3779B9u
-                                             : seed32;
+                : rng == PAIR_RNG_PHILOX2X32 ? pair_random_philox2x32_key(seed, step)
+                                             : pair_random_seed32(seed);
   uint32_t k1 = (uint32_t)step; /* (Philox4x32's second key word) */
   for (int r = 0; r < PAIR_RNG_MAX_ROUNDS; r++) {
     k.k0[r] = k0;
