@@ -12,6 +12,9 @@
  * 0.75), median of 9 (CUDA events). Checked against a brute-force sum on the host (a small box):
  * every pair within rd found, densities to float rounding. Not a test; usage: gpu_cluster_density
  * [N ...] */
+#define MESO_REAL_FLOAT /* the engine's pair math: float */
+#include "physics/density_kernels.h"
+
 #include <cub/cub.cuh>
 #define BENCH_NAME "gpu_cluster_density"
 #include "bench_cuda.cuh"
@@ -149,14 +152,15 @@ __global__ void k_search(int ni, box b, int R, const int *icol, const int *pstar
 }
 
 /* One warp per i-cluster: lane = i (lane & 7) x j (lane >> 3) of each 8 x 4 tile; rho_i summed
- * over the tiles and the warp's four j lanes (Warren: w = 15 / (2 pi rd^3) (1 - r / rd)^2). */
+ * over the tiles and the warp's four j lanes (Warren's weight of physics/density_kernels.h, as the
+ * engine's). */
 __global__ void k_density(int ni, box b, const float4 *q, const uint32_t *list_d, const int *n_d,
                           float *rho) {
   const int ic = (blockIdx.x * blockDim.x + threadIdx.x) >> 5, lane = threadIdx.x & 31;
   if (ic >= ni) return;
   const int il = lane & 7, jl = lane >> 3, me = 8 * ic + il;
   const float4 pi = q[me];
-  const float wnorm = 15.0f / (2.0f * 3.14159265f * RD * RD * RD), inv_rd = 1.0f / RD;
+  const float wnorm = w_rho_norm(MESO_KERNEL_WARREN, RD), inv_rd = 1.0f / RD;
   float sum = 0.0f;
   const int m = n_d[ic];
   for (int e = 0; e < m; e++) {
@@ -167,8 +171,8 @@ __global__ void k_density(int ni, box b, const float4 *q, const uint32_t *list_d
     const float dx = pi.x - (pj.x + sx * b.L), dy = pi.y - (pj.y + sy * b.L),
                 dz = pi.z - (pj.z + sz * b.L);
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float r = sqrtf(r2), t = 1.0f - r * inv_rd;
-    sum += (r2 < RD * RD && j != me) ? wnorm * t * t : 0.0f;
+    const float w = w_rho_warren_inv(sqrtf(r2), inv_rd, wnorm);
+    sum += (r2 < RD * RD && j != me) ? w : 0.0f;
   }
   sum += __shfl_xor_sync(0xffffffffu, sum, 8);
   sum += __shfl_xor_sync(0xffffffffu, sum, 16);
@@ -285,7 +289,8 @@ static int run(long n, int check) {
          1e3 * t_layout, 1e3 * t_boxes, 1e3 * t_search, 1e3 * t_density,
          1e3 * (t_search + t_density), 1e6 * (t_search + t_density) / n);
   int bad = over != 0;
-  if (check) { /* brute force on the host: every pair within rd, minimum image */
+  if (check) { /* brute force on the host, an independent reference in double (Warren 2003:
+                 w = 15 / (2 pi rd^3) (1 - r / rd)^2): every pair within rd, minimum image */
     float *g = (float *)malloc(n * sizeof(float));
     CHECK(cudaMemcpy(g, rho, n * sizeof(float), cudaMemcpyDeviceToHost));
     double worst = 0;
