@@ -137,6 +137,11 @@ def main():
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--frozen-weight", type=float, default=None)
     ap.add_argument("--dynamic", action="store_true")
+    ap.add_argument("--moving-every", type=int, default=0,
+                    help="also a run whose cost cuts (default frozen weight) move by measured cost every N "
+                         "steps when the busy-time imbalance exceeds 1.05")
+    ap.add_argument("--runs", default=None,
+                    help="comma-separated subset of the runs to make (uniform, cost, cost+moving, measured)")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--workdir", default="balance-bench")
     ap.add_argument("--gpu-compare", default=None)
@@ -179,6 +184,11 @@ def main():
     if a.dynamic:
         runs.append(("cost+moving", {"cuts": "cost", "frozen_weight": 2.0,
                                      "every": max(a.steps // 8, 10), "threshold": 1.05}))
+    if a.moving_every > 0:
+        runs.append(("measured", {"cuts": "cost", "every": a.moving_every, "threshold": 1.05}))
+    if a.runs:
+        keep = a.runs.split(",")
+        runs = [r for r in runs if r[0] in keep]
     res = {}
     one = None
     if a.one_rank:
@@ -203,6 +213,13 @@ def main():
         for line in log.splitlines():
             if "load balancing" in line or "cuts moved" in line:
                 print("    " + line.strip())
+        for key in ("busy_seconds_since_move", "busy_seconds_run"):
+            per = lb.get(key)
+            if per:  # which ranks are slow (rank order = slab order along x)
+                mean = sum(per) / len(per)
+                print(f"    {key} / mean: " + " ".join(f"{b / mean:.3f}" for b in per))
+    if "uniform" not in res or "cost" not in res:
+        return 0
     u, c = res["uniform"][1], res["cost"][1]
     ratio = c["particle_steps_per_second"] / u["particle_steps_per_second"]
     print(f"throughput cost / uniform cuts: {ratio:.3f} (same call)")

@@ -238,6 +238,12 @@ void sim_imbalance(sim_t *sim, double *busy, double *busy_run, double *weight) {
   *busy_run = on ? max_over_mean(st->dc.cart, st->dc.nranks, st->busy_total) : 0;
 }
 
+void sim_busy_per_rank(sim_t *sim, double *since_move, double *run) {
+  sim_state_t *st = &sim->st;
+  MPI_Gather(&st->busy_seconds, 1, MPI_DOUBLE, since_move, 1, MPI_DOUBLE, 0, st->dc.cart);
+  MPI_Gather(&st->busy_total, 1, MPI_DOUBLE, run, 1, MPI_DOUBLE, 0, st->dc.cart);
+}
+
 double sim_busy_mean(sim_t *sim) {
   sim_state_t *st = &sim->st;
   double sum = sim_busy_measured(sim) ? st->busy_total : 0;

@@ -50,5 +50,9 @@ void sim_imbalance(sim_t *sim, double *busy, double *busy_run, double *weight);
 /* Collective: the mean over the ranks of the busy seconds since the first set-up (0 when not
  * measured). */
 double sim_busy_mean(sim_t *sim);
+/* Collective: every rank's busy seconds since the last reset (since_move) and since the first
+ * set-up (run), in rank order (slab order along an axis cut alone), into arrays of nranks values
+ * on rank 0 (other ranks pass NULL). */
+void sim_busy_per_rank(sim_t *sim, double *since_move, double *run);
 
 #endif

@@ -3,6 +3,7 @@
 #include "engine/sim_balance.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 int run_balance_start(run_balance_t *rb, sim_t *sim, int restart, int rank) {
@@ -53,4 +54,22 @@ void run_balance_finish(const run_balance_t *rb, sim_t *sim, run_stats_t *st) {
   st->imbalance_weight_uniform = rb->weight_uniform;
   st->balance_seconds = rb->seconds;
   st->rebalances = rb->rebalances;
+  if (!sim_busy_measured(sim) || st->nranks < 2) return;
+  int rank = 0;
+  MPI_Comm_rank(sim_comm(sim), &rank);
+  double *since = NULL, *run = NULL;
+  if (rank == 0) { /* (the summary leaves the arrays out when these fail) */
+    since = malloc((size_t)st->nranks * sizeof *since);
+    run = malloc((size_t)st->nranks * sizeof *run);
+  }
+  int ok = rank != 0 || (since && run);
+  MPI_Bcast(&ok, 1, MPI_INT, 0, sim_comm(sim));
+  if (ok) sim_busy_per_rank(sim, since, run);
+  if (rank == 0 && ok) {
+    st->busy_rank_since_move = since;
+    st->busy_rank_run = run;
+  } else {
+    free(since);
+    free(run);
+  }
 }

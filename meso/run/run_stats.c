@@ -1,6 +1,7 @@
 /* Sampling-window statistics of a run (see run_stats.h). */
 #include "run/run_stats.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 const char *const run_stat_names[STAT_COUNT] = {"T",   "KE",  "Pxx", "Pyy", "Pzz",
@@ -45,4 +46,7 @@ void run_stats_add(run_stats_t *st, const thermo_t *t) {
 void run_stats_free(run_stats_t *st) {
   for (int k = 0; k < STAT_COUNT; k++) series_free(&st->s[k]);
   series_free(&st->core_density);
+  free(st->busy_rank_since_move);
+  free(st->busy_rank_run);
+  st->busy_rank_since_move = st->busy_rank_run = NULL;
 }

@@ -49,6 +49,9 @@ typedef struct {
   double imbalance_busy, imbalance_busy_run, imbalance_weight, imbalance_weight_uniform;
   double balance_seconds, frozen_weight; /* the frozen weight in use at the end (fitted or set) */
   double busy_mean_seconds;              /* mean over the ranks of the busy seconds of the run */
+  /* rank 0: each rank's busy seconds since the last move and over the run (nranks values, in
+   * rank order; NULL when not measured) */
+  double *busy_rank_since_move, *busy_rank_run;
   long rebalances;
   /* output.flux: its series and final analysis (run/run_flux.h; NULL or off: none). */
   const struct run_flux *flux;

@@ -146,6 +146,14 @@ if GPU:
 else:
     check(lm["rebalances"] == 3, f"balance.every 5 with threshold 1: 3 rebalancings in 20 steps, none at the last (got {lm['rebalances']})")
     check(lu["imbalance_busy"] > 0, "CPU: the busy-time imbalance is measured")
+    per = lm.get("busy_seconds_run") or []
+    since = lm.get("busy_seconds_since_move") or []
+    ok = len(per) == 2 and len(since) == 2 and min(per) > 0
+    if ok:  # the summary's imbalances are max / mean of the per-rank seconds it lists
+        ok = abs(max(per) / (sum(per) / 2) - lm["imbalance_busy_run"]) < 1e-4 and \
+            abs(max(since) / (sum(since) / 2) - lm["imbalance_busy"]) < 1e-4 and sum(since) < sum(per)
+    check(ok, f"CPU: each rank's busy seconds listed (run {per}, since the last move {since}), "
+              "their max / mean = the imbalances reported")
 check("cuts placed by cost" in results["cost"][2], "the run says where the cuts went")
 
 # 2b. without balance.frozen_weight: the backend's default (CPU 0.4, GPU 1.0: bench/RESULTS.md)
