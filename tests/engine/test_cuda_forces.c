@@ -9,7 +9,10 @@
  * drift agree between the backends to the same bounds. Both again with each other generator of
  * the pair random numbers (dpd_thermostat's rng: fast, philox2x32; issue 14): the device draws
  * the host's numbers, so forces and trajectories agree to the same bounds, and they differ from
- * the default generator's. Skipped (exit 77) without a GPU. */
+ * the default generator's. Once more with every pair's coefficients the same (A of the wall pairs
+ * as the fluid's): the force kernel then reads them at fixed offsets (dev_params.coef_uniform), and
+ * the densities and forces equal, bit for bit, those of the table read by species
+ * (MDPORE_CUDA_UNIFORM=0). Skipped (exit 77) without a GPU. */
 #include "test_cuda_common.h"
 
 #include "backend/cuda/cuda_backend.h"
@@ -28,16 +31,30 @@ static double min_image(double d, double L) {
   return d - L * rint(d / L);
 }
 
-static int run_case(int wall_boundary, int rng, double *f0) {
+/* The fast-mode GPU state of scene s with MDPORE_CUDA_UNIFORM=0 (the coefficient table read by
+ * species), into *t; 0 or -1. */
+static int state_with_table(scene_t *s, int n, test_state_t *t) {
+  setenv("MDPORE_CUDA_UNIFORM", "0", 1);
+  sim_t *gpu = build(s, SCENE_BACKEND_CUDA, n);
+  unsetenv("MDPORE_CUDA_UNIFORM");
+  CHECK(gpu, "building the CUDA simulation (MDPORE_CUDA_UNIFORM=0)");
+  cuda_sim_t *dev = cuda_backend_device(sim_state(gpu), sim_backend_name(gpu));
+  CHECK(!cuda_sim_coef_uniform(dev), "MDPORE_CUDA_UNIFORM=0 still reads uniform coefficients");
+  CHECK(!test_state_get(gpu, n, t), "reading the GPU state");
+  sim_destroy(gpu);
+  return 0;
+}
+
+static int run_case(int wall_boundary, int rng, int uniform, double *f0) {
   scene_t s;
   test_scene_mdpd(&s, 8.0, 6.0, 7.0);
   s.n_species = 2;
   snprintf(s.species[1].name, SCENE_NAME_LEN, "wall");
   s.species[1].mass = 1.0;
   s.species[1].frozen = 1;
-  s.pair[0][1].A = s.pair[1][0].A = -30; /* wetting through A only (Warren 2013) */
-  s.periodic[2] = 0;                     /* reflecting walls along z */
-  s.vv_lambda = 0.65;                    /* exercises the predicted-velocity array */
+  if (!uniform) s.pair[0][1].A = s.pair[1][0].A = -30; /* wetting through A only (Warren 2013) */
+  s.periodic[2] = 0;                                   /* reflecting walls along z */
+  s.vv_lambda = 0.65;                                  /* exercises the predicted-velocity array */
   effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
   effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
   effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
@@ -48,8 +65,8 @@ static int run_case(int wall_boundary, int rng, double *f0) {
   SCENE_EFFECT_OPTIONS(&s, EFFECT_BODY_FORCE, body_force_params_t)->reverse_axis = 1;
   if (wall_boundary) effect_name_in_scene(&s, EFFECT_WALL_BOUNDARY);
   SCENE_EFFECT_OPTIONS(&s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = rng;
-  printf("--- %s, rng %s ---\n", wall_boundary ? "with wall_boundary" : "without wall_boundary",
-         pair_rng_word(rng));
+  printf("--- %s, rng %s, %s ---\n", wall_boundary ? "with wall_boundary" : "without wall_boundary",
+         pair_rng_word(rng), uniform ? "every pair alike" : "wall pairs' own A");
   const int n = 2016; /* density 6 */
   sim_t *cpu = build(&s, SCENE_BACKEND_CPU, n);
   CHECK(cpu, "building the CPU simulation");
@@ -100,6 +117,20 @@ static int run_case(int wall_boundary, int rng, double *f0) {
       CHECK(tail > 0 && tail < n, "static tail of %ld particles (of %d)", tail, n);
     else
       CHECK(tail == 0, "static tail of %ld particles where it is off", tail);
+    CHECK(cuda_sim_coef_uniform(dev) == uniform, "uniform coefficients %d, expected %d",
+          cuda_sim_coef_uniform(dev), uniform);
+    if (variant == 0 && uniform) {
+      test_state_t t;
+      if (state_with_table(&s, n, &t)) return 1;
+      long same_f = 0, same_rho = 0;
+      for (int k = 0; k < 3 * n; k++) same_f += t.f[k] == b.f[k];
+      for (int i = 0; i < n; i++) same_rho += t.rho[i] == b.rho[i];
+      printf("uniform coefficients against the table by species: %ld of %d force components, "
+             "%ld of %d densities bitwise equal\n",
+             same_f, 3 * n, same_rho, n);
+      CHECK(same_f == 3 * n && same_rho == n, "fixed-offset coefficients change the results");
+      test_state_free(&t);
+    }
     if (variant == 0) {
       f_fast = malloc(3 * (size_t)n * sizeof *f_fast);
       CHECK(f_fast, "out of memory");
@@ -169,14 +200,13 @@ int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   test_cuda_require_gpu();
   static double f_default[2]; /* a force component of the philox runs, by wall_boundary */
-  const int cases[5][2] = {{0, PAIR_RNG_PHILOX},
-                           {1, PAIR_RNG_PHILOX},
-                           {0, PAIR_RNG_FAST},
-                           {1, PAIR_RNG_FAST},
-                           {0, PAIR_RNG_PHILOX2X32}};
-  for (int c = 0; c < 5; c++) {
+  const int cases[6][3] = {{0, PAIR_RNG_PHILOX, 0},     {1, PAIR_RNG_PHILOX, 0},
+                           {0, PAIR_RNG_FAST, 0},       {1, PAIR_RNG_FAST, 0},
+                           {0, PAIR_RNG_PHILOX2X32, 0}, {0, PAIR_RNG_PHILOX, 1}};
+  for (int c = 0; c < 6; c++) {
     double f0 = 0;
-    if (run_case(cases[c][0], cases[c][1], &f0)) return 1;
+    if (run_case(cases[c][0], cases[c][1], cases[c][2], &f0)) return 1;
+    if (cases[c][2]) continue; /* (other coefficients: other forces) */
     if (cases[c][1] == PAIR_RNG_PHILOX)
       f_default[cases[c][0]] = f0;
     else

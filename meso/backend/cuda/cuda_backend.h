@@ -164,6 +164,9 @@ int cuda_plan_static_tail(const plan_t *plan);
 /* Static frozen particles kept in the static tail (sorted once, never drifted; docs/engine-cuda.md
  * step 2), 0 when the tail is off. */
 long cuda_sim_static_tail(const cuda_sim_t *g);
+/* 1 when every pair of species has the same coefficients and the every-step force kernel reads
+ * them at fixed offsets (dev_params.coef_uniform), 0 otherwise. */
+int cuda_sim_coef_uniform(const cuda_sim_t *g);
 /* 1 when the pair math was built in double (MDPORE_DOUBLE), 0 for single precision. */
 int cuda_sim_double_precision(void);
 /* Name of the device (for summaries and the benchmark). */

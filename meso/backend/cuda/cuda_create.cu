@@ -189,6 +189,11 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
       if (q->coef[a][b].rd2 > q->rd2_max) q->rd2_max = q->coef[a][b].rd2;
     }
   }
+  const char *uni_env = getenv("MDPORE_CUDA_UNIFORM");
+  q->coef_uniform = !(uni_env && !strcmp(uni_env, "0"));
+  for (int a = 0; a < plan->n_species; a++)
+    for (int b = 0; b < plan->n_species; b++)
+      if (memcmp(&q->coef[a][b], &q->coef[0][0], sizeof q->coef[0][0])) q->coef_uniform = 0;
   /* Several ranks overlap interior passes with the host exchanges unless MDPORE_CUDA_OVERLAP=0
    * (kept for measuring what the overlap gains: bench/RESULTS.md). */
   g->memory_request = s->gpu_memory;

@@ -76,8 +76,10 @@ __device__ __forceinline__ void block_virial_sums(const meso_real w[6], double *
  * mode, partners found by scanning the bins again (the same traversal order and float operations
  * as the list build, so the same forces bitwise); RNG: the generator of xi (PAIR_RNG_PHILOX for
  * term sets without the thermostat). With the thermostat the partner's density travels
- * in its packed velocity (vel.pad, cuda_rho_to_vel): one load less. */
-template <int TERMS, int VIRIAL, int PV, int LISTS, int RNG>
+ * in its packed velocity (vel.pad, cuda_rho_to_vel): one load less. UNI: every pair has the
+ * coefficients of q.coef[0][0] (q.coef_uniform), read at fixed offsets: no table load by species
+ * per pair. */
+template <int TERMS, int VIRIAL, int PV, int LISTS, int RNG, int UNI = 0>
 __global__ void __launch_bounds__(CUDA_BLOCK)
     k_force(const struct dev_params q, struct force_args a) {
   const int t_id = blockIdx.x * blockDim.x + threadIdx.x;
@@ -103,7 +105,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
     const auto pair = [&](int t, const struct dev_pos &pj, meso_real dx, meso_real dy,
                           meso_real dz) {
       const meso_real r2 = dx * dx + dy * dy + dz * dz;
-      const struct dev_coef &c = row[pj.species];
+      const struct dev_coef &c = UNI ? q.coef[0][0] : row[pj.species];
       /* r2 below the smallest normal float (r < 1.1e-19 rc): coincident, no direction */
       if (r2 >= c.cut2 || !(r2 >= MESO_R_MIN_NORMAL)) return;
       const meso_real inv_r = dev_rsqrt_normal(r2), dist = r2 * inv_r; /* no division */
@@ -197,6 +199,8 @@ static void launch_mode(const struct dev_params &q, const struct force_args &a, 
     k_force<T, 1, 1, LISTS, R><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
   else if (pv)
     k_force<T, 0, 1, LISTS, R><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
+  else if (q.coef_uniform)
+    k_force<T, 0, 0, LISTS, R, 1><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
   else
     k_force<T, 0, 0, LISTS, R><<<blocks, CUDA_BLOCK, 0, stream>>>(q, a);
 }

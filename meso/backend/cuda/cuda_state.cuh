@@ -69,6 +69,12 @@ struct dev_params {
   meso_real near_L[3], near_inv_L[3];
   int near_axes; /* bit d: axis d takes the minimum image; 0: none (3D boxes), else quasi-2D */
   meso_real cut2_max, rd2_max; /* largest squared cutoffs of any pair (tested before the table) */
+  /* 1: every pair of species has the same coefficients (coef[0][0]; a scene with pairs.default
+   * only): the every-step force kernel reads them at fixed offsets of the kernel parameters, not
+   * from the table by the partner's species (force pass 424 -> 408 us on porous 33; the same in
+   * the density scan gained nothing: bench/RESULTS.md, session 21). MDPORE_CUDA_UNIFORM=0 turns
+   * it off, for measuring. */
+  int coef_uniform;
   /* Verlet skin (one rank only): lists hold the partners within list_cut2 = (cutoff + skin)^2 and
    * are kept until some particle has moved more than skin / 2 since they were built (then no pair
    * within the cutoff can be missing). skin = 0: lists rebuilt every step. */

@@ -409,6 +409,10 @@ extern "C" long cuda_sim_static_tail(const cuda_sim_t *g) {
   return g->prm.tail ? (long)(g->n - g->n_dyn) : 0;
 }
 
+extern "C" int cuda_sim_coef_uniform(const cuda_sim_t *g) {
+  return g->prm.coef_uniform;
+}
+
 extern "C" const char *cuda_sim_device_name(const cuda_sim_t *g) {
   return g->device_name;
 }
