@@ -261,7 +261,7 @@ static void balance_json(FILE *fp, const run_stats_t *st, const scene_t *s) {
   fprintf(fp, ", \"busy_fraction\": %.6g",
           st->loop_seconds > 0 && st->imbalance_busy > 0 ? st->busy_mean_seconds / st->loop_seconds
                                                          : 0.0);
-  /* each rank's busy seconds (rank order: slab order along an axis cut alone): which ranks are slow */
+  /* each rank's busy seconds (rank order: slab order along an axis cut alone): the slow ranks */
   const double *per_rank[2] = {st->busy_rank_since_move, st->busy_rank_run};
   const char *per_rank_key[2] = {"busy_seconds_since_move", "busy_seconds_run"};
   for (int k = 0; k < 2 && per_rank[0] && per_rank[1]; k++) {
