@@ -180,6 +180,33 @@ yaml_node_t *yt_seq_item(ytree_t *t, yaml_node_t *seq, int i) {
   return yaml_document_get_node(&t->doc, seq->data.sequence.items.start[i]);
 }
 
+/* 1 when key i of a mapping equals an earlier key of it. */
+static int repeats_earlier_key(ytree_t *t, yaml_node_t *map, int i, const char *key) {
+  for (int j = 0; j < i; j++) {
+    const char *other = yt_map_key(t, map, j, NULL);
+    if (other && !strcmp(other, key)) return 1;
+  }
+  return 0;
+}
+
+int yt_check_unique_keys(const ytree_t *t, yaml_node_t *map, const char *path) {
+  ytree_t *tm = (ytree_t *)t;
+  if (yt_expect_map(t, map, path)) return -1;
+  const int n = yt_map_size(map);
+  for (int i = 0; i < n; i++) {
+    yaml_node_t *kn;
+    const char *key = yt_map_key(tm, map, i, &kn);
+    if (!key)
+      return yt_error(t, kn, path, "expected plain text keys (got a mapping or list as a key)");
+    if (repeats_earlier_key(tm, map, i, key)) {
+      char sub[512];
+      snprintf(sub, sizeof sub, "%s%s%s", path, *path ? "." : "", key);
+      return yt_error(t, kn, sub, "expected each key once (got a duplicate)");
+    }
+  }
+  return 0;
+}
+
 int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path,
                   const char *const *allowed) {
   ytree_t *tm = (ytree_t *)t;
@@ -202,11 +229,8 @@ int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path,
       }
       return yt_error(t, kn, sub, "unknown key (expected one of: %s)", list);
     }
-    for (int j = 0; j < i; j++) {
-      const char *other = yt_map_key(tm, map, j, NULL);
-      if (other && !strcmp(other, key))
-        return yt_error(t, kn, sub, "expected each key once (got a duplicate)");
-    }
+    if (repeats_earlier_key(tm, map, i, key))
+      return yt_error(t, kn, sub, "expected each key once (got a duplicate)");
   }
   return 0;
 }

@@ -24,18 +24,13 @@ static void defaults(scene_t *s) {
 /* body_force: {SPECIES: [gx, gy, gz], ..., reverse_along: x|y|z} */
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
-  if (yt_expect_map(t, opt, path)) return -1;
+  if (yt_check_unique_keys(t, opt, path)) return -1; /* a map; each key once, as text */
   const int n = yt_map_size(opt);
   for (int j = 0; j < n; j++) {
     yaml_node_t *kn;
     const char *key = yt_map_key(t, opt, j, &kn);
     char sub[192];
     snprintf(sub, sizeof sub, "%s.%s", path, key ? key : "?");
-    for (int q = 0; q < j; q++) {
-      const char *other = yt_map_key(t, opt, q, NULL);
-      if (key && other && !strcmp(key, other))
-        return yt_error(t, kn, sub, "expected each key once (got a duplicate)");
-    }
     yaml_node_t *v = yt_map_value(t, opt, j);
     if (key && !strcmp(key, "reverse_along")) {
       const int axis = yt_enum(t, v, sub, axis_words);

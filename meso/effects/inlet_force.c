@@ -45,7 +45,7 @@ static int interval(ytree_t *t, yaml_node_t *v, const char *path, double *lo, do
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
   inlet_force_options_t *o = options(s);
-  if (yt_expect_map(t, opt, path)) return -1;
+  if (yt_check_unique_keys(t, opt, path)) return -1; /* a map; each key once, as text */
   const int n = yt_map_size(opt);
   int have_slab = 0;
   for (int j = 0; j < n; j++) {
@@ -53,11 +53,6 @@ static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
     const char *key = yt_map_key(t, opt, j, &kn);
     char sub[192];
     snprintf(sub, sizeof sub, "%s.%s", path, key ? key : "?");
-    for (int q = 0; q < j; q++) {
-      const char *other = yt_map_key(t, opt, q, NULL);
-      if (key && other && !strcmp(key, other))
-        return yt_error(t, kn, sub, "expected each key once (got a duplicate)");
-    }
     yaml_node_t *v = yt_map_value(t, opt, j);
     if (key && !strcmp(key, "along")) {
       if ((o->force.axis = yt_enum(t, v, sub, axis_words)) < 0) return -1;
