@@ -189,24 +189,6 @@ static int repeats_earlier_key(ytree_t *t, yaml_node_t *map, int i, const char *
   return 0;
 }
 
-int yt_check_unique_keys(const ytree_t *t, yaml_node_t *map, const char *path) {
-  ytree_t *tm = (ytree_t *)t;
-  if (yt_expect_map(t, map, path)) return -1;
-  const int n = yt_map_size(map);
-  for (int i = 0; i < n; i++) {
-    yaml_node_t *kn;
-    const char *key = yt_map_key(tm, map, i, &kn);
-    if (!key)
-      return yt_error(t, kn, path, "expected plain text keys (got a mapping or list as a key)");
-    if (repeats_earlier_key(tm, map, i, key)) {
-      char sub[512];
-      snprintf(sub, sizeof sub, "%s%s%s", path, *path ? "." : "", key);
-      return yt_error(t, kn, sub, "expected each key once (got a duplicate)");
-    }
-  }
-  return 0;
-}
-
 int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path,
                   const char *const *allowed) {
   ytree_t *tm = (ytree_t *)t;
@@ -219,8 +201,8 @@ int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path,
     if (!key)
       return yt_error(t, kn, path, "expected plain text keys (got a mapping or list as a key)");
     snprintf(sub, sizeof sub, "%s%s%s", path, *path ? "." : "", key);
-    int known = 0;
-    for (int a = 0; allowed[a]; a++) known |= !strcmp(allowed[a], key);
+    int known = !allowed; /* NULL: any key */
+    for (int a = 0; allowed && allowed[a]; a++) known |= !strcmp(allowed[a], key);
     if (!known) {
       char list[512] = "";
       for (int a = 0; allowed[a]; a++) {

@@ -33,10 +33,8 @@ int yt_is_null(const yaml_node_t *n); /* empty scalar or ~ / null */
 int yt_expect_map(const ytree_t *t, yaml_node_t *n, const char *path);
 int yt_expect_seq(const ytree_t *t, yaml_node_t *n, const char *path);
 
-/* Check that every key of a mapping is plain text and appears once (for mappings whose keys the
- * caller reads itself, such as species names). */
-int yt_check_unique_keys(const ytree_t *t, yaml_node_t *map, const char *path);
-/* Check that every key of a mapping is in `allowed` (NULL-terminated) and appears once. */
+/* Check that every key of a mapping is plain text, in `allowed` (NULL-terminated) and appears once.
+ * `allowed` NULL: any key (mappings whose keys the caller reads itself, such as species names). */
 int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path, const char *const *allowed);
 /* Value node of a key in a mapping, or NULL when absent. */
 yaml_node_t *yt_get(ytree_t *t, yaml_node_t *map, const char *key);

@@ -24,7 +24,7 @@ static void defaults(scene_t *s) {
 /* body_force: {SPECIES: [gx, gy, gz], ..., reverse_along: x|y|z} */
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
-  if (yt_check_unique_keys(t, opt, path)) return -1; /* a map; each key once, as text */
+  if (yt_check_keys(t, opt, path, NULL)) return -1; /* a map; each key once, as text */
   const int n = yt_map_size(opt);
   for (int j = 0; j < n; j++) {
     yaml_node_t *kn;

@@ -45,7 +45,7 @@ static int interval(ytree_t *t, yaml_node_t *v, const char *path, double *lo, do
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
   inlet_force_options_t *o = options(s);
-  if (yt_check_unique_keys(t, opt, path)) return -1; /* a map; each key once, as text */
+  if (yt_check_keys(t, opt, path, NULL)) return -1; /* a map; each key once, as text */
   const int n = yt_map_size(opt);
   int have_slab = 0;
   for (int j = 0; j < n; j++) {
