@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 #include "common/units.h"
+#include "mdpore_image.h"
 
 #define CAMP_MAX_GRADIENTS 64
 #define CAMP_MAX_RUNS (3 * CAMP_MAX_GRADIENTS)
@@ -28,6 +29,11 @@
 /* How the runs are driven (--drive): a body force on every fluid particle, or an inlet force in an
  * open reservoir added along the flow axis (pressure-driven; docs/permeability.md). */
 enum { CAMP_DRIVE_BODY, CAMP_DRIVE_PRESSURE };
+/* How the sample's two faces normal to the flow axis meet (--boundary; docs/permeability.md,
+ * "Boundaries"): the image as one period, the image followed by its mirror image (a periodic box in
+ * which every face meets itself), or an open fluid reservoir between the faces (the pressure drive).
+ * AUTO resolves per axis from the seam continuity of the image (meso/image mdp_image_seam). */
+enum { CAMP_BOUNDARY_AUTO, CAMP_BOUNDARY_PERIODIC, CAMP_BOUNDARY_MIRROR, CAMP_BOUNDARY_RESERVOIR };
 /* Pressure drive: probe slabs of this width, this far outside the sample faces (rc). */
 #define CAMP_PROBE_GAP 0.5
 #define CAMP_PROBE_WIDTH 0.5
@@ -65,6 +71,9 @@ typedef struct {
   char self_exe[CAMP_PATH]; /* this mdpore binary */
   int drive;                /* CAMP_DRIVE_BODY (default) or CAMP_DRIVE_PRESSURE */
   double reservoir;         /* pressure drive: reservoir length along the axis, rc (default 4) */
+  int boundary;             /* --boundary: CAMP_BOUNDARY_* (AUTO by default) */
+  int sides_mirror;         /* --sides mirror: the lateral faces mirrored too (default periodic) */
+  int boundary_of_axis[3];  /* resolved per flow axis by camp_resolve_boundaries */
 } camp_opts;
 
 /* One planned run. */
@@ -107,6 +116,9 @@ typedef struct {
   int np;
   int drive;        /* CAMP_DRIVE_* */
   double reservoir; /* pressure drive: the reservoir added, rc (whole voxels) */
+  int boundary[3];  /* treatment of the faces normal to each axis (CAMP_BOUNDARY_*; 0: no run) */
+  int sides_mirror; /* the lateral faces mirrored (1) or periodic (0) */
+  double seam_continuity[3]; /* mdp_image_seam continuity per axis (NAN without an image) */
   int n_runs;
   camp_run runs[CAMP_MAX_RUNS];
 } campaign;
@@ -138,6 +150,23 @@ int camp_parse_gradient_list(const char *text, double *grads, int *n, char *err,
  * (WORKDIR/reservoir_<axis>.raw). */
 int camp_reservoir_voxels(const camp_opts *o);
 void camp_padded_image_path(const camp_opts *o, int axis, char *out, int len);
+
+/* campaign_boundary.c: the boundary treatments. */
+const char *camp_boundary_name(int boundary);
+/* Parses periodic|mirror|reservoir|auto. -1 when unknown. */
+int camp_boundary_parse(const char *text);
+/* The seam continuity of every axis of the image (box frame) and the treatment of each flow axis:
+ * --boundary as given, or for AUTO periodic where the seam continues the image and mirror where it
+ * does not. Prints one line per flow axis. */
+void camp_resolve_boundaries(camp_opts *o, campaign *c, const mdp_image_t *img);
+/* The image a run along axis reads when its faces are mirrored (WORKDIR/mirror_<axis>.raw), and
+ * whether the run's box is mirrored along dimension d (flow axis: boundary mirror; lateral: --sides
+ * mirror). */
+void camp_mirror_image_path(const camp_opts *o, int axis, char *out, int len);
+int camp_mirrored_along(const camp_opts *o, int axis, int d);
+/* Writes the per-axis images of the mirror and reservoir treatments (the reservoir pads the
+ * laterally mirrored image). 0 or -1 with a message. */
+int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img);
 
 /* campaign_scene.c: the scene text of one run (template + axis + g), malloc'd; NULL + message.
  * Pressure drive: g is the equivalent body force per particle, G_nominal = n g; the inlet force per

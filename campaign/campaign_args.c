@@ -55,7 +55,15 @@ const char *camp_usage =
     "                      in it, G measured from the pressure drop across the sample (an IMAGE,\n"
     "                      or a SCENE whose particles come from geometry.image)\n"
     "  --reservoir R       pressure drive: reservoir length along the axis in rc (default 4, >= "
-    "3)\n";
+    "3)\n"
+    "  --boundary B        the faces normal to the flow: auto (default: periodic where the "
+    "image's\n"
+    "                      end slices continue each other, else mirror), periodic (the image is "
+    "one\n"
+    "                      period), mirror (the image and its reflection: each face meets itself)\n"
+    "                      or reservoir (= --drive pressure)\n"
+    "  --sides S           the lateral faces: periodic (default) or mirror (symmetry planes, as\n"
+    "                      mdpore foam --sides symmetry; four times the particles)\n";
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore permeability: %s: expected %s, got '%s'\n", opt, expected, got);
@@ -128,6 +136,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->flux_every = 10;
   o->drive = CAMP_DRIVE_BODY;
   o->reservoir = 4.0;
+  o->boundary = CAMP_BOUNDARY_AUTO;
   snprintf(o->mpiexec, sizeof o->mpiexec, "mpiexec");
   const char *input = NULL, *workdir = NULL, *accuracy = NULL;
   int have_axis = 0, dt_given = 0, error_given = 0, steps_given = 0;
@@ -226,6 +235,12 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
         o->drive = CAMP_DRIVE_PRESSURE;
       else
         return bad(s, "body or pressure", v);
+    } else if (!strcmp(s, "--boundary")) {
+      o->boundary = camp_boundary_parse(v);
+      if (o->boundary < 0) return bad(s, "auto, periodic, mirror or reservoir", v);
+    } else if (!strcmp(s, "--sides")) {
+      if (strcmp(v, "periodic") && strcmp(v, "mirror")) return bad(s, "periodic or mirror", v);
+      o->sides_mirror = !strcmp(v, "mirror");
     } else if (!strcmp(s, "--reservoir")) {
       if (parse_double(s, v, 2.999999, 1e6, "a reservoir length >= 3 rc", &o->reservoir)) return -1;
     } else if (s[0] == '-') {
@@ -239,6 +254,15 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       return -1;
     }
     i++;
+  }
+  if (o->boundary == CAMP_BOUNDARY_RESERVOIR) o->drive = CAMP_DRIVE_PRESSURE;
+  if (o->drive == CAMP_DRIVE_PRESSURE &&
+      (o->boundary == CAMP_BOUNDARY_PERIODIC || o->boundary == CAMP_BOUNDARY_MIRROR)) {
+    fprintf(stderr,
+            "mdpore permeability: --boundary %s: the pressure drive joins the faces "
+            "through its reservoir (--boundary reservoir); give one or the other\n",
+            camp_boundary_name(o->boundary));
+    return -1;
   }
   if (o->collect_dir[0]) {
     if (input || o->emit_dir[0]) {

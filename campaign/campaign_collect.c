@@ -199,6 +199,11 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   int rc = flow_table_write(table, &t, err, sizeof err);
   if (rc) fprintf(stderr, "mdpore permeability: %s\n", err);
   printf("\n== permeability along %c: %s ==\n", 'x' + axis, c->sample);
+  if (c->boundary[axis])
+    printf("  boundary: faces %s (seam continuity %.2f), sides %s (docs/permeability.md, "
+           "Boundaries)\n",
+           camp_boundary_name(c->boundary[axis]), c->seam_continuity[axis],
+           c->sides_mirror ? "mirror" : "periodic");
   printf("  %-12s %-12s %-12s %-12s %-12s %-10s %s\n", "g", "G", "G [Pa/m]", "q", "q_err",
          "q [m/s]", "steps");
   for (int i = 0; i < n; i++)
@@ -310,6 +315,17 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
   if (c->pair_rng[0]) json_string(&j, "pair_rng", c->pair_rng);
   json_string(&j, "drive", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body");
   if (c->drive == CAMP_DRIVE_PRESSURE) json_number(&j, "reservoir_rc", c->reservoir);
+  json_object(&j, "boundary");
+  for (int d = 0; d < 3; d++)
+    if (c->boundary[d]) {
+      const char name[2] = {(char)('x' + d), 0};
+      json_object(&j, name);
+      json_string(&j, "faces", camp_boundary_name(c->boundary[d]));
+      json_number(&j, "seam_continuity", c->seam_continuity[d]);
+      json_object_end(&j);
+    }
+  json_string(&j, "sides", c->sides_mirror ? "mirror" : "periodic");
+  json_object_end(&j);
   json_string(&j, "convention",
               "superficial (Darcy) velocity q = Q / A_total, A_total = the "
               "whole cross-section (solid included); k = mu q / G");

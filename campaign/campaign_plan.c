@@ -118,6 +118,10 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   if (c->particle_mass_kg > 0) fprintf(f, "particle_mass_kg: %.17g\n", c->particle_mass_kg);
   fprintf(f, "drive: %s\nreservoir: %.17g\n", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body",
           c->reservoir);
+  fprintf(f, "boundary: %s %s %s\nsides: %s\nseam_continuity: %.6g %.6g %.6g\n",
+          camp_boundary_name(c->boundary[0]), camp_boundary_name(c->boundary[1]),
+          camp_boundary_name(c->boundary[2]), c->sides_mirror ? "mirror" : "periodic",
+          c->seam_continuity[0], c->seam_continuity[1], c->seam_continuity[2]);
   for (int i = 0; i < c->n_runs; i++)
     fprintf(f, "run: %c %.17g %s\n", 'x' + c->runs[i].axis, c->runs[i].g, c->runs[i].dir);
   return atomic_commit(f, tmp, path);
@@ -146,6 +150,7 @@ int camp_read_manifest(const char *workdir, campaign *c) {
     return -1;
   }
   memset(c, 0, sizeof *c);
+  for (int d = 0; d < 3; d++) c->seam_continuity[d] = NAN;
   c->wall_density = NAN; /* a scene's own, or a manifest from before --wall-density */
   int ln = 0, rc = 0, head = 0;
   while (!rc && fgets(line, sizeof line, f)) {
@@ -185,6 +190,24 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       c->drive = !strcmp(v, "pressure") ? CAMP_DRIVE_PRESSURE : CAMP_DRIVE_BODY;
       if (strcmp(v, "pressure") && strcmp(v, "body")) {
         fprintf(stderr, "mdpore permeability: %s:%d: key 'drive': expected body or pressure\n",
+                path, ln);
+        rc = -1;
+      }
+    } else if (!strcmp(k, "boundary")) {
+      char b[3][16];
+      if (sscanf(v, "%15s %15s %15s", b[0], b[1], b[2]) != 3) {
+        fprintf(stderr, "mdpore permeability: %s:%d: key 'boundary': expected 3 treatments\n", path,
+                ln);
+        rc = -1;
+      }
+      for (int d = 0; !rc && d < 3; d++)
+        c->boundary[d] = strcmp(b[d], "none") ? camp_boundary_parse(b[d]) : 0;
+    } else if (!strcmp(k, "sides")) {
+      c->sides_mirror = !strcmp(v, "mirror");
+    } else if (!strcmp(k, "seam_continuity")) {
+      if (sscanf(v, "%lf %lf %lf", &c->seam_continuity[0], &c->seam_continuity[1],
+                 &c->seam_continuity[2]) != 3) {
+        fprintf(stderr, "mdpore permeability: %s:%d: key 'seam_continuity': expected 3 numbers\n",
                 path, ln);
         rc = -1;
       }

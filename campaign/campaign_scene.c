@@ -11,7 +11,8 @@
  *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute.
  * --drive pressure: box and image grow by the reservoir, effects.inlet_force replaces body_force
  * (pressure_drive below); the same rewrite for an IMAGE's template and a SCENE with a geometry
- * image (campaign_template.c pads either image). */
+ * image (campaign_template.c pads either image). --boundary mirror / --sides mirror: the box doubles
+ * along the mirrored dimensions and the geometry reads the mirrored image (mirror_geometry). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -126,6 +127,55 @@ static int pair_of_numbers(doc_t *d, double a, double b) {
   yaml_document_append_sequence_item(d, seq, number(d, a));
   yaml_document_append_sequence_item(d, seq, number(d, b));
   return seq;
+}
+
+/* The mirror treatments (campaign_boundary.c): the box doubles along every mirrored dimension
+ * (the flow axis for --boundary mirror, the lateral axes for --sides mirror) and the geometry reads
+ * the mirrored image, already in the box frame. A wall patch file or a fluid region belongs to the
+ * unmirrored box and is refused. */
+static int mirror_geometry(doc_t *d, int root, const camp_opts *o, int axis,
+                           const char *template_path) {
+  int any = 0;
+  for (int k = 0; k < 3; k++) any |= camp_mirrored_along(o, axis, k);
+  if (!any) return 0;
+  int geo = get(d, root, "geometry"), box = get(d, root, "box");
+  const char *refused = !geo                          ? "geometry.image"
+                        : get(d, geo, "patches")      ? "geometry.patches"
+                        : get(d, geo, "fluid_region") ? "geometry.fluid_region"
+                                                      : NULL;
+  if (refused) {
+    fprintf(stderr,
+            "mdpore permeability: %s: key '%s': the mirror treatment (--boundary mirror or "
+            "--sides mirror) mirrors the geometry's image and needs %s; give --boundary "
+            "periodic|reservoir and --sides periodic for this scene\n",
+            template_path, refused,
+            !geo ? "one" : "neither a patch file nor a fluid region of the unmirrored box");
+    return -1;
+  }
+  yaml_node_t *lo_n = yaml_document_get_node(d, get(d, box, "lo"));
+  yaml_node_t *hi_n = yaml_document_get_node(d, get(d, box, "hi"));
+  if (!lo_n || !hi_n || lo_n->type != YAML_SEQUENCE_NODE || hi_n->type != YAML_SEQUENCE_NODE ||
+      hi_n->data.sequence.items.top - hi_n->data.sequence.items.start != 3 ||
+      lo_n->data.sequence.items.top - lo_n->data.sequence.items.start != 3) {
+    fprintf(stderr, "mdpore permeability: %s: key 'box': expected lo and hi lists of 3 numbers\n",
+            template_path);
+    return -1;
+  }
+  int hi_new = yaml_document_add_sequence(d, NULL, YAML_FLOW_SEQUENCE_STYLE);
+  for (int k = 0; k < 3; k++) {
+    const double lo = atof(text_of(d, lo_n->data.sequence.items.start[k]));
+    const double hi = atof(text_of(d, hi_n->data.sequence.items.start[k]));
+    yaml_document_append_sequence_item(
+        d, hi_new, number(d, camp_mirrored_along(o, axis, k) ? lo + 2 * (hi - lo) : hi));
+  }
+  set(d, box, "hi", hi_new);
+  if (o->boundary_of_axis[axis] != CAMP_BOUNDARY_RESERVOIR) { /* the reservoir sets its own */
+    char image[CAMP_PATH];
+    camp_mirror_image_path(o, axis, image, sizeof image);
+    set(d, geo, "image", scalar(d, image));
+    unset(d, geo, "axis_map"); /* the mirrored image was written in the box frame */
+  }
+  return 0;
 }
 
 /* Pressure drive (docs/permeability.md): the box grows by the reservoir along the axis, the
@@ -245,6 +295,7 @@ char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, d
     yaml_document_append_mapping_pair(d, bf, scalar(d, fluid_copy[i]), vec);
   }
   set(d, effects, "body_force", bf);
+  if (mirror_geometry(d, root, o, axis, template_path)) goto done;
   if (o->drive == CAMP_DRIVE_PRESSURE &&
       pressure_drive(d, root, effects, o, axis, g, (const char(*)[256])fluid_copy, nf,
                      template_path))

@@ -309,34 +309,6 @@ void camp_padded_image_path(const camp_opts *o, int axis, char *out, int len) {
   snprintf(out, len, "%.4000s/reservoir_%c.raw", o->workdir, 'x' + axis);
 }
 
-/* Pressure drive: per axis, the image (in the box frame) with the reservoir's pore voxels added
- * after its high face along the axis (the sample keeps [0, L_sample); periodic, so the reservoir
- * touches both faces). The same for an IMAGE input and a SCENE's geometry image. */
-static int write_padded_images(const camp_opts *o, const mdp_image_t *img) {
-  int pore = -1;
-  for (int v = 0; v < 256 && pore < 0; v++)
-    if (img->phase_of[v] == MDP_PHASE_PORE) pore = v;
-  for (int a = 0; a < o->n_axes; a++) {
-    int w[6] = {0};
-    w[2 * o->axes[a] + 1] = camp_reservoir_voxels(o);
-    char err[MDP_IMAGE_ERR_LEN], path[CAMP_PATH];
-    camp_padded_image_path(o, o->axes[a], path, sizeof path);
-    mdp_image_t padded;
-    if (pore < 0 || mdp_image_pad(img, w, (uint8_t)pore, &padded, err)) {
-      fprintf(stderr, "mdpore permeability: %s: --drive pressure: %s\n", o->input,
-              pore < 0 ? "the image has no pore label for the reservoir" : err);
-      return -1;
-    }
-    int rc = mdp_image_write_raw(&padded, path, err);
-    mdp_image_free(&padded);
-    if (rc) {
-      fprintf(stderr, "mdpore permeability: %s: %s\n", path, err);
-      return -1;
-    }
-  }
-  return 0;
-}
-
 int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) {
   snprintf(c->sample, sizeof c->sample, "%s", o->sample);
   snprintf(c->input, sizeof c->input, "%s", o->input);
@@ -369,10 +341,11 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
     mdp_image_t img;
     int have_img, rc = 0;
     if (scene_meta(o, c, &img, &have_img)) return -1;
+    camp_resolve_boundaries(o, c, have_img ? &img : NULL);
     if (have_img) {
       /* The scene's voxel edge sets the reservoir's whole voxels and the run scenes' box. */
       o->rc_per_voxel = c->rc_per_voxel;
-      if (o->drive == CAMP_DRIVE_PRESSURE) rc = write_padded_images(o, &img);
+      rc = camp_write_boundary_images(o, &img);
       mdp_image_free(&img);
     }
     if (rc) return -1;
@@ -382,7 +355,8 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
     if (image_meta(o->input, NULL, NULL, o->rc_per_voxel, o, c, &img)) return -1;
     snprintf(template_path, len, "%s/template.yaml", o->workdir);
     int rc = write_image_template(o, &img, template_path);
-    if (!rc && o->drive == CAMP_DRIVE_PRESSURE) rc = write_padded_images(o, &img);
+    camp_resolve_boundaries(o, c, &img);
+    if (!rc) rc = camp_write_boundary_images(o, &img);
     mdp_image_free(&img);
     if (rc) return -1;
   }

@@ -33,7 +33,14 @@ static void usage(FILE *to) {
       "                        cyclic inlet/outlet with a body force: the image is one period\n"
       "                        along the axis; where the first and last slices meet pore to\n"
       "                        solid, the face is a wall (smooth walls need matching slices)\n"
-      "  --sides symmetry|wall the four box faces parallel to the flow (default symmetry)\n"
+      "  --boundary faces|mirror|periodic  the faces normal to the flow: inlet and outlet at\n"
+      "                        fixed pressures (faces, the default; = --drive pressure), the same\n"
+      "                        with no tangential velocity on them (mirror: the planes of a\n"
+      "                        mirrored periodic sample, as mdpore permeability --boundary\n"
+      "                        mirror), or cyclic (periodic; = --drive periodic)\n"
+      "  --sides symmetry|wall|periodic  the four box faces parallel to the flow (default\n"
+      "                        symmetry; periodic: cyclic pairs, pore meeting solid across the\n"
+      "                        wrap is a wall, as the lateral wrap of mdpore permeability)\n"
       "  --solver pimple|simple  pimpleFoam marched in pseudo-time to the steady state (default;\n"
       "                        converges in far fewer steps) or simpleFoam (SIMPLEC)\n"
       "  --dt DT               pimple: pseudo time step in voxel units (nu = 1; default 20 / R^2,\n"
@@ -136,9 +143,14 @@ int cmd_foam(int argc, char **argv) {
     } else if (!strcmp(a, "--drive")) {
       o.periodic = !strcmp(v, "periodic");
       bad = !o.periodic && strcmp(v, "pressure");
+    } else if (!strcmp(a, "--boundary")) {
+      o.periodic = !strcmp(v, "periodic");
+      o.mirror_faces = !strcmp(v, "mirror");
+      bad = !o.periodic && !o.mirror_faces && strcmp(v, "faces");
     } else if (!strcmp(a, "--sides")) {
       o.side_walls = !strcmp(v, "wall");
-      bad = !o.side_walls && strcmp(v, "symmetry");
+      o.side_periodic = !strcmp(v, "periodic");
+      bad = !o.side_walls && !o.side_periodic && strcmp(v, "symmetry");
     } else if (!strcmp(a, "--solver")) {
       o.simple = !strcmp(v, "simple");
       bad = !o.simple && strcmp(v, "pimple");
@@ -172,6 +184,11 @@ int cmd_foam(int argc, char **argv) {
   }
   if (!path || o.axis < 0) {
     usage(stderr);
+    return 2;
+  }
+  if (o.side_periodic && o.smooth_walls) {
+    fprintf(stderr, "mdpore foam: --sides periodic with --walls smooth: the smooth walls mirror "
+                    "the image across the side faces; use --walls staircase or --sides symmetry\n");
     return 2;
   }
   /* SIMPLE iterations are cheap and many; pseudo-time steps are dearer and few. */
@@ -279,8 +296,13 @@ int cmd_foam(int argc, char **argv) {
            "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
            "\"case\": %s%s%s}\n",
            path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells, walls,
-           o.periodic ? "periodic" : "pressure", o.side_walls ? "wall" : "symmetry", o.np,
-           o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts,
+           o.periodic       ? "periodic"
+           : o.mirror_faces ? "mirror"
+                            : "pressure",
+           o.side_walls      ? "wall"
+           : o.side_periodic ? "periodic"
+                             : "symmetry",
+           o.np, o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts,
            img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, end_walls,
            k_vox, kphys, kmd, o.gradient, q * area, q, q / st.porosity,
            res.int_mag_u / res.int_u[o.axis], res.converged ? "true" : "false", res.iterations,

@@ -82,10 +82,21 @@ static int write_block_mesh(const char *dir, const mdp_image_t *img, const mdp_f
     fprintf(f, "    inlet { type patch; faces (%s); }\n", face_names[a][0]);
     fprintf(f, "    outlet { type patch; faces (%s); }\n", face_names[a][1]);
   }
-  fprintf(f, "    sides { type %s; faces (", o->side_walls ? "wall" : "symmetry");
-  for (int b = 0; b < 3; b++)
-    if (b != a) fprintf(f, " %s %s", face_names[b][0], face_names[b][1]);
-  fprintf(f, " ); }\n    walls { type wall; faces (); } // filled by subsetMesh\n);\n");
+  if (o->side_periodic) {
+    /* where pore meets solid across the wrap, subsetMesh moves the face to the walls patch */
+    for (int b = 0; b < 3; b++)
+      if (b != a)
+        fprintf(f,
+                "    sides%c0 { type cyclic; neighbourPatch sides%c1; faces (%s); }\n"
+                "    sides%c1 { type cyclic; neighbourPatch sides%c0; faces (%s); }\n",
+                'x' + b, 'x' + b, face_names[b][0], 'x' + b, 'x' + b, face_names[b][1]);
+  } else {
+    fprintf(f, "    sides { type %s; faces (", o->side_walls ? "wall" : "symmetry");
+    for (int b = 0; b < 3; b++)
+      if (b != a) fprintf(f, " %s %s", face_names[b][0], face_names[b][1]);
+    fprintf(f, " ); }\n");
+  }
+  fprintf(f, "    walls { type wall; faces (); } // filled by subsetMesh\n);\n");
   return close_out(&out, err);
 }
 
@@ -237,6 +248,30 @@ int mdp_foam_write_pore_set(const char *dir, const mdp_image_t *img, const mdp_f
   return close_out(&out, err);
 }
 
+/* The side patches' entry of a field: one "sides" patch, or the cyclic pairs of --sides periodic. */
+static void side_entries(FILE *f, const mdp_foam_opts_t *o, const char *type) {
+  if (!o->side_periodic) {
+    fprintf(f, "    sides { type %s; }\n", type);
+    return;
+  }
+  for (int b = 0; b < 3; b++)
+    if (b != o->axis)
+      fprintf(f, "    sides%c0 { type cyclic; }\n    sides%c1 { type cyclic; }\n", 'x' + b,
+              'x' + b);
+}
+
+/* --boundary mirror: the velocity's components along the face are fixed at zero and the normal one
+ * has zero gradient (directionMixed, valueFraction = I - n n as xx xy xz yy yz zz). At a mirror plane
+ * of a mirrored sample the tangential velocity vanishes by symmetry and continuity then gives
+ * d u_n / d n = 0: the same plane as mdpore permeability's --boundary mirror. */
+static void mirror_face_velocity(FILE *f, const char *patch, int axis) {
+  const int xx = axis != 0, yy = axis != 1, zz = axis != 2;
+  fprintf(f,
+          "    %s { type directionMixed; refValue uniform (0 0 0); refGradient uniform (0 0 0); "
+          "valueFraction uniform (%d 0 0 %d 0 %d); value uniform (0 0 0); }\n",
+          patch, xx, yy, zz);
+}
+
 int mdp_foam_write_fields(const char *dir, const mdp_foam_opts_t *o, char *err) {
   const char *io = o->periodic ? "cyclic" : NULL;
   const char *side = o->side_walls ? "noSlip" : "symmetry";
@@ -245,9 +280,14 @@ int mdp_foam_write_fields(const char *dir, const mdp_foam_opts_t *o, char *err) 
   header(out.f, "volVectorField", "U");
   fprintf(out.f,
           "dimensions [0 1 -1 0 0 0 0];\ninternalField uniform (0 0 0);\n\nboundaryField\n{\n");
-  fprintf(out.f, "    inlet { type %s; }\n    outlet { type %s; }\n", io ? io : "zeroGradient",
-          io ? io : "zeroGradient");
-  fprintf(out.f, "    sides { type %s; }\n    walls { type noSlip; }\n}\n", side);
+  if (o->mirror_faces && !io) {
+    mirror_face_velocity(out.f, "inlet", o->axis);
+    mirror_face_velocity(out.f, "outlet", o->axis);
+  } else
+    fprintf(out.f, "    inlet { type %s; }\n    outlet { type %s; }\n", io ? io : "zeroGradient",
+            io ? io : "zeroGradient");
+  side_entries(out.f, o, side);
+  fprintf(out.f, "    walls { type noSlip; }\n}\n");
   if (close_out(&out, err)) return 1;
   if (open_out(&out, dir, "0/p", err)) return 1;
   header(out.f, "volScalarField", "p");
@@ -262,7 +302,7 @@ int mdp_foam_write_fields(const char *dir, const mdp_foam_opts_t *o, char *err) 
             "    outlet { type fixedValue; value uniform 0; }\n",
             o->gradient * o->length_voxels);
   }
-  fprintf(out.f, "    sides { type %s; }\n    walls { type zeroGradient; }\n}\n",
-          o->side_walls ? "zeroGradient" : "symmetry");
+  side_entries(out.f, o, o->side_walls ? "zeroGradient" : "symmetry");
+  fprintf(out.f, "    walls { type zeroGradient; }\n}\n");
   return close_out(&out, err);
 }

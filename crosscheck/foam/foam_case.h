@@ -4,8 +4,9 @@
  * units; the pore cells are written as a cellSet and kept by `subsetMesh -patch walls`, so every
  * face between a pore cell and a solid voxel becomes the no-slip patch "walls". Box faces normal to
  * the flow are "inlet"/"outlet" (fixed pressures, or a cyclic pair with a body force for --drive
- * periodic); the other four box faces are the patch "sides" (symmetry = mirror/slip, or wall = no
- * slip). */
+ * periodic; with --boundary mirror no tangential velocity on them); the other four box faces are
+ * the patch "sides" (symmetry = mirror/slip, or wall = no slip) or, for --sides periodic, the
+ * cyclic pairs "sides<a>0"/"sides<a>1" per lateral axis a. */
 #ifndef MDPORE_FOAM_CASE_H
 #define MDPORE_FOAM_CASE_H
 
@@ -14,14 +15,17 @@
 #define MDP_FOAM_ERR_LEN 2048
 
 typedef struct {
-  int axis;        /* flow axis: 0 x, 1 y, 2 z */
-  int refine;      /* hex cells per voxel edge */
-  int periodic;    /* 0: pressure drop inlet -> outlet; 1: cyclic inlet/outlet + body force */
-  int side_walls;  /* 0: symmetry on the four side faces; 1: no-slip walls */
-  int np;          /* OpenFOAM ranks (decomposePar + mpirun) when > 1 */
-  int simple;      /* 1: simpleFoam (SIMPLEC); 0: pimpleFoam marched in pseudo-time to steady */
-  double dt;       /* pimple: pseudo time step (voxel units, nu = 1) */
-  double gradient; /* applied kinematic pressure gradient (voxel units, nu = 1) */
+  int axis;          /* flow axis: 0 x, 1 y, 2 z */
+  int refine;        /* hex cells per voxel edge */
+  int periodic;      /* 0: pressure drop inlet -> outlet; 1: cyclic inlet/outlet + body force */
+  int mirror_faces;  /* pressure drop with no tangential velocity on inlet/outlet (--boundary
+                     * mirror): the faces are the mirror planes of a mirrored periodic sample */
+  int side_walls;    /* 0: symmetry on the four side faces; 1: no-slip walls */
+  int side_periodic; /* 1: cyclic pairs on the side faces (the lateral periodic wrap) */
+  int np;            /* OpenFOAM ranks (decomposePar + mpirun) when > 1 */
+  int simple;        /* 1: simpleFoam (SIMPLEC); 0: pimpleFoam marched in pseudo-time to steady */
+  double dt;         /* pimple: pseudo time step (voxel units, nu = 1) */
+  double gradient;   /* applied kinematic pressure gradient (voxel units, nu = 1) */
   double length_voxels; /* sample length along the axis (set by the driver) */
   int box[3];           /* image dimensions (set by the driver) */
   double tol_residual;  /* initial residual of p and of U along the axis */

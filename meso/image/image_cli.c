@@ -29,7 +29,9 @@ void mdp_image_cli_help(FILE *to) {
       "  --crop X0:X1,Y0:Y1,Z0:Z1  keep voxels X0 <= i < X1 etc. (':' keeps a whole axis)\n"
       "  --downsample F         majority label over F^3 blocks\n"
       "  --pad [AXIS=]W[:LABEL] add W layers of LABEL (default the smallest pore label) on both\n"
-      "                         faces of AXIS (x, y or z; all axes when omitted); repeatable\n",
+      "                         faces of AXIS (x, y or z; all axes when omitted); repeatable\n"
+      "  --mirror AXES          follow the image by its reflection along each axis given (e.g. x\n"
+      "                         or x,y,z): a periodic image in which each face meets itself\n",
       MDP_IMAGE_DEFAULT_LABELS);
 }
 
@@ -87,7 +89,8 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
   const char *opt = argv[*i];
   static const char *with_value[] = {"--dims",         "--type",   "--byte-order", "--order",
                                      "--header-bytes", "--format", "--dataset",    "--labels",
-                                     "--voxel-size",   "--crop",   "--downsample", "--pad"};
+                                     "--voxel-size",   "--crop",   "--downsample", "--pad",
+                                     "--mirror"};
   int known = 0;
   for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
     known |= !strcmp(opt, with_value[k]);
@@ -130,6 +133,12 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
     bad = parse_int(v, &c->downsample) || c->downsample < 1;
   } else if (!strcmp(opt, "--pad")) {
     bad = parse_pad(v, c);
+  } else if (!strcmp(opt, "--mirror")) {
+    for (const char *p = v; !bad && *p; p++)
+      if (*p >= 'x' && *p <= 'z' && (p[1] == ',' || !p[1]) && (p == v || p[-1] == ','))
+        c->mirror[*p - 'x'] = 1;
+      else
+        bad = *p != ',' || p == v || !p[1] || p[-1] == ',';
   }
   if (bad) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "option %s: bad value '%s' (see --help)", opt, v);
@@ -165,6 +174,11 @@ int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *
     for (int v = 0; v < 256 && label < 0; v++)
       if (img->phase_of[v] == MDP_PHASE_PORE) label = v;
     if (mdp_image_pad(img, c->pad, (uint8_t)label, &tmp, err)) goto fail;
+    mdp_image_free(img);
+    *img = tmp;
+  }
+  if (c->mirror[0] || c->mirror[1] || c->mirror[2]) {
+    if (mdp_image_mirror(img, c->mirror, &tmp, err)) goto fail;
     mdp_image_free(img);
     *img = tmp;
   }

@@ -139,6 +139,23 @@ int mdp_image_concat(const mdp_image_t *a, const mdp_image_t *b, int axis, mdp_i
 int mdp_image_pad(const mdp_image_t *in, const int widths[6], uint8_t label, mdp_image_t *out,
                   char *err);
 
+/* Mirror extension (image_mirror.c): along each axis with mirror[a] != 0 the image is followed by
+ * its reflection (2n voxels), so that the periodic wrap joins each face to itself. */
+int mdp_image_mirror(const mdp_image_t *in, const int mirror[3], mdp_image_t *out, char *err);
+
+/* How well the last slice along an axis continues into the first (the periodic seam), measured by
+ * the pore Jaccard index (pore on both / pore on either) of the two slices against its mean over
+ * adjacent interior slices. A periodic image's seam is one more interior step (continuity ~1); the
+ * end slices of a crop of a rock are unrelated (continuity ~ porosity / the interior overlap). */
+#define MDP_SEAM_PERIODIC_CONTINUITY 0.5
+typedef struct {
+  double seam_overlap;     /* Jaccard of the last and first slices */
+  double interior_overlap; /* mean Jaccard of adjacent slices inside the image */
+  double continuity;       /* seam_overlap / interior_overlap */
+  int periodic;            /* continuity >= MDP_SEAM_PERIODIC_CONTINUITY */
+} mdp_image_seam_t;
+int mdp_image_seam(const mdp_image_t *img, int axis, mdp_image_seam_t *seam);
+
 /* Reorder the axes (image_axes.c): output axis d is input axis axis_map[d], so out(i0, i1, i2) =
  * in(j) with j[axis_map[d]] = i_d; a scene's geometry.axis_map turns image axes into box axes. */
 int mdp_image_permute_axes(const mdp_image_t *in, const int axis_map[3], mdp_image_t *out,

@@ -13,6 +13,7 @@ typedef struct {
   int crop_lo[3], crop_hi[3], crop; /* half-open [lo, hi) per axis */
   int downsample;                   /* 0/1 = none */
   int pad[6], pad_label;            /* pad_label -1 = the smallest pore label */
+  int mirror[3]; /* --mirror: axes followed by their reflection (mdp_image_mirror) */
 } mdp_image_cli_t;
 
 void mdp_image_cli_init(mdp_image_cli_t *c);
