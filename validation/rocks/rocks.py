@@ -1,0 +1,311 @@
+#!/usr/bin/env python3
+"""Real rock crops: the mDPD permeability with the default boundary treatment and resolution against
+the continuum (OpenFOAM) on the same voxels with the same boundary treatment (docs/permeability.md,
+"Real rock images"; ../shared/data/external/rocks).
+
+Per rock and crop size (cubes at a fixed corner), per axis:
+  * mdpore foam CROP --axis A --boundary mirror --sides periodic at one cell per voxel and at
+    --refine 2: the like-for-like reference of an mDPD campaign with its defaults (the flow axis
+    mirrored, the lateral faces periodic); the reference k is the refined mesh's, extrapolated to the
+    voxels' continuum limit with the first-order staircase error (k_inf = 2 k_r2 - k_r1), the voxel
+    mesh and the refined one both reported;
+  * mdpore permeability CROP --axis all with its defaults (boundary auto, resolution from the
+    critical throat), emitted here, run anywhere (a GPU through `device`), collected here;
+  * optional extra resolutions (--refine-rc LIST: rc per voxel values of one crop, axis x) for the
+    trend of the gap with resolution.
+Checks (exit 1 when one fails): |k_mDPD / k_foam - 1| <= 10% at the default resolution; every run's
+pore-core density within 3% of the fill; penetrations 0.
+
+Stages (WORK holds everything, relative paths only in what travels):
+  rocks.py foam WORK       crops and the foam references (here, on the CPU)
+  rocks.py emit WORK       the campaigns' scenes (WORK/runs.txt: one run folder per line, relative)
+  rocks.py device WORK     run every scene of runs.txt with $MDPORE, JOBS at once (on the GPU machine)
+  rocks.py report WORK     collect the campaigns, the table and PNG in validation/rocks/results/
+Run with /usr/bin/python3 (numpy, matplotlib). MDPORE: the mdpore binary (default build/bin/mdpore).
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+MDPORE = os.environ.get("MDPORE") or os.path.join(ROOT, "build", "bin", "mdpore")
+ROCKS = os.path.join(ROOT, "..", "shared", "data", "external", "rocks")
+RESULTS = os.environ.get("MDPORE_VALIDATION_OUT") or os.path.join(ROOT, "validation", "rocks", "results")
+ROCK_FILES = {"berea": ("berea_300", 300), "fontainebleau": ("fontainebleau_200", 200)}
+AXES = "xyz"
+
+
+def sh(*args, cwd=None, check=True):
+    p = subprocess.run([MDPORE, *args], cwd=cwd, capture_output=True, text=True)
+    if check and p.returncode != 0:
+        sys.exit(f"mdpore {' '.join(args)}: exit {p.returncode}\n{p.stderr[-3000:]}")
+    return p
+
+
+def crops(a):
+    """(rock, size, name) of every crop asked for."""
+    return [(r, s, f"{r}_{s}") for r in a.rock for s in a.sizes]
+
+
+def make_crop(a, rock, size, name):
+    d = os.path.join(a.work, name)
+    os.makedirs(d, exist_ok=True)
+    img = os.path.join(d, "crop.raw")
+    if not os.path.exists(img):
+        base, n = ROCK_FILES[rock]
+        o = a.offset
+        sh("image", "convert", os.path.join(ROCKS, base, base + ".raw"), "--crop",
+           f"{o}:{o + size},{o}:{o + size},{o}:{o + size}", "-o", img)
+    return d, img
+
+
+def foam_stage(a):
+    for rock, size, name in crops(a):
+        d, img = make_crop(a, rock, size, name)
+        info = json.loads(sh("image", "info", img, "--json").stdout)
+        json.dump(info, open(os.path.join(d, "info.json"), "w"))
+        for ax in AXES:
+            for refine in a.foam_refine:
+                out = os.path.join(d, f"foam_{ax}_r{refine}.json")
+                if os.path.exists(out):
+                    continue
+                t0 = time.time()
+                p = sh("foam", img, "--axis", ax, "--boundary", "mirror", "--sides", "periodic", "--refine",
+                       str(refine), "--np", str(a.np), check=False)
+                if p.returncode == 0:
+                    open(out, "w").write(p.stdout)
+                    k = json.loads(p.stdout)["permeability_voxel2"]
+                    print(f"{name} {ax} refine {refine}: k = {k:.5g} voxel^2 ({time.time() - t0:.0f} s)", flush=True)
+                else:
+                    open(out, "w").write(json.dumps({"error": p.stderr[-1500:], "exit": p.returncode}))
+                    print(f"{name} {ax} refine {refine}: foam exit {p.returncode}: {p.stderr[-300:]}", flush=True)
+
+
+def portable(scene_path, work):
+    """Paths inside WORK written relative to the scene's folder: the run folders travel."""
+    text = open(scene_path).read()
+    rel = os.path.relpath(work, os.path.dirname(scene_path))
+    new = text.replace(os.path.abspath(work) + "/", rel + "/")
+    if new != text:
+        open(scene_path, "w").write(new)
+
+
+def campaigns(a):
+    """(name, campaign folder, extra options) per crop and resolution."""
+    out = []
+    for rock, size, name in crops(a):
+        d = os.path.join(a.work, name)
+        out.append((name, os.path.join(d, "default"), a.campaign_args.split()))
+        if size == min(a.sizes):
+            for rcv in a.refine_rc:
+                out.append((name, os.path.join(d, f"rc{rcv:g}"), ["--rc-per-voxel", f"{rcv:g}", "--force", "--axis", "x"]))
+    return out
+
+
+def emit_stage(a):
+    runs = []
+    for rock, size, name in crops(a):
+        make_crop(a, rock, size, name)
+    for name, em, extra in campaigns(a):
+        img = os.path.join(os.path.dirname(em), "crop.raw")
+        if not os.path.exists(os.path.join(em, "commands.txt")):
+            axis = [] if "--axis" in extra else ["--axis", "all"]
+            p = sh("permeability", img, *axis, "--emit-scenes", em, "--max-steps", str(a.max_steps), *extra,
+                   check=False)
+            open(os.path.join(os.path.dirname(em), os.path.basename(em) + ".emit.log"), "w").write(p.stdout + p.stderr)
+            print(f"{name} {os.path.basename(em)}: emit exit {p.returncode}\n{p.stdout[-1200:]}{p.stderr[-600:]}", flush=True)
+            if p.returncode != 0:
+                continue
+        for line in open(os.path.join(em, "campaign.txt")):
+            if line.startswith("run: "):
+                rd = line.split(maxsplit=3)[3].strip()
+                portable(os.path.join(rd, "scene.yaml"), a.work)
+                runs.append(os.path.relpath(rd, a.work))
+    open(os.path.join(a.work, "runs.txt"), "w").write("".join(r + "\n" for r in runs))
+    print(f"{len(runs)} runs in {a.work}/runs.txt")
+
+
+def device_stage(a):
+    """Every run of runs.txt that has no summary yet, JOBS at once; prints one line per run."""
+    runs = [r.strip() for r in open(os.path.join(a.work, "runs.txt")) if r.strip()]
+    todo = [r for r in runs if not os.path.exists(os.path.join(a.work, r, "summary.json"))]
+    t_all = time.time()
+
+    def one(r):
+        d = os.path.join(a.work, r)
+        t0 = time.time()
+        if a.time_box and t0 - t_all > a.time_box:
+            return r, "not started (time box)", 0.0
+        with open(os.path.join(d, "run.log"), "w") as log:
+            rc = subprocess.run([MDPORE, "run", "scene.yaml"], cwd=d, stdout=log, stderr=subprocess.STDOUT).returncode
+        return r, rc, time.time() - t0
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as ex:
+        for r, rc, dt in ex.map(one, todo):
+            print(f"{r}: exit {rc}, {dt:.1f} s", flush=True)
+    print(f"{len(todo)} runs in {time.time() - t_all:.0f} s, {a.jobs} at once")
+
+
+def run_stats(em):
+    """Per run of a campaign folder: core density, fill, penetrations, seconds, particles, steps."""
+    out = []
+    for line in open(os.path.join(em, "campaign.txt")):
+        if not line.startswith("run: "):
+            continue
+        _, ax, g, rd = line.split(maxsplit=3)
+        s = os.path.join(rd.strip(), "summary.json")
+        if not os.path.exists(s):
+            continue
+        j = json.load(open(s))
+        out.append({"axis": ax, "g": float(g), "summary": j})
+    return out
+
+
+def find(j, *keys):
+    for k in keys:
+        if not isinstance(j, dict) or k not in j:
+            return None
+        j = j[k]
+    return j
+
+
+def foam_reference(d, ax, refine):
+    ks = {}
+    for r in refine:
+        p = os.path.join(d, f"foam_{ax}_r{r}.json")
+        if os.path.exists(p):
+            j = json.load(open(p))
+            if "permeability_voxel2" in j:
+                ks[r] = (j["permeability_voxel2"], j.get("wall_s"))
+    if 1 in ks and 2 in ks:
+        return 2 * ks[2][0] - ks[1][0], ks
+    if ks:
+        return ks[max(ks)][0], ks
+    return None, ks
+
+
+def report_stage(a):
+    os.makedirs(RESULTS, exist_ok=True)
+    rows, failures = [], []
+    for name, em, extra in campaigns(a):
+        if not os.path.exists(os.path.join(em, "campaign.txt")):
+            continue
+        p = sh("permeability", "--collect", em, check=False)
+        open(em + ".report.txt", "w").write(p.stdout + p.stderr)
+        pj = os.path.join(em, "permeability.json")
+        if not os.path.exists(pj):
+            failures.append(f"{name} {os.path.basename(em)}: no permeability.json (exit {p.returncode})")
+            continue
+        j = json.load(open(pj))
+        rcv = j["rc_per_voxel"]
+        d = os.path.dirname(em)
+        stats = run_stats(em)
+        for ax, axr in j["axes"].items():
+            kr = find(axr, "darcy_range", "k_rc2")
+            kr_err = find(axr, "darcy_range", "k_rc2_err")
+            accepted = find(axr, "darcy_range", "accepted")
+            k_vox = kr / rcv ** 2 if kr is not None else None
+            ref, ks = foam_reference(d, ax, a.foam_refine)
+            st = [s for s in stats if s["axis"] == ax]
+            dens = [find(s["summary"], "pore_core_density", "mean") for s in st]
+            fill = 6.2
+            dens_dev = max((abs(x / fill - 1) for x in dens if x), default=None)
+            pen = sum(find(s["summary"], "penetrations", "samples_with_penetration") or 0 for s in st)
+            secs = sum(find(s["summary"], "timing", "total_seconds") or 0 for s in st)
+            parts = max((find(s["summary"], "particles") or 0 for s in st), default=0)
+            backend = st[0]["summary"].get("backend") if st else None
+            ratio = k_vox / ref if (k_vox and ref) else None
+            rows.append({"crop": name, "campaign": os.path.basename(em), "axis": ax, "rc_per_voxel": rcv,
+                         "boundary": find(j, "boundary", ax, "faces"), "k_mdpd_rc2": kr, "k_mdpd_rc2_err": kr_err,
+                         "darcy_range": accepted, "k_mdpd_voxel2": k_vox,
+                         "k_foam_r1": ks.get(1, (None,))[0], "k_foam_r2": ks.get(2, (None,))[0], "k_foam_ref": ref,
+                         "ratio": ratio, "max_core_density_dev": dens_dev, "penetrations": pen, "run_seconds": secs,
+                         "particles": parts, "backend": backend,
+                         "runs": len(st)})
+            if os.path.basename(em) == "default":
+                if ratio is None or abs(ratio - 1) > 0.10:
+                    failures.append(f"{name} {ax}: k_mDPD / k_foam = {ratio}")
+                if dens_dev is None or dens_dev > 0.03:
+                    failures.append(f"{name} {ax}: pore-core density off the fill by {dens_dev}")
+            if pen:
+                failures.append(f"{name} {os.path.basename(em)} {ax}: {pen} penetrations")
+    write_table(rows, failures)
+    for f in failures:
+        print("FAIL", f)
+    return 1 if failures else 0
+
+
+def fmt(x, f="{:.4g}"):
+    return "-" if x is None else f.format(x)
+
+
+def write_table(rows, failures):
+    keys = list(rows[0].keys()) if rows else []
+    with open(os.path.join(RESULTS, "rocks.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| crop | campaign | axis | rc/voxel | boundary | k mDPD (rc^2) | Darcy range | k mDPD (voxel^2) | "
+             "foam r1 | foam r2 | foam ref | mDPD/foam | max core density dev | penetrations | particles | run s (backend) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['crop']} | {r['campaign']} | {r['axis']} | {fmt(r['rc_per_voxel'])} | {r['boundary']} | "
+                     f"{fmt(r['k_mdpd_rc2'])} +- {fmt(r['k_mdpd_rc2_err'], '{:.2g}')} | {r['darcy_range']} | "
+                     f"{fmt(r['k_mdpd_voxel2'])} | {fmt(r['k_foam_r1'])} | {fmt(r['k_foam_r2'])} | "
+                     f"{fmt(r['k_foam_ref'])} | {fmt(r['ratio'], '{:.3f}')} | "
+                     f"{fmt(r['max_core_density_dev'], '{:.1%}')} | {r['penetrations']} | {r['particles']} | {fmt(r['run_seconds'], '{:.0f}')} ({r['backend']}) |")
+    lines += ["", f"{len(failures)} checks failed" + ("".join(f"\n- {f}" for f in failures))]
+    open(os.path.join(RESULTS, "rocks.md"), "w").write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("no matplotlib: no PNG")
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for r in rows:
+        if r["ratio"] is None:
+            continue
+        m = "o" if r["campaign"] == "default" else "s"
+        ax.errorbar(r["rc_per_voxel"], r["ratio"],
+                    yerr=(r["k_mdpd_rc2_err"] or 0) / r["k_mdpd_rc2"] * r["ratio"] if r["k_mdpd_rc2"] else 0,
+                    fmt=m, label=f"{r['crop']} {r['axis']} {r['campaign']}")
+    ax.axhspan(0.9, 1.1, color="0.9")
+    ax.axhline(1, color="k", lw=0.5)
+    ax.set_xlabel("rc per voxel")
+    ax.set_ylabel("k mDPD / k foam (same voxels, mirror faces, periodic sides)")
+    ax.legend(fontsize=6, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(RESULTS, "rocks.png"), dpi=120)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("stage", choices=["foam", "emit", "device", "report"])
+    ap.add_argument("work")
+    ap.add_argument("--rock", nargs="+", default=["berea"], choices=sorted(ROCK_FILES))
+    ap.add_argument("--sizes", type=int, nargs="+", default=[48, 64])
+    ap.add_argument("--offset", type=int, default=100, help="the crops' corner, voxels on each axis")
+    ap.add_argument("--foam-refine", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--refine-rc", type=float, nargs="*", default=[], help="extra rc per voxel of the smallest crop")
+    ap.add_argument("--max-steps", type=int, default=20000)
+    ap.add_argument("--campaign-args", default="", help="extra options of the default campaigns")
+    ap.add_argument("--np", type=int, default=2, help="foam ranks")
+    ap.add_argument("--jobs", type=int, default=4, help="device: runs at once")
+    ap.add_argument("--time-box", type=float, default=0, help="device: start no run after this many seconds")
+    a = ap.parse_args()
+    a.work = os.path.abspath(a.work)
+    os.makedirs(a.work, exist_ok=True)
+    return {"foam": foam_stage, "emit": emit_stage, "device": device_stage, "report": report_stage}[a.stage](a) or 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
