@@ -3,7 +3,8 @@
  * bound 0 and is flagged (fit_result, text report, JSON), Forchheimer is not eligible and BIC
  * chooses Darcy; no report contains nan or inf. Then the choice rule on hand-made results: a law at
  * a bound with the lowest criterion is passed over when the nested Darcy law was fitted, and stays
- * eligible (flagged) when it was not. With an argument (cases/upscale/darcy_forcing_sweep.csv), the
+ * eligible (flagged) when it was not; the support test (significance at 3 sigma, the error inflated
+ * by sqrt(chi2/dof) above 1, the power-law margin, the sign of G0) overrules the criterion. With an argument (cases/upscale/darcy_forcing_sweep.csv), the
  * table in the repository must be the one this seed writes.
  * Usage: test_fit_bounds [darcy_forcing_sweep.csv] */
 #include <ctype.h>
@@ -14,7 +15,7 @@
 #include <string.h>
 
 #include "fit_report.h"
-#include "fit_tao.h"
+#include "fit_select.h"
 #include "flowdata/flow_table.h"
 #include "synthetic_rng.h"
 
@@ -135,8 +136,9 @@ static void test_darcy_table(const char *cases_file) {
         chosen >= 0 ? flow_law_name(r[chosen].kind) : "none");
   for (int i = 0; i < LAW_COUNT; i++)
     if (i != LAW_FORCHHEIMER)
-      CHECK(r[i].ok && r[i].converged && r[i].eligible && !r[i].at_bound[0] && !r[i].at_bound[1],
-            "%s: fitted, eligible, no parameter at a bound", flow_law_name(r[i].kind));
+      CHECK(r[i].ok && r[i].converged && r[i].eligible == r[i].supported && !r[i].at_bound[0] &&
+                !r[i].at_bound[1],
+            "%s: fitted, eligible if supported, no parameter at a bound", flow_law_name(r[i].kind));
 
   /* the text report flags beta and says why forchheimer is passed over */
   char *text = NULL;
@@ -169,28 +171,45 @@ static void test_darcy_table(const char *cases_file) {
               strstr(beta, "\"at_bound\": true") < next &&
               strstr(beta, "\"bound_side\": \"lower\"") < next,
           "JSON: beta lacks \"at_bound\": true and its bound side");
-    CHECK(strstr(json, "\"chosen_why\": \"lowest BIC among the eligible fits\""),
+    CHECK(strstr(json, "\"chosen_why\": \"lowest BIC among darcy and the laws beyond it") &&
+              strstr(json, "forchheimer not supported: beta at its bound"),
           "JSON: chosen_why");
+    CHECK(fm && strstr(fm, "\"supported\": false") && strstr(fm, "\"support_test\""),
+          "JSON: forchheimer not marked as not supported");
     CHECK(!has_nonfinite_text(json), "JSON contains nan or inf");
     free(json);
   }
   flow_table_free(&t);
 }
 
-/* A converged fit result with the given BIC (AIC = BIC here) and beta/n/G0 at a bound or not. */
-static fit_result made(flow_law_kind kind, double bic, int at_bound) {
+/* A converged fit result with the given BIC (AIC = BIC here), chi2/dof 1, k = 1 and the extra
+ * parameter (G0, beta, n) `z` standard errors of 0.1 away from its Darcy value (0, 0, 1), at a bound
+ * or not. */
+static fit_result made(flow_law_kind kind, double bic, double z, int at_bound) {
   fit_result r;
   memset(&r, 0, sizeof r);
   r.kind = kind;
   r.ok = r.converged = 1;
   r.bic = r.aic = bic;
+  r.chi2_dof = 1.0;
+  r.dof = 8;
+  r.theta[0] = 1.0;
+  r.se[0] = 0.01;
+  r.se[1] = 0.1;
+  r.theta[1] = (kind == LAW_POWER ? 1.0 : 0.0) + z * r.se[1];
   r.at_bound[1] = at_bound;
+  r.law.kind = kind;
+  r.law.k = r.law.K = r.theta[0];
+  if (kind == LAW_THRESHOLD) r.law.g0 = r.theta[1];
+  if (kind == LAW_FORCHHEIMER) r.law.beta = r.theta[1];
+  if (kind == LAW_POWER) r.law.n = r.theta[1];
   return r;
 }
 
 static void test_choice_rule(void) {
   /* forchheimer at its bound has the lowest BIC: passed over for darcy (nested) */
-  fit_result a[3] = {made(LAW_DARCY, 12, 0), made(LAW_FORCHHEIMER, 10, 1), made(LAW_POWER, 14, 0)};
+  fit_result a[3] = {made(LAW_DARCY, 12, 0, 0), made(LAW_FORCHHEIMER, 10, 0, 1),
+                     made(LAW_POWER, 14, 5, 0)};
   int c = fit_choose(a, 3, SELECT_BIC);
   CHECK(c == 0, "at-bound forchheimer over darcy: chose %d", c);
   CHECK(!a[1].eligible && a[0].eligible && a[2].eligible, "eligibility %d %d %d", a[0].eligible,
@@ -201,23 +220,63 @@ static void test_choice_rule(void) {
   c = fit_choose(a, 3, SELECT_AIC);
   CHECK(c == 0, "the same with AIC: chose %d", c);
 
-  /* no darcy fitted: the law at its bound stays eligible (flagged), and wins on BIC */
-  fit_result b[2] = {made(LAW_FORCHHEIMER, 10, 1), made(LAW_POWER, 14, 0)};
+  /* no darcy fitted: the law at its bound stays eligible (flagged) but a supported law comes first;
+   * with no supported law the criterion decides among the valid ones */
+  fit_result b[2] = {made(LAW_FORCHHEIMER, 10, 0, 1), made(LAW_POWER, 14, 5, 0)};
   c = fit_choose(b, 2, SELECT_BIC);
-  CHECK(c == 0 && b[0].eligible, "without darcy the at-bound law stays eligible: chose %d", c);
+  CHECK(c == 1 && b[0].eligible && !b[0].supported && b[1].supported,
+        "without darcy the supported power law comes before the at-bound law: chose %d", c);
+  b[1] = made(LAW_POWER, 14, 1, 0);
+  c = fit_choose(b, 2, SELECT_BIC);
+  CHECK(c == 0 && b[0].eligible && b[1].eligible,
+        "without darcy and no supported law the lowest BIC wins: chose %d", c);
 
   /* darcy fitted but not converged: not a usable simpler law */
-  fit_result e[2] = {made(LAW_DARCY, 12, 0), made(LAW_THRESHOLD, 10, 1)};
+  fit_result e[2] = {made(LAW_DARCY, 12, 0, 0), made(LAW_THRESHOLD, 10, 5, 1)};
   e[0].converged = 0;
   c = fit_choose(e, 2, SELECT_BIC);
   CHECK(c == 1 && e[1].eligible, "darcy not converged: the at-bound threshold stays, chose %d", c);
 
   /* a law at a bound that would not have won anyway changes nothing */
-  fit_result g[2] = {made(LAW_DARCY, 10, 0), made(LAW_POWER, 11, 1)};
+  fit_result g[2] = {made(LAW_DARCY, 10, 0, 0), made(LAW_POWER, 11, 5, 1)};
   c = fit_choose(g, 2, SELECT_BIC);
   CHECK(c == 0 && !g[1].eligible && strstr(g[1].not_eligible, "n at its bound") &&
             strstr(g[1].not_eligible, "n = 1"),
         "power at its bound: chose %d, '%s'", c, g[1].not_eligible);
+
+  /* the support test: significance at FIT_SUPPORT_SIGMA, error inflated by sqrt(chi2/dof) > 1,
+   * the power-law margin and the sign of G0 decide, whatever the criterion says */
+  fit_result h[2] = {made(LAW_DARCY, 12, 0, 0), made(LAW_POWER, 2, 2.9, 0)};
+  c = fit_choose(h, 2, SELECT_BIC);
+  CHECK(c == 0 && !h[1].supported && strstr(h[1].not_eligible, "2.9 sigma < 3"),
+        "n 2.9 sigma from 1: darcy, chose %d, '%s'", c, h[1].not_eligible);
+  h[1] = made(LAW_POWER, 2, 3.1, 0);
+  c = fit_choose(h, 2, SELECT_BIC);
+  CHECK(c == 1 && h[1].supported && strstr(h[1].support, "3.1 sigma >= 3"),
+        "n 3.1 sigma from 1: power, chose %d, '%s'", c, h[1].support);
+  h[1].chi2_dof = 4.0; /* the same n with scatter twice the error bars: 1.55 sigma */
+  c = fit_choose(h, 2, SELECT_BIC);
+  CHECK(c == 0 && !h[1].supported && fabs(h[1].support_sigma - 1.55) < 1e-9 &&
+            strstr(h[1].support, "error x2"),
+        "inflated by sqrt(chi2/dof) = 2: chose %d, %g sigma, '%s'", c, h[1].support_sigma,
+        h[1].support);
+  h[1].chi2_dof = 0.25; /* scatter below the error bars does not shrink them */
+  c = fit_choose(h, 2, SELECT_BIC);
+  CHECK(c == 1 && fabs(h[1].support_sigma - 3.1) < 1e-9, "chi2/dof < 1: chose %d, %g sigma", c,
+        h[1].support_sigma);
+  h[1] = made(LAW_POWER, 2, 0, 0);
+  h[1].theta[1] = h[1].law.n = 1.0 + FIT_POWER_MIN_DEVIATION * 0.8;
+  h[1].se[1] = 0.001; /* 40 sigma, but inside the margin */
+  c = fit_choose(h, 2, SELECT_BIC);
+  CHECK(c == 0 && !h[1].supported && strstr(h[1].support, "|n-1| <= 0.05"),
+        "n = 1.04 +- 0.001: darcy, chose %d, '%s'", c, h[1].support);
+  h[1] = made(LAW_THRESHOLD, 2, -8, 0);
+  c = fit_choose(h, 2, SELECT_BIC);
+  CHECK(c == 0 && !h[1].supported && strstr(h[1].support, "inadmissible"),
+        "G0 8 sigma below 0: darcy, chose %d, '%s'", c, h[1].support);
+  h[1] = made(LAW_FORCHHEIMER, 2, 8, 0);
+  c = fit_choose(h, 2, SELECT_AIC);
+  CHECK(c == 1 && h[1].supported, "beta 8 sigma above 0: forchheimer by AIC, chose %d", c);
   printf("choice rule: ok (%s)\n", a[1].not_eligible);
 }
 

@@ -58,21 +58,36 @@ static void bound_text(const flow_table *t, const fit_result *r, int p, char *bu
                     : "the bound, not the data, sets its value");
 }
 
-/* Why the chosen law is the chosen one, for the text and JSON reports. */
+/* Why the chosen law is the chosen one, for the text and JSON reports: the rule, the support test
+ * of every law beyond Darcy, and the law an information criterion alone would have picked. */
 static void chosen_text(const fit_result *r, int nr, int chosen, fit_criterion crit, char *buf,
                         int len) {
   const char *cn = crit == SELECT_AIC ? "AIC" : "BIC";
-  const int lowest = fit_lowest(r, nr, crit);
   int n = 0;
   buf[0] = 0;
   if (chosen < 0) {
     snprintf(buf, len, "no eligible fit converged");
     return;
   }
-  n += snprintf(buf + n, len - n, "lowest %s among the eligible fits", cn);
+  if (fit_has_darcy(r, nr))
+    n += snprintf(buf, len,
+                  "lowest %s among darcy and the laws beyond it that pass the support test (extra "
+                  "parameter >= %g sigma from its darcy value, the error scaled up by "
+                  "sqrt(chi2/dof) when above 1; G0 > 0, beta > 0, |n-1| > %g)",
+                  cn, FIT_SUPPORT_SIGMA, FIT_POWER_MIN_DEVIATION);
+  else
+    n += snprintf(buf, len,
+                  "lowest %s among the %s laws; darcy was not fitted, so an unsupported law may "
+                  "be chosen (add darcy to --models to test the laws against it)",
+                  cn, r[chosen].supported ? "supported" : "eligible");
+  for (int i = 0; i < nr && n < len; i++)
+    if (r[i].ok && r[i].converged && fit_nested_law(r[i].kind, NULL) >= 0)
+      n += snprintf(buf + n, len - n, "; %s %s: %s", flow_law_name(r[i].kind),
+                    r[i].supported ? "supported" : "not supported", r[i].support);
+  const int lowest = fit_lowest(r, nr, crit);
   if (lowest >= 0 && lowest != chosen && n < len)
-    n += snprintf(buf + n, len - n, "; %s has a lower %s but is not eligible (%s)",
-                  flow_law_name(r[lowest].kind), cn, r[lowest].not_eligible);
+    n += snprintf(buf + n, len - n, "; %s alone would have picked %s", cn,
+                  flow_law_name(r[lowest].kind));
   const int np = flow_law_nparams(r[chosen].kind);
   if ((r[chosen].at_bound[0] || (np > 1 && r[chosen].at_bound[1])) && n < len)
     snprintf(buf + n, len - n,
@@ -95,6 +110,11 @@ static void write_model(json_out *j, const flow_table *t, const fit_result *r) {
   json_int(j, "iterations", r->iterations);
   json_bool(j, "eligible", r->eligible);
   if (!r->eligible && r->converged) json_string(j, "not_eligible_why", r->not_eligible);
+  if (r->converged) {
+    json_bool(j, "supported", r->supported);
+    json_string(j, "support_test", r->support);
+    if (fit_nested_law(r->kind, NULL) >= 0) json_number(j, "support_sigma", r->support_sigma);
+  }
   json_object(j, "parameters");
   for (int i = 0; i < np; i++) {
     json_object(j, fit_param_name(r->kind, i));
@@ -175,11 +195,19 @@ int fit_write_json(const char *path, const flow_table *t, const fit_result *r, i
       "whole cross-section (solid included); k = mu q / G; standard errors from the table's "
       "stated errors (covariance not rescaled by chi2/dof)");
   json_string(&j, "criterion", criterion_name(crit));
+  json_object(&j, "support_rule");
+  json_number(&j, "level_sigma", FIT_SUPPORT_SIGMA);
+  json_number(&j, "power_min_deviation", FIT_POWER_MIN_DEVIATION);
+  json_string(&j, "statistic",
+              "z = (p - p_darcy) / (stderr * sqrt(max(1, chi2/dof))) for the extra parameter p "
+              "(G0, beta, n); a law beyond darcy is supported if p is not at a bound, G0 > 0, "
+              "beta > 0, |z| >= level_sigma and |n-1| > power_min_deviation");
+  json_object_end(&j);
   if (chosen >= 0)
     json_string(&j, "chosen", flow_law_name(r[chosen].kind));
   else
     json_null(&j, "chosen");
-  char why[1024];
+  char why[2048];
   chosen_text(r, nr, chosen, crit, why, sizeof why);
   json_string(&j, "chosen_why", why);
   json_object(&j, "data");
@@ -197,7 +225,7 @@ int fit_write_json(const char *path, const flow_table *t, const fit_result *r, i
 
 void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr, int chosen,
                      fit_criterion crit) {
-  char unit[96], text[512];
+  char unit[96], text[2048];
   fprintf(out, "mdpore fit: %s  (sample '%s', axis %s, %s units, %d points, mu = %g, rho = %g)\n",
           t->path, t->sample, t->axis, t->si ? "SI" : "reduced", t->n, t->viscosity, t->density);
   fprintf(out, "%-12s %-58s %9s %10s %10s %7s\n", "law", "parameters (value +- standard error)",
@@ -218,10 +246,12 @@ void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr
         len += snprintf(params + len, sizeof params - len, "%s%s = %.4g +- %.2g %s", p ? "; " : "",
                         fit_param_name(r[i].kind, p), r[i].theta[p] + 0.0, r[i].se[p], unit);
     }
-    fprintf(out, "%-12s %-58s %9.3g %10.4g %10.4g %7.3f%s%s%s\n", flow_law_name(r[i].kind), params,
-            r[i].chi2_dof, r[i].aic, r[i].bic, r[i].weight, i == chosen ? "  <- chosen" : "",
-            r[i].converged ? "" : "  (not converged)",
-            r[i].converged && !r[i].eligible ? "  (not eligible)" : "");
+    const char *mark = !r[i].converged   ? "  (not converged)"
+                       : !r[i].supported ? "  (not supported)"
+                       : !r[i].eligible  ? "  (not eligible)"
+                                         : "";
+    fprintf(out, "%-12s %-58s %9.3g %10.4g %10.4g %7.3f%s%s\n", flow_law_name(r[i].kind), params,
+            r[i].chi2_dof, r[i].aic, r[i].bic, r[i].weight, i == chosen ? "  <- chosen" : "", mark);
     for (int p = 0; p < np; p++)
       if (r[i].at_bound[p]) {
         bound_text(t, &r[i], p, text, sizeof text);
@@ -229,6 +259,9 @@ void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr
       }
     if (r[i].converged && !r[i].eligible)
       fprintf(out, "%-12s   not eligible: %s\n", "", r[i].not_eligible);
+    else if (r[i].converged && fit_nested_law(r[i].kind, NULL) >= 0)
+      fprintf(out, "%-12s   %s: %s\n", "", r[i].supported ? "supported" : "not supported",
+              r[i].support);
     double m2 = r[i].kind != LAW_POWER ? fit_k_in_m2(t, r[i].theta[0]) : NAN;
     double se_nd = fit_k_in_m2(t, r[i].se[0]) * MD_PER_M2 * 1e6;
     if (isfinite(m2) && isfinite(m2 * MD_PER_M2 * 1e6) && isfinite(se_nd)) {
@@ -242,8 +275,6 @@ void fit_print_table(FILE *out, const flow_table *t, const fit_result *r, int nr
   }
   fprintf(out, "chosen by %s: %s", crit == SELECT_AIC ? "AIC" : "BIC",
           chosen >= 0 ? flow_law_name(r[chosen].kind) : "none (no eligible fit converged)");
-  if (chosen >= 0 && r[chosen].kind == LAW_THRESHOLD && r[chosen].theta[1] <= 0)
-    fprintf(out, " (G0 <= 0: an intercept, not a threshold)");
   chosen_text(r, nr, chosen, crit, text, sizeof text);
   if (chosen >= 0) fprintf(out, "\n  why: %s", text);
   fprintf(out,

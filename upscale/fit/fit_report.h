@@ -5,7 +5,7 @@
 
 #include <stdio.h>
 
-#include "fit_tao.h"
+#include "fit_select.h"
 #include "flowdata/flow_table.h"
 
 #define MD_PER_M2 (1.0 / 9.869233e-16) /* 1 D = 9.869233e-13 m^2 */

@@ -1,5 +1,5 @@
-/* Weighted least-squares fits of the flow laws with PETSc TAO (Gauss-Newton, TAOBRGN), parameter
- * covariance from (J^T W J)^-1 at the optimum, and model selection by information criteria. */
+/* Weighted least-squares fits of the flow laws with PETSc TAO (Gauss-Newton, TAOBRGN) and parameter
+ * covariance from (J^T W J)^-1 at the optimum. The choice among the fits is fit_select.h's. */
 #ifndef MDPORE_UPSCALE_FIT_TAO_H
 #define MDPORE_UPSCALE_FIT_TAO_H
 
@@ -29,9 +29,13 @@ typedef struct {
   int at_bound[2];
   int bound_upper[2];
   double bound[2];
-  int eligible;           /* may be chosen (fit_choose): converged, and not at a bound when a nested
-                            simpler law was fitted */
-  char not_eligible[240]; /* why not, for a converged fit that is not eligible */
+  /* The support test of a law beyond Darcy (fit_select.h), filled by fit_choose: whether its extra
+   * parameter (G0, beta, n) is significant and physically admissible; Darcy is always supported. */
+  int supported;
+  double support_sigma;   /* extra parameter minus its Darcy value, in inflated standard errors */
+  char support[200];      /* the test in words, e.g. "n-1 = 0.008 +- 0.006: 1.3 sigma < 3" */
+  int eligible;           /* may be chosen (fit_choose) */
+  char not_eligible[400]; /* why not, for a converged fit that is not eligible */
 } fit_result;
 
 /* A parameter within this distance of a bound (relative to max(1, |bound|), in the scaled internal
@@ -40,31 +44,11 @@ typedef struct {
 /* Points of the sampled law curve in the JSON report, on 0 .. 1.1 max|G|. */
 #define FIT_CURVE_POINTS 64
 
-typedef enum { SELECT_BIC = 0, SELECT_AIC } fit_criterion;
-
 /* Fits one law. Must be called between PetscInitialize and PetscFinalize; runs on PETSC_COMM_SELF.
  * Flags parameters at a bound. A fit whose parameters are not determined (singular normal matrix)
  * or that gives any non-finite reported value (parameter, standard error, covariance, chi2, the law
  * at the data points or on the reported curve up to 1.1 max|G|) is refused: r->ok = 0, r->why says
  * why, and -1 is returned, so that no report ever prints nan or inf. */
 int fit_law(const fit_data *d, const fluid_props *fl, flow_law_kind kind, fit_result *r);
-
-/* The law with fewer parameters that `kind` reduces to at one value of its second parameter
- * (darcy: threshold at G0 = 0, forchheimer at beta = 0, power at n = 1), or -1 if none. */
-int fit_nested_law(flow_law_kind kind, const char **at);
-
-/* Chooses among fitted results (r[0..nr-1], already filled by fit_law): sets r[i].eligible and
- * r[i].not_eligible, the BIC weights among the eligible fits, and returns the index of the lowest
- * criterion among them, or -1 if none. Eligible: ok and converged, and no parameter at a bound
- * unless the nested simpler law (fit_nested_law) is not among the usable fits. */
-int fit_choose(fit_result *r, int nr, fit_criterion crit);
-
-/* The index of the lowest criterion among ok and converged fits, eligible or not (-1 if none): the
- * law that would have been chosen without the at-bound rule. */
-int fit_lowest(const fit_result *r, int nr, fit_criterion crit);
-
-/* Fits every law in `kinds` (count nk) and returns fit_choose's choice. */
-int fit_all(const fit_data *d, const fluid_props *fl, const flow_law_kind *kinds, int nk,
-            fit_criterion crit, fit_result *r);
 
 #endif
