@@ -379,6 +379,7 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
     snprintf(template_path, len, "%s", o->input);
   } else {
     mdp_image_t img;
+    if (camp_resolution(o, c)) return -1; /* sets o->rc_per_voxel */
     if (image_meta(o->input, NULL, NULL, o->rc_per_voxel, o, c, &img)) return -1;
     snprintf(template_path, len, "%s/template.yaml", o->workdir);
     int rc = write_image_template(o, &img, template_path);
