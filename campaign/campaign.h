@@ -54,6 +54,9 @@ typedef struct {
   char emit_dir[CAMP_PATH];    /* --emit-scenes DIR ("" = no) */
   char collect_dir[CAMP_PATH]; /* --collect DIR ("" = no) */
   double rc_per_voxel;         /* image input: voxel edge in rc */
+  int rc_per_voxel_given;      /* --rc-per-voxel given (else chosen from the critical throat) */
+  double min_throat;           /* image input: least critical throat along a flow axis, rc */
+  int force;                   /* --force: run below min_throat (with a warning) */
   double voxel_size_m;         /* --voxel-size (m per voxel; 0 = from the image or the mapping) */
   double viscosity;            /* mu of the fluid in reduced units */
   int viscosity_given;
@@ -119,6 +122,13 @@ typedef struct {
   int boundary[3];  /* treatment of the faces normal to each axis (CAMP_BOUNDARY_*; 0: no run) */
   int sides_mirror; /* the lateral faces mirrored (1) or periodic (0) */
   double seam_continuity[3]; /* mdp_image_seam continuity per axis (NAN without an image) */
+  /* resolution of an IMAGE input (campaign_resolution.c); throat_voxels -1: not measured */
+  int throat_voxels[3];          /* critical throat per axis of the periodic box, voxels */
+  double min_throat;             /* the least throat allowed along a flow axis, rc */
+  char rc_per_voxel_source[256]; /* how rc_per_voxel was chosen */
+  char resolution_warning[512];  /* --force below min_throat: the warning ("" = none) */
+  double particles_estimate;     /* fluid + wall particles of the largest run (NAN: none) */
+  char regime[32];               /* nanopore | intermediate | continuum ("" = not known) */
   int n_runs;
   camp_run runs[CAMP_MAX_RUNS];
 } campaign;
@@ -135,6 +145,13 @@ extern const char *camp_usage;
  * SCENE's geometry image; a scene without one is refused). A SCENE's geometry sets
  * o->rc_per_voxel. 0 or -1 with a message naming the file/key. */
 int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len);
+
+/* campaign_resolution.c: IMAGE input: the critical throat per flow axis (mdp_image_pore_sizes,
+ * periodic box), rc_per_voxel chosen from it (min_throat / throat, rounded up to two significant
+ * digits) or the given one checked against it (refused below min_throat unless --force), and a
+ * report on stderr: throats in voxels and rc, the box, particles, time, rc in metres and the
+ * regime. Sets o->rc_per_voxel and the campaign's resolution fields. 0, or -1 with a message. */
+int camp_resolution(camp_opts *o, campaign *c);
 
 /* campaign_accuracy.c: --accuracy fast|balanced|precise (docs/accuracy.md); explicit options
  * win. 0, or -1 with a message. */

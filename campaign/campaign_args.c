@@ -35,7 +35,10 @@ const char *camp_usage =
     "  --workdir DIR       campaign folder (default permeability-SAMPLE)\n"
     "  --emit-scenes DIR   write the scenes, the manifest and commands.txt, run nothing\n"
     "  --collect DIR       read a campaign folder back: tables, fits, report\n"
-    "  --rc-per-voxel R    image: voxel edge in rc (default 0.5)\n"
+    "  --rc-per-voxel R    image: voxel edge in rc (default: the critical throat along the flow\n"
+    "                      axes made --min-throat wide; refused below that unless --force)\n"
+    "  --min-throat RC     image: least critical throat along a flow axis, in rc (default 4)\n"
+    "  --force             image: run a --rc-per-voxel below --min-throat (with a warning)\n"
     "  --voxel-size M      voxel edge in metres (default: the image's own, else the mDPD water\n"
     "                      mapping rc = 0.82 nm)\n"
     "  --viscosity MU      fluid viscosity in reduced units (default 5.41: mDPD A=-40 B=25\n"
@@ -128,6 +131,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->target_error = 0.05;
   o->np = 1;
   o->rc_per_voxel = 0.5;
+  o->min_throat = 4.0;
   o->viscosity = 5.41;
   o->wall_density = CAMP_DEFAULT_WALL_DENSITY;
   snprintf(o->rng, sizeof o->rng, "philox");
@@ -143,6 +147,10 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (!strcmp(s, "--force")) { /* no value */
+      o->force = 1;
+      continue;
+    }
     if (s[0] == '-' && s[1] == '-' && i + 1 >= argc) {
       fprintf(stderr, "mdpore permeability: %s: expected a value after it\n", s);
       return -1;
@@ -195,6 +203,9 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       absolute(v, o->collect_dir, sizeof o->collect_dir);
     else if (!strcmp(s, "--rc-per-voxel")) {
       if (parse_double(s, v, 0, HUGE_VAL, "a voxel edge in rc > 0", &o->rc_per_voxel)) return -1;
+      o->rc_per_voxel_given = 1;
+    } else if (!strcmp(s, "--min-throat")) {
+      if (parse_double(s, v, 0, 1e6, "a throat width in rc > 0", &o->min_throat)) return -1;
     } else if (!strcmp(s, "--voxel-size")) {
       if (parse_double(s, v, 0, 1, "a voxel edge in metres (0 < M < 1)", &o->voxel_size_m))
         return -1;

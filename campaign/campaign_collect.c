@@ -326,6 +326,18 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
     }
   json_string(&j, "sides", c->sides_mirror ? "mirror" : "periodic");
   json_object_end(&j);
+  if (c->rc_per_voxel_source[0]) { /* an IMAGE's resolution (campaign_resolution.c) */
+    json_object(&j, "resolution");
+    json_array(&j, "critical_throat_voxels");
+    for (int d = 0; d < 3; d++) json_int(&j, NULL, c->throat_voxels[d]);
+    json_array_end(&j);
+    json_number(&j, "min_throat_rc", c->min_throat);
+    json_string(&j, "rc_per_voxel_source", c->rc_per_voxel_source);
+    json_number(&j, "particles_estimate", c->particles_estimate);
+    if (c->regime[0]) json_string(&j, "regime", c->regime);
+    if (c->resolution_warning[0]) json_string(&j, "warning", c->resolution_warning);
+    json_object_end(&j);
+  }
   json_string(&j, "convention",
               "superficial (Darcy) velocity q = Q / A_total, A_total = the "
               "whole cross-section (solid included); k = mu q / G");
@@ -395,6 +407,12 @@ int camp_collect(const camp_opts *o, campaign *c, const char *workdir) {
   camp_core_viscosity(c);
   camp_units u;
   camp_units_of(c, &u);
+  if (c->rc_per_voxel_source[0])
+    printf(
+        "resolution: %g rc per voxel (%s); critical throat x %d y %d z %d voxels; %s regime%s%s\n",
+        c->rc_per_voxel, c->rc_per_voxel_source, c->throat_voxels[0], c->throat_voxels[1],
+        c->throat_voxels[2], c->regime[0] ? c->regime : "unknown",
+        c->resolution_warning[0] ? "\nWARNING: " : "", c->resolution_warning);
   printf("units: rc = %.4g m (%s)\n", u.rc_m, c->length_source);
   if (c->energy_J > 0)
     printf("  energy unit %.4g J (the scene's units block); ", u.kT_J);

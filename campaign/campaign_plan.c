@@ -122,6 +122,14 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
           camp_boundary_name(c->boundary[0]), camp_boundary_name(c->boundary[1]),
           camp_boundary_name(c->boundary[2]), c->sides_mirror ? "mirror" : "periodic",
           c->seam_continuity[0], c->seam_continuity[1], c->seam_continuity[2]);
+  if (c->rc_per_voxel_source[0]) { /* an IMAGE's resolution (campaign_resolution.c) */
+    fprintf(f, "throat_voxels: %d %d %d\nmin_throat: %.17g\nrc_per_voxel_source: %s\n",
+            c->throat_voxels[0], c->throat_voxels[1], c->throat_voxels[2], c->min_throat,
+            c->rc_per_voxel_source);
+    fprintf(f, "particles_estimate: %.17g\n", c->particles_estimate);
+    if (c->regime[0]) fprintf(f, "regime: %s\n", c->regime);
+    if (c->resolution_warning[0]) fprintf(f, "resolution_warning: %s\n", c->resolution_warning);
+  }
   for (int i = 0; i < c->n_runs; i++)
     fprintf(f, "run: %c %.17g %s\n", 'x' + c->runs[i].axis, c->runs[i].g, c->runs[i].dir);
   return atomic_commit(f, tmp, path);
@@ -152,6 +160,8 @@ int camp_read_manifest(const char *workdir, campaign *c) {
   memset(c, 0, sizeof *c);
   for (int d = 0; d < 3; d++) c->seam_continuity[d] = NAN;
   c->wall_density = NAN; /* a scene's own, or a manifest from before --wall-density */
+  c->particles_estimate = c->min_throat = NAN; /* a scene, or a manifest from before them */
+  for (int d = 0; d < 3; d++) c->throat_voxels[d] = -1;
   int ln = 0, rc = 0, head = 0;
   while (!rc && fgets(line, sizeof line, f)) {
     ln++;
@@ -176,7 +186,20 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       snprintf(c->viscosity_source, sizeof c->viscosity_source, "%s", v);
     else if (!strcmp(k, "length_source"))
       snprintf(c->length_source, sizeof c->length_source, "%s", v);
-    else if (!strcmp(k, "pair_rng")) {
+    else if (!strcmp(k, "rc_per_voxel_source"))
+      snprintf(c->rc_per_voxel_source, sizeof c->rc_per_voxel_source, "%s", v);
+    else if (!strcmp(k, "regime"))
+      snprintf(c->regime, sizeof c->regime, "%s", v);
+    else if (!strcmp(k, "resolution_warning"))
+      snprintf(c->resolution_warning, sizeof c->resolution_warning, "%s", v);
+    else if (!strcmp(k, "throat_voxels")) {
+      if (sscanf(v, "%d %d %d", &c->throat_voxels[0], &c->throat_voxels[1], &c->throat_voxels[2]) !=
+          3) {
+        fprintf(stderr, "mdpore permeability: %s:%d: key 'throat_voxels': expected 3 integers\n",
+                path, ln);
+        rc = -1;
+      }
+    } else if (!strcmp(k, "pair_rng")) {
       if (strcmp(v, "philox") && strcmp(v, "philox2x32") && strcmp(v, "fast")) {
         fprintf(stderr,
                 "mdpore permeability: %s:%d: key 'pair_rng': expected philox, philox2x32 or fast "
@@ -235,12 +258,14 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       struct {
         const char *key;
         double *to;
-      } nums[] = {{"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
-                  {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
-                  {"viscosity", &c->viscosity},         {"wall_density", &c->wall_density},
-                  {"length_unit_m", &c->length_unit_m}, {"temperature_K", &c->temperature_K},
-                  {"target_error", &c->target_error},   {"reservoir", &c->reservoir},
-                  {"energy_J", &c->energy_J},           {"particle_mass_kg", &c->particle_mass_kg}};
+      } nums[] = {
+          {"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
+          {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
+          {"viscosity", &c->viscosity},         {"wall_density", &c->wall_density},
+          {"length_unit_m", &c->length_unit_m}, {"temperature_K", &c->temperature_K},
+          {"target_error", &c->target_error},   {"reservoir", &c->reservoir},
+          {"energy_J", &c->energy_J},           {"particle_mass_kg", &c->particle_mass_kg},
+          {"min_throat", &c->min_throat},       {"particles_estimate", &c->particles_estimate}};
       for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
         if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
       if (!strcmp(k, "np")) {

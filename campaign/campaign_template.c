@@ -352,10 +352,12 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
     snprintf(template_path, len, "%s", o->input);
   } else {
     mdp_image_t img;
+    /* the boundaries first (they set which faces the critical throat may wrap through), then
+     * o->rc_per_voxel from the throat */
+    if (camp_resolution(o, c)) return -1;
     if (image_meta(o->input, NULL, NULL, o->rc_per_voxel, o, c, &img)) return -1;
     snprintf(template_path, len, "%s/template.yaml", o->workdir);
     int rc = write_image_template(o, &img, template_path);
-    camp_resolve_boundaries(o, c, &img);
     if (!rc) rc = camp_write_boundary_images(o, &img);
     mdp_image_free(&img);
     if (rc) return -1;

@@ -67,8 +67,11 @@ static int campaign_argv(const couple_config *c, const couple_block *b, const ch
   bad = bad || add(argv, &n, "--np") || add(argv, &n, v);
   snprintf(v, sizeof v, "%lld", c->seed);
   bad = bad || add(argv, &n, "--seed") || add(argv, &n, v);
+  /* The blocks share the config's voxel edge (one continuum grid): a block whose critical throat
+   * is narrower than the campaign's --min-throat runs with its warning (recorded in the block's
+   * permeability.json) instead of stopping the loop. */
   snprintf(v, sizeof v, "%.17g", c->rc_per_voxel);
-  bad = bad || add(argv, &n, "--rc-per-voxel") || add(argv, &n, v);
+  bad = bad || add(argv, &n, "--rc-per-voxel") || add(argv, &n, v) || add(argv, &n, "--force");
   if (c->voxel_size[0]) bad = bad || add(argv, &n, "--voxel-size") || add(argv, &n, c->voxel_size);
   if (c->viscosity > 0) {
     snprintf(v, sizeof v, "%.17g", c->viscosity);

@@ -7,11 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <time.h>
 
 static void usage(FILE *to) {
   fprintf(
       to,
-      "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--json]\n"
+      "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--sizes [--periodic]] [--json]\n"
       "       mdpore image convert IMAGE -o OUT.h5|OUT.raw|OUT.tif [options]\n"
       "       mdpore image stack IMAGE IMAGE [...] --axis x|y|z -o OUT   (one after another)\n"
       "       mdpore image make slit --width N [--wall W] [--length L] [--depth D] -o OUT\n"
@@ -20,10 +21,19 @@ static void usage(FILE *to) {
       "       mdpore image make random-spheres --size N --radius R --porosity P [--seed S] -o OUT\n"
       "       mdpore image make sphere-file --centres FILE (--box LX,LY,LZ | --box-file FILE)\n"
       "                                     --radius R --dx DX -o OUT\n"
-      "info prints porosity, connected porosity per axis and isolated pores; with --axis it fails\n"
-      "when that axis does not percolate. make labels pore 0 and solid 1; --voxel-size sets the\n"
-      "voxel size of made images.\n");
+      "info prints porosity, connected porosity per axis, isolated pores and how periodic the\n"
+      "image is per axis (end-slice pore overlap, percolation with and without the wrap); with\n"
+      "--axis it fails when that axis does not percolate. --sizes adds the pore-size distribution\n"
+      "and the critical throat per axis (distances measured across the faces with --periodic, as\n"
+      "a periodic run sees them). make labels pore 0 and solid 1; --voxel-size sets the voxel\n"
+      "size of made images.\n");
   mdp_image_cli_help(to);
+}
+
+static double now_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
 static int ends_with(const char *s, const char *ext) {
@@ -52,7 +62,7 @@ static void print_info(const char *path, const mdp_image_t *img, const mdp_image
            "\"connected_porosity\": {\"x\": %.12g, \"y\": %.12g, \"z\": %.12g}, "
            "\"percolates\": {\"x\": %s, \"y\": %s, \"z\": %s}, "
            "\"isolated\": {\"clusters\": %d, \"porosity\": %.12g}, "
-           "\"non_spanning\": {\"clusters\": %d, \"porosity\": %.12g}}\n",
+           "\"non_spanning\": {\"clusters\": %d, \"porosity\": %.12g}",
            path, img->nx, img->ny, img->nz, img->voxel_size, img->unit, map, st->n_voxels,
            st->n_pore, st->n_organic / n, st->n_inorganic / n, st->porosity, st->n_clusters,
            st->connected_porosity[0], st->connected_porosity[1], st->connected_porosity[2],
@@ -78,6 +88,75 @@ static void print_info(const char *path, const mdp_image_t *img, const mdp_image
          st->n_nonspanning_clusters, st->nonspanning_voxels / n);
 }
 
+/* Periodicity (always) and sizes (with --sizes) after the basic report; closes the JSON object. */
+static void print_extras(const mdp_image_t *img, const mdp_image_axis_periodicity_t *per,
+                         const mdp_image_pore_sizes_t *ps, double seconds, int json) {
+  const double n = (double)mdp_image_count(img);
+  if (json) {
+    printf(", \"periodicity\": {");
+    for (int a = 0; a < 3; a++) {
+      const mdp_image_axis_periodicity_t *p = &per[a];
+      printf("%s\"%c\": {\"face_voxels\": %lld, \"pore_first\": %lld, \"pore_last\": %lld, "
+             "\"pore_both\": %lld, \"pore_either\": %lld, \"overlap\": %.12g, "
+             "\"overlap_face\": %.12g, \"percolates_open\": %s, \"percolates_wrap\": %s, "
+             "\"connected_porosity_open\": %.12g, \"connected_porosity_wrap\": %.12g, "
+             "\"wrap_only\": {\"clusters\": %d, \"porosity\": %.12g}, "
+             "\"seam_blocked\": {\"clusters\": %d, \"porosity\": %.12g}}",
+             a ? ", " : "", 'x' + a, p->face_voxels, p->pore_first, p->pore_last, p->pore_both,
+             p->pore_either, p->overlap, p->overlap_face, p->percolates_open ? "true" : "false",
+             p->percolates_wrap ? "true" : "false", p->connected_open / n, p->connected_wrap / n,
+             p->wrap_only_clusters, p->wrap_only_voxels / n, p->seam_blocked_clusters,
+             p->seam_blocked_voxels / n);
+    }
+    printf("}");
+    if (ps) {
+      printf(", \"sizes\": {\"periodic\": [%s, %s, %s], \"voxels\": %lld, \"no_solid\": %s, ",
+             ps->periodic[0] ? "true" : "false", ps->periodic[1] ? "true" : "false",
+             ps->periodic[2] ? "true" : "false", ps->voxels, ps->no_solid ? "true" : "false");
+      if (ps->no_solid || ps->voxels == 0)
+        printf("\"diameter_voxels\": null, ");
+      else
+        printf("\"diameter_voxels\": {\"p10\": %.6g, \"p25\": %.6g, \"p50\": %.6g, \"p75\": "
+               "%.6g, \"p90\": %.6g, \"mean\": %.6g, \"max\": %.6g}, ",
+               ps->diameter_q[0], ps->diameter_q[1], ps->diameter_q[2], ps->diameter_q[3],
+               ps->diameter_q[4], ps->diameter_mean, ps->diameter_max);
+      printf("\"critical_throat_voxels\": {\"x\": %d, \"y\": %d, \"z\": %d}, \"labellings\": %d, "
+             "\"seconds\": %.3f}",
+             ps->throat[0], ps->throat[1], ps->throat[2], ps->labellings, seconds);
+    }
+    printf("}\n");
+    return;
+  }
+  for (int a = 0; a < 3; a++) {
+    const mdp_image_axis_periodicity_t *p = &per[a];
+    printf("periodic %c   end slices: pore on both %lld of %lld pore on either (overlap %.4f), "
+           "%.4f of the face\n",
+           'x' + a, p->pore_both, p->pore_either, p->overlap, p->overlap_face);
+    printf("             wrapped: %s, connected porosity %.6f (face to face %.6f); the wrap adds "
+           "%d clusters (%.6f), the seam blocks %d (%.6f)\n",
+           p->percolates_wrap ? "percolates" : "does NOT percolate", p->connected_wrap / n,
+           p->connected_open / n, p->wrap_only_clusters, p->wrap_only_voxels / n,
+           p->seam_blocked_clusters, p->seam_blocked_voxels / n);
+  }
+  if (!ps) return;
+  const char *across = ps->periodic[0] || ps->periodic[1] || ps->periodic[2]
+                           ? "distances across the faces (periodic)"
+                           : "faces open";
+  if (ps->voxels == 0) {
+    printf("sizes        no pore cluster spans an axis: no percolating pore space\n");
+  } else if (ps->no_solid) {
+    printf("sizes        no solid voxel: pore sizes unbounded\n");
+  } else {
+    printf("pore size    inscribed diameter of the percolating pore space (voxels, by volume): "
+           "p10 %.3g  p25 %.3g  p50 %.3g  p75 %.3g  p90 %.3g  mean %.3g  max %.3g\n",
+           ps->diameter_q[0], ps->diameter_q[1], ps->diameter_q[2], ps->diameter_q[3],
+           ps->diameter_q[4], ps->diameter_mean, ps->diameter_max);
+  }
+  printf("throat       critical (breakthrough) diameter, voxels: x %d  y %d  z %d (%s; %d "
+         "labellings, %.2f s)\n",
+         ps->throat[0], ps->throat[1], ps->throat[2], across, ps->labellings, seconds);
+}
+
 static int axis_of(const char *s) {
   return !strcmp(s, "x") ? 0 : !strcmp(s, "y") ? 1 : !strcmp(s, "z") ? 2 : -1;
 }
@@ -87,7 +166,7 @@ static int cmd_info_or_convert(int argc, char **argv, int convert) {
   mdp_image_cli_t cli;
   mdp_image_cli_init(&cli);
   const char *path = NULL, *out = NULL;
-  int json = 0, axis = -1;
+  int json = 0, axis = -1, sizes = 0, periodic = 0;
   for (int i = 1; i < argc;) {
     int r = mdp_image_cli_parse(argc, argv, &i, &cli, err);
     if (r < 0) {
@@ -97,6 +176,10 @@ static int cmd_info_or_convert(int argc, char **argv, int convert) {
     if (r) continue;
     if (!strcmp(argv[i], "--json")) {
       json = 1;
+    } else if (!strcmp(argv[i], "--sizes")) {
+      sizes = 1;
+    } else if (!strcmp(argv[i], "--periodic")) {
+      periodic = 1;
     } else if (!strcmp(argv[i], "--axis") && i + 1 < argc) {
       if ((axis = axis_of(argv[++i])) < 0) {
         fprintf(stderr, "mdpore image: --axis '%s': expected x, y or z\n", argv[i]);
@@ -134,11 +217,18 @@ static int cmd_info_or_convert(int argc, char **argv, int convert) {
     }
   } else {
     mdp_image_stats_t st;
-    if (mdp_image_stats(&img, &st, err)) {
+    mdp_image_axis_periodicity_t per[3];
+    mdp_image_pore_sizes_t ps;
+    const int across[3] = {periodic, periodic, periodic};
+    double t0 = 0, t1 = 0;
+    if (mdp_image_stats(&img, &st, err) || mdp_image_periodicity(&img, per, err) ||
+        (t0 = now_seconds(), sizes && mdp_image_pore_sizes(&img, across, &ps, err))) {
       fprintf(stderr, "mdpore image: %s\n", err);
       rc = 1;
     } else {
+      t1 = now_seconds();
       print_info(path, &img, &st, json);
+      print_extras(&img, per, sizes ? &ps : NULL, t1 - t0, json);
       if (st.n_pore == 0 || axis >= 0) {
         if (mdp_image_require_percolation(&img, &st, axis < 0 ? 0 : axis, path, err) &&
             (axis >= 0 || st.n_pore == 0)) {

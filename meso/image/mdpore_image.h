@@ -193,6 +193,61 @@ int mdp_image_require_percolation(const mdp_image_t *img, const mdp_image_stats_
  * mdp_image_require_percolation first). Shared by `mdpore foam` and the mDPD wall builder. */
 int mdp_image_drop_nonspanning(mdp_image_t *img, int axis, long long *dropped, char *err);
 
+/* ---- how periodic an image is (image_periodicity.c) ----
+ * Per axis: the pore of the two end slices (slice 0 and slice n-1 face each other across the seam
+ * of a periodic box) and percolation along the axis without and with the periodic wrap along it.
+ * Percolation with the wrap: a 6-connected pore path that winds once around the axis in the box
+ * that is periodic along that axis (the other faces closed); found by a union-find over the
+ * clusters without wrap, joined across the seam, with each cluster's winding offset kept. */
+typedef struct {
+  long long face_voxels;                /* voxels of one end slice (the face area) */
+  long long pore_first, pore_last;      /* pore voxels of slice 0 and of slice n-1 */
+  long long pore_both, pore_either;     /* pore on both end slices at the same place / on either */
+  double overlap;                       /* pore_both / pore_either (1: the end slices match) */
+  double overlap_face;                  /* pore_both / face_voxels */
+  int percolates_open, percolates_wrap; /* face to face without the wrap / around with it */
+  long long connected_open, connected_wrap; /* pore voxels that percolate without / with */
+  int wrap_only_clusters;                   /* clusters percolating only through the wrap */
+  long long wrap_only_voxels;               /* ... their pore voxels: connected porosity it adds */
+  int seam_blocked_clusters;     /* face-to-face clusters that do not percolate with it */
+  long long seam_blocked_voxels; /* ... their pore voxels: connected porosity it blocks */
+} mdp_image_axis_periodicity_t;
+int mdp_image_periodicity(const mdp_image_t *img, mdp_image_axis_periodicity_t per[3], char *err);
+
+/* ---- distance transform (image_edt.c) ----
+ * d4[p] = 4 x the squared Euclidean distance (voxel units) from lattice point p to the nearest
+ * solid (not pore) voxel centre, an integer; MDP_EDT_NO_SOLID without any solid voxel. The point
+ * of voxel (i, j, k) is its centre (MDP_EDT_CENTRES) or its corner (i, j, k) + 1/2
+ * (MDP_EDT_CORNERS; those of the last layer lie on the high face). Along an axis with periodic[a]
+ * the distance is measured across the faces, else nothing lies beyond them (open faces). Exact
+ * (Felzenszwalb & Huttenlocher separable transform); d4 holds one uint32 per voxel. */
+enum { MDP_EDT_CENTRES = 0, MDP_EDT_CORNERS = 1 };
+#define MDP_EDT_NO_SOLID UINT32_MAX
+int mdp_image_pore_distance(const mdp_image_t *img, int lattice, const int periodic[3],
+                            uint32_t *d4, char *err);
+
+/* ---- pore and throat sizes (image_pore_sizes.c) ----
+ * Of the percolating pore space (clusters spanning some axis face to face): the inscribed diameter
+ * at each pore voxel, D = 2 r - 1 voxels with r the distance from its centre to the nearest solid
+ * voxel centre (the widest ball centred there that enters no solid voxel along an axis; the middle
+ * of a slit of odd width w has D = w), its quantiles; and per axis the critical throat: the largest
+ * diameter d (whole voxels) such that the centres of the digital balls of diameter d that hold no
+ * solid voxel (voxel centres for odd d, voxel corners for even d, each ball d voxels across)
+ * percolate face to face along the axis: the breakthrough of mercury intrusion. A slit of width w
+ * voxels gives w, a channel with a narrower constriction the constriction. Bisection on d with
+ * mdp_image_stats. */
+typedef struct {
+  int periodic[3];      /* distances measured across the faces of these axes */
+  long long voxels;     /* pore voxels of the percolating pore space */
+  double diameter_q[5]; /* 10, 25, 50, 75, 90 % quantiles of D (voxels), by pore volume */
+  double diameter_mean, diameter_max;
+  int throat[3];  /* critical throat per axis (voxels); 0: the axis does not percolate */
+  int no_solid;   /* 1: no solid voxel, every size unbounded (throat = the box size) */
+  int labellings; /* cluster labellings the bisection made */
+} mdp_image_pore_sizes_t;
+int mdp_image_pore_sizes(const mdp_image_t *img, const int periodic[3], mdp_image_pore_sizes_t *ps,
+                         char *err);
+
 /* ---- synthetic images (image_make.c); all labels: 0 pore, 1 inorganic solid ---- */
 /* Slit along x: n_pore pore layers between `wall` solid layers normal to y; nx = length, nz =
  * depth. */

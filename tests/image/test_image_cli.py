@@ -1,6 +1,7 @@
 """mdpore image info/convert/make from the command line: porosity of the POREMAPS BCC/FCC packs
 (built at porosity 0.30), JSON output, HDF5 conversion that keeps the statistics, and the errors for a
-wrong size, an unknown label, empty pore space and a non-percolating axis.
+wrong size, an unknown label, empty pore space and a non-percolating axis; the periodicity report and
+--sizes (critical throat) on a slit.
 argv: mdpore executable, poremaps_benchmarks folder."""
 import glob
 import json
@@ -35,6 +36,18 @@ with tempfile.TemporaryDirectory() as tmp:
     check(abs(info["porosity"] - 0.6) < 1e-9, f"slit porosity {info['porosity']}")
     check(info["percolates"] == {"x": True, "y": False, "z": True}, f"slit percolation {info['percolates']}")
     check(info["unit"] == "nm" and info["voxel_size"] == 20, "voxel size kept in HDF5")
+    # periodicity (always) and sizes (--sizes): the slit's end slices match along x and z; its
+    # critical throat is its width along x and z, none along y
+    per = info["periodicity"]
+    check(per["x"]["overlap"] == 1 and per["x"]["percolates_wrap"] and not per["y"]["percolates_wrap"],
+          f"slit periodicity {per['x']} {per['y']}")
+    rc, out, err = run("info", slit, "--json", "--sizes", "--periodic")
+    sizes = json.loads(out)["sizes"] if rc == 0 else {}
+    check(sizes.get("critical_throat_voxels") == {"x": 6, "y": 0, "z": 6} and sizes.get("periodic") == [True] * 3,
+          f"slit --sizes: {sizes}")
+    rc, out, err = run("info", slit, "--sizes")
+    check(rc == 0 and "periodic x" in out and "critical (breakthrough) diameter, voxels: x 6  y 0  z 6" in out,
+          f"slit --sizes text: {out[-400:]}")
     rc, out, err = run("info", slit, "--axis", "y")
     check(rc != 0 and "axis y does not percolate" in err, f"non-percolating axis error: {err}")
     rc, out, err = run("info", slit, "--labels", "pore=7,inorganic=0-1")
