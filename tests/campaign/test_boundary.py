@@ -4,8 +4,8 @@
 2 ranks, a few seconds each).
 
 Image (rc_per_voxel 0.5): 24 x 20 x 8 voxels (12 x 10 x 4 rc), solid but for a channel 8 voxels (4 rc)
-wide in y that runs along x in y = [2, 10) for x < 14, in y = [10, 18) for x >= 10 (the two legs
-overlap at x = 10..13, the connector), open along z. The channel joins the x faces, so the image
+wide in y that runs along x in y = [2, 10) for x < 16, in y = [10, 18) for x >= 8 (the two legs
+overlap at x = 8..15, the connector, 8 voxels wide: the critical throat is 8 voxels = 4 rc), open along z. The channel joins the x faces, so the image
 percolates along x; but its last slice (pore at y = 10..17) meets its first (pore at y = 2..9) pore to
 solid: in a periodic box along x the seam closes the only flow path.
 
@@ -13,7 +13,8 @@ Asserted:
  1. --boundary auto reads the x seam as not periodic (continuity 0) and mirrors: the run scenes read
     WORKDIR/mirror_x.raw (48 x 20 x 8 voxels, the image and its reflection), the box is 24 rc long,
     the manifest and permeability.json name the treatment; the z axis (all open) reads periodic;
- 2. --sides mirror doubles y and z too; --boundary periodic warns that the seam closes flow paths;
+ 2. --sides mirror doubles y and z too; --boundary periodic sees the seam as a 1-voxel throat and is
+    refused without --force, and with it warns that the seam closes flow paths;
     --boundary mirror with --drive pressure is refused; --boundary other is refused;
  3. the flow: with the mirror the runs carry a flux, k_mirror > 0 by more than 5 errors; forced
     periodic, the seam blocks it: |q| of every periodic run is below 10% of the mirror run's at the
@@ -47,7 +48,7 @@ def write_z_channel(path):
     for k in range(nz):
         for j in range(ny):
             for i in range(nx):
-                if (i < 14 and 2 <= j < 10) or (i >= 10 and 10 <= j < 18):
+                if (i < 16 and 2 <= j < 10) or (i >= 8 and 10 <= j < 18):
                     vox[i + nx * (j + ny * k)] = 0
     with open(path, "wb") as f:
         f.write(vox)
@@ -97,8 +98,14 @@ def main():
                "--sides", "mirror")
     info = mdpore("image", "info", os.path.join(OUT, "em_sides", "mirror_x.raw"))
     check(p.returncode == 0 and "48 x 40 x 16" in info.stdout, f"--sides mirror: 48 x 40 x 16 ({info.stdout[:120]})")
-    p = mdpore("permeability", img, "--axis", "x", "--emit-scenes", "em_per", "--rc-per-voxel", "0.5",
+    # forced periodic, the seam is a wall one voxel from the channel: the critical throat through
+    # the runs' faces is 1 voxel, so the campaign refuses it without --force
+    p = mdpore("permeability", img, "--axis", "x", "--emit-scenes", "em_per0", "--rc-per-voxel", "0.5",
                "--boundary", "periodic")
+    check(p.returncode != 0 and "critical throat along x is 1 voxel" in p.stderr,
+          f"--boundary periodic: the seam's throat refused ({p.stderr[-300:]})")
+    p = mdpore("permeability", img, "--axis", "x", "--emit-scenes", "em_per", "--rc-per-voxel", "0.5",
+               "--boundary", "periodic", "--force")
     check(p.returncode == 0 and "closes or invents flow paths" in p.stderr,
           f"--boundary periodic on a non-periodic image warns ({p.stderr[-300:]})")
     p = mdpore("permeability", img, "--axis", "x", "--emit-scenes", "em_bad", "--boundary", "mirror",
@@ -110,7 +117,8 @@ def main():
     # 3. the flow through the seam
     pm = mdpore("permeability", img, "--axis", "x", "--workdir", "mirror", *common)
     print(pm.stdout[-1500:])
-    pp = mdpore("permeability", img, "--axis", "x", "--workdir", "periodic", "--boundary", "periodic", *common)
+    pp = mdpore("permeability", img, "--axis", "x", "--workdir", "periodic", "--boundary", "periodic", "--force",
+               *common)
     print(pp.stdout[-1500:])
     qm, qp = flux_by_g(os.path.join(OUT, "mirror")), flux_by_g(os.path.join(OUT, "periodic"))
     check(len(qm) == 2 and len(qp) == 2, f"both campaigns ran their 2 runs ({len(qm)}, {len(qp)})")
