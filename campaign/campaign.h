@@ -75,8 +75,11 @@ typedef struct {
   int drive;                /* CAMP_DRIVE_BODY (default) or CAMP_DRIVE_PRESSURE */
   double reservoir;         /* pressure drive: reservoir length along the axis, rc (default 4) */
   int boundary;             /* --boundary: CAMP_BOUNDARY_* (AUTO by default) */
-  int sides_mirror;         /* --sides mirror: the lateral faces mirrored too (default periodic) */
-  int boundary_of_axis[3];  /* resolved per flow axis by camp_resolve_boundaries */
+  double density_tolerance; /* a run whose pore core departs more from the fill is left out */
+  double temperature_tolerance; /* a run whose temperature departs more from kT is left out */
+  double cavitation_tolerance;  /* a run whose pore core departs more from the fill is left out */
+  int sides_mirror;        /* --sides mirror: the lateral faces mirrored too (default periodic) */
+  int boundary_of_axis[3]; /* resolved per flow axis by camp_resolve_boundaries */
 } camp_opts;
 
 /* One planned run. */
@@ -91,6 +94,8 @@ typedef struct {
   double G_err;      /* pressure drive: error of the measured G (NAN for a body force) */
   double dp_balance; /* pressure drive: dp / (inlet force / A_total) (NAN for a body force) */
   double core_density, core_density_err; /* the pore core's fluid density (NAN: none) */
+  double temperature, temperature_err;   /* the run's mean kinetic temperature (NAN: none) */
+  int steady;                            /* the flux reached a steady state (1), not (0), -1 ? */
   int reached;                           /* 1 met the target, 0 not, -1 no target */
   long long steps, particles, steady_from;
   double seconds; /* loop seconds of the run */
@@ -113,6 +118,7 @@ typedef struct {
   double length_unit_m; /* metres per rc */
   char length_source[256];
   double temperature_K;
+  double kT;               /* the scenes' kT, reduced (1 for an IMAGE's template) */
   double energy_J;         /* J per reduced energy unit (NAN: kB temperature_K; a scene's units) */
   double particle_mass_kg; /* kg per reduced mass (NAN: rho_water / n; a scene's units block) */
   double target_error;
@@ -223,6 +229,23 @@ typedef struct {
 } camp_linear;
 int camp_darcy_range(const double *G, const double *q, const double *sigma, int n, double mu,
                      camp_linear *out);
+
+/* campaign_checks.c: whether a run's data can enter the Darcy range: its flux steady, its
+ * temperature within temperature_tol of kT (else viscous heating), its pore core's density within
+ * cavitation_tol of the fill (else cavitation or compression) and within density_tol of the liquid
+ * at rest n_rest (the axis's weakest admissible run; <= 0: not checked; else the forcing compresses
+ * or expands it). 1 = admissible; 0 = left out, the reason (naming the measured value) in why. */
+#define CAMP_DEFAULT_DENSITY_TOLERANCE 0.03
+#define CAMP_DEFAULT_CAVITATION_TOLERANCE 0.08
+#define CAMP_DEFAULT_TEMPERATURE_TOLERANCE 0.05
+typedef struct {
+  double fill_density, kT;
+  double density_tol, cavitation_tol, temperature_tol;
+} camp_checks;
+int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest, char *why,
+                        int len);
+/* Exit status of a campaign whose runs define no Darcy range on some axis. */
+#define CAMP_EXIT_NO_DARCY_RANGE 3
 
 /* campaign_exec.c: runs argv (execvp) in dir (NULL: here) with stdout + stderr to log (NULL: ours),
  * in the environment this process started with. Returns the exit status or -1. */

@@ -65,6 +65,11 @@ const char *camp_usage =
     "one\n"
     "                      period), mirror (the image and its reflection: each face meets itself)\n"
     "                      or reservoir (= --drive pressure)\n"
+    "  --density-tolerance F  a run whose pore-core density departs from the fill by more than F\n"
+    "                      (cavitation or compression) is left out of the Darcy range (default "
+    "0.03)\n"
+    "  --temperature-tolerance F  a run whose temperature departs from kT by more than F\n"
+    "                      (viscous heating) is left out (default 0.05)\n"
     "  --sides S           the lateral faces: periodic (default) or mirror (symmetry planes, as\n"
     "                      mdpore foam --sides symmetry; four times the particles)\n";
 
@@ -141,6 +146,9 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->drive = CAMP_DRIVE_BODY;
   o->reservoir = 4.0;
   o->boundary = CAMP_BOUNDARY_AUTO;
+  o->density_tolerance = CAMP_DEFAULT_DENSITY_TOLERANCE;
+  o->temperature_tolerance = CAMP_DEFAULT_TEMPERATURE_TOLERANCE;
+  o->cavitation_tolerance = CAMP_DEFAULT_CAVITATION_TOLERANCE;
   snprintf(o->mpiexec, sizeof o->mpiexec, "mpiexec");
   const char *input = NULL, *workdir = NULL, *accuracy = NULL;
   int have_axis = 0, dt_given = 0, error_given = 0, steps_given = 0;
@@ -249,6 +257,15 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     } else if (!strcmp(s, "--boundary")) {
       o->boundary = camp_boundary_parse(v);
       if (o->boundary < 0) return bad(s, "auto, periodic, mirror or reservoir", v);
+    } else if (!strcmp(s, "--density-tolerance")) {
+      if (parse_double(s, v, 0, 1, "a relative tolerance 0 < F < 1", &o->density_tolerance))
+        return -1;
+    } else if (!strcmp(s, "--cavitation-tolerance")) {
+      if (parse_double(s, v, 0, 1, "a relative tolerance 0 < F < 1", &o->cavitation_tolerance))
+        return -1;
+    } else if (!strcmp(s, "--temperature-tolerance")) {
+      if (parse_double(s, v, 0, 1, "a relative tolerance 0 < F < 1", &o->temperature_tolerance))
+        return -1;
     } else if (!strcmp(s, "--sides")) {
       if (strcmp(v, "periodic") && strcmp(v, "mirror")) return bad(s, "periodic or mirror", v);
       o->sides_mirror = !strcmp(v, "mirror");

@@ -30,7 +30,14 @@ typedef struct {
   char par_unit[4][96];
   double chi2_dof; /* of the chosen law */
   int rows;
-  camp_linear linear; /* the Darcy range (campaign_linear.c) */
+  camp_linear linear;      /* the Darcy range (campaign_linear.c) */
+  int defined;             /* the admissible runs define k (a Darcy range exists) */
+  double k_all, k_all_err; /* mdpore fit's Darcy k over every admissible row (context) */
+  char undefined_why[512];
+  int n_left_out; /* runs left out by camp_run_admissible */
+  double left_out_G[CAMP_MAX_GRADIENTS];
+  char left_out_dir[CAMP_MAX_GRADIENTS][1024];
+  char left_out_why[CAMP_MAX_GRADIENTS][256];
 } axis_result;
 
 static int by_g(const void *a, const void *b) {
@@ -106,6 +113,41 @@ static int have_matplotlib(void) {
   return system("'" MDPORE_PYTHON_EXE "' -c 'import matplotlib' > /dev/null 2>&1") == 0;
 }
 
+/* The axis's result: the runs left out and why, then k from the Darcy range, or the refusal. */
+static void report_axis(int axis, const campaign *c, const camp_units *u, axis_result *ar,
+                        int missing) {
+  for (int i = 0; i < ar->n_left_out; i++)
+    printf("  left out: G = %.5g (%s): %s\n", ar->left_out_G[i], ar->left_out_dir[i],
+           ar->left_out_why[i]);
+  ar->k_all = ar->k;
+  ar->k_all_err = ar->k_err;
+  ar->defined = !ar->undefined_why[0] && ar->linear.accepted;
+  if (!ar->defined) {
+    printf("  no Darcy range: k_%c%c is not defined by these runs: %s.\n  try: a finer resolution "
+           "(--rc-per-voxel, --min-throat) where the liquid cavitated or the throats are narrow; "
+           "weaker forcing (--velocity-range, e.g. 0.005,0.05) where it was compressed, heated or "
+           "left the linear law; longer runs (--max-steps) where the flux did not settle\n",
+           'x' + axis, 'x' + axis, ar->undefined_why[0] ? ar->undefined_why : "no Darcy range");
+    ar->k = ar->k_err = NAN;
+    return;
+  }
+  /* the permeability is the Darcy range's k: the fit over every admissible row is context */
+  ar->k = ar->linear.k;
+  ar->k_err = ar->linear.k_err;
+  printf("  k_%c%c = %.5g +- %.2g rc^2 = %.4g +- %.2g m^2 = %.4g +- %.2g nD (Darcy range; "
+         "superficial velocity q = Q / A_total, k = mu q / G, mu = %g)\n",
+         'x' + axis, 'x' + axis, ar->k, ar->k_err, ar->k * u->k_m2, ar->k_err * u->k_m2,
+         ar->k * u->k_m2 * NANODARCY_PER_M2, ar->k_err * u->k_m2 * NANODARCY_PER_M2, c->viscosity);
+  if (ar->fitted || ar->chosen[0]) {
+    printf("  chosen law: %s (chi2/dof %.3g):", ar->chosen, ar->chi2_dof);
+    for (int p = 0; p < ar->n_par; p++)
+      printf(" %s = %.5g +- %.2g%s%s", ar->par_name[p], ar->par[p], ar->par_err[p],
+             ar->par_unit[p][0] ? " " : "", ar->par_unit[p]);
+    printf("\n");
+  }
+  if (missing) printf("  note: %d run(s) of this axis had no result (see stderr)\n", missing);
+}
+
 static int collect_axis(const camp_opts *o, const campaign *c, const char *workdir, int axis,
                         const camp_units *u, axis_result *ar) {
   camp_run *rows[CAMP_MAX_RUNS];
@@ -124,9 +166,46 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
     rows[n++] = r;
   }
   memset(ar, 0, sizeof *ar);
-  ar->k = ar->k_err = NAN;
+  ar->k = ar->k_err = ar->k_all = ar->k_all_err = NAN;
+  const camp_checks lim = {
+      .fill_density = c->fluid_density,
+      .kT = c->kT,
+      .density_tol = o ? o->density_tolerance : CAMP_DEFAULT_DENSITY_TOLERANCE,
+      .cavitation_tol = o ? o->cavitation_tolerance : CAMP_DEFAULT_CAVITATION_TOLERANCE,
+      .temperature_tol = o ? o->temperature_tolerance : CAMP_DEFAULT_TEMPERATURE_TOLERANCE};
+  qsort(rows, n, sizeof rows[0], by_g);
+  /* the liquid at rest: the core of the weakest run that passes the other checks */
+  double n_rest = 0;
+  char reason[256];
+  for (int i = 0; i < n && !(n_rest > 0); i++)
+    if (camp_run_admissible(rows[i], &lim, 0, reason, sizeof reason) &&
+        isfinite(rows[i]->core_density))
+      n_rest = rows[i]->core_density;
+  int kept = 0;
+  for (int i = 0; i < n; i++) { /* runs whose liquid is not the linear response's are left out */
+    if (camp_run_admissible(rows[i], &lim, n_rest, reason, sizeof reason)) {
+      rows[kept++] = rows[i];
+      continue;
+    }
+    if (ar->n_left_out < CAMP_MAX_GRADIENTS) {
+      ar->left_out_G[ar->n_left_out] = rows[i]->G;
+      snprintf(ar->left_out_dir[ar->n_left_out], 1024, "%.1023s", rows[i]->dir);
+      snprintf(ar->left_out_why[ar->n_left_out], 256, "%s", reason);
+      ar->n_left_out++;
+    }
+  }
+  const int usable = n;
+  n = kept;
   ar->rows = n;
   if (n < 2) {
+    if (usable >= 2) { /* runs there are, but not two the data can trust */
+      snprintf(ar->undefined_why, sizeof ar->undefined_why,
+               "%d of %d runs left out (cavitated, compressed, heated or unsteady liquid), %d "
+               "left",
+               ar->n_left_out, usable, n);
+      report_axis(axis, c, u, ar, missing);
+      return 0;
+    }
     fprintf(stderr,
             "mdpore permeability: axis %c: %d usable run(s): expected at least 2 to fit "
             "(run the missing ones: %s/commands.txt, or rerun the campaign)\n",
@@ -262,26 +341,13 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
       rc = -1;
     }
   }
-  if (!rc && isfinite(ar->k)) {
-    printf("  k_%c%c = %.5g +- %.2g rc^2 = %.4g +- %.2g m^2 = %.4g +- %.2g nD (Darcy; superficial "
-           "velocity q = Q / A_total, k = mu q / G, mu = %g)\n",
-           'x' + axis, 'x' + axis, ar->k, ar->k_err, ar->k * u->k_m2, ar->k_err * u->k_m2,
-           ar->k * u->k_m2 * NANODARCY_PER_M2, ar->k_err * u->k_m2 * NANODARCY_PER_M2,
-           c->viscosity);
-    printf("  chosen law: %s (chi2/dof %.3g):", ar->chosen, ar->chi2_dof);
-    for (int p = 0; p < ar->n_par; p++)
-      printf(" %s = %.5g +- %.2g%s%s", ar->par_name[p], ar->par[p], ar->par_err[p],
-             ar->par_unit[p][0] ? " " : "", ar->par_unit[p]);
-    printf("\n");
-    if (missing) printf("  note: %d run(s) of this axis left out (see stderr)\n", missing);
-  }
   if (!rc && !camp_darcy_range(t.G, t.q, t.sigma, t.n, c->viscosity, &ar->linear)) {
     const camp_linear *L = &ar->linear;
     if (!L->accepted)
-      printf("  Darcy range: none: the %d lowest of %d gradients do not fit a Darcy law either "
-             "(chi2/dof %.3g: the rows scatter beyond their error bars); the fit over all rows "
-             "stands\n",
-             L->rows, t.n, L->chi2_dof);
+      snprintf(ar->undefined_why, sizeof ar->undefined_why,
+               "the %d lowest of %d admissible gradients do not fit a Darcy law (chi2/dof %.3g "
+               "above %.3g: the rows scatter beyond their error bars)",
+               L->rows, t.n, L->chi2_dof, 1.0 + 3.0 * sqrt(2.0 / (L->rows - 1)));
     else
       printf("  Darcy range: the %d lowest of %d gradients (G <= %.4g) fit a Darcy law (chi2/dof "
              "%.3g): k = %.5g +- %.2g rc^2 = %.4g +- %.2g nD%s\n",
@@ -291,6 +357,7 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
                              "is pulled by them): this k is the permeability"
                            : "");
   }
+  if (!rc) report_axis(axis, c, u, ar, missing);
   flow_table_free(&t);
   return rc;
 }
@@ -369,6 +436,21 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
     json_number(&j, "k_m2", (c->percolates[axes[a]] ? ar[a].k : 0.0) * u->k_m2);
     json_number(&j, "k_nD", (c->percolates[axes[a]] ? ar[a].k : 0.0) * u->k_m2 * NANODARCY_PER_M2);
     json_number(&j, "k_nD_err", ar[a].k_err * u->k_m2 * NANODARCY_PER_M2);
+    json_bool(&j, "k_defined", !c->percolates[axes[a]] || ar[a].defined);
+    if (c->percolates[axes[a]] && !ar[a].defined)
+      json_string(&j, "k_undefined_why",
+                  ar[a].undefined_why[0] ? ar[a].undefined_why : "no Darcy range");
+    json_number(&j, "k_rc2_all_rows", ar[a].k_all);
+    json_number(&j, "k_rc2_all_rows_err", ar[a].k_all_err);
+    json_array(&j, "left_out");
+    for (int i = 0; i < ar[a].n_left_out; i++) {
+      json_object(&j, NULL);
+      json_number(&j, "G", ar[a].left_out_G[i]);
+      json_string(&j, "run", ar[a].left_out_dir[i]);
+      json_string(&j, "why", ar[a].left_out_why[i]);
+      json_object_end(&j);
+    }
+    json_array_end(&j);
     if (ar[a].linear.rows >= 2) {
       json_object(&j, "darcy_range");
       json_int(&j, "rows", ar[a].linear.rows);
@@ -436,15 +518,31 @@ int camp_collect(const camp_opts *o, campaign *c, const char *workdir) {
   axis_result ar[3];
   for (int a = 0; a < n_axes; a++)
     if (collect_axis(o, c, workdir, axes[a], &u, &ar[a])) rc = -1;
+  int undefined = 0;
+  double k_min = INFINITY, k_max = 0;
+  for (int a = 0; a < n_axes; a++) {
+    undefined |= c->percolates[axes[a]] && !ar[a].defined;
+    if (ar[a].defined) k_min = fmin(k_min, ar[a].k), k_max = fmax(k_max, ar[a].k);
+  }
   if (n_axes > 1 || (o && o->n_axes == 3)) {
     printf("\npermeability tensor diagonal (rc^2):");
     for (int a = 0; a < n_axes; a++)
-      printf(" k_%c%c = %.5g", 'x' + axes[a], 'x' + axes[a], ar[a].k);
+      if (ar[a].defined)
+        printf(" k_%c%c = %.5g +- %.2g", 'x' + axes[a], 'x' + axes[a], ar[a].k, ar[a].k_err);
+      else
+        printf(" k_%c%c not defined", 'x' + axes[a], 'x' + axes[a]);
     for (int d = 0; d < 3; d++)
       if (!c->percolates[d]) printf(" k_%c%c = 0 (no percolation)", 'x' + d, 'x' + d);
     printf("\n");
+    if (!undefined && n_axes == 3 && k_min > 0)
+      printf("anisotropy: k_max / k_min = %.3g (%.4g / %.4g rc^2)\n", k_max / k_min, k_max, k_min);
   }
   write_json(workdir, c, &u, axes, n_axes, ar);
   printf("wrote %s/permeability.json\n", workdir);
+  if (!rc && undefined) {
+    fprintf(stderr, "mdpore permeability: no Darcy range on some axis: k is not defined by these "
+                    "runs (see the report)\n");
+    return CAMP_EXIT_NO_DARCY_RANGE;
+  }
   return rc;
 }

@@ -115,6 +115,7 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
           c->target_error, c->np);
   if (c->energy_J > 0) fprintf(f, "energy_J: %.17g\n", c->energy_J);
+  fprintf(f, "kT: %.17g\n", c->kT);
   if (c->particle_mass_kg > 0) fprintf(f, "particle_mass_kg: %.17g\n", c->particle_mass_kg);
   fprintf(f, "drive: %s\nreservoir: %.17g\n", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body",
           c->reservoir);
@@ -159,6 +160,7 @@ int camp_read_manifest(const char *workdir, campaign *c) {
   }
   memset(c, 0, sizeof *c);
   for (int d = 0; d < 3; d++) c->seam_continuity[d] = NAN;
+  c->kT = 1.0;           /* a manifest from before the kT line: an IMAGE's template */
   c->wall_density = NAN; /* a scene's own, or a manifest from before --wall-density */
   c->particles_estimate = c->min_throat = NAN; /* a scene, or a manifest from before them */
   for (int d = 0; d < 3; d++) c->throat_voxels[d] = -1;

@@ -49,6 +49,14 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   int b = 0;
   r->reached =
       (!reached || yt_is_null(reached)) ? -1 : (yt_bool(&t, reached, "reached", &b) ? -1 : b);
+  yaml_node_t *thermo = yt_get(&t, root, "thermo"), *temp;
+  temp = thermo && thermo->type == YAML_MAPPING_NODE ? yt_get(&t, thermo, "T") : NULL;
+  r->temperature = temp && temp->type == YAML_MAPPING_NODE ? num(&t, temp, "mean") : NAN;
+  r->temperature_err = temp && temp->type == YAML_MAPPING_NODE ? num(&t, temp, "err") : NAN;
+  yaml_node_t *steady = yt_get(&t, flux, "steady");
+  int steady_b = 0;
+  r->steady =
+      (!steady || yt_is_null(steady) || yt_bool(&t, steady, "steady", &steady_b)) ? -1 : steady_b;
   yaml_node_t *core = yt_get(&t, root, "pore_core_density"); /* geometry runs with a pore core */
   r->core_density = core && core->type == YAML_MAPPING_NODE ? num(&t, core, "mean") : NAN;
   r->core_density_err = core && core->type == YAML_MAPPING_NODE ? num(&t, core, "err") : NAN;

@@ -185,10 +185,11 @@ static double scene_fluid_density(ytree_t *t, yaml_node_t *root, char *source, i
  * win). 0 (also without a block) or -1 after the block's error message. */
 static int scene_units(const camp_opts *o, ytree_t *t, yaml_node_t *root, campaign *c) {
   yaml_node_t *b = yt_get(t, root, "units"), *n;
-  if (!b) return 0;
   units_context_t ctx;
   units_context_init(&ctx);
   if ((n = yt_get(t, root, "kT")) && yt_double(t, n, "kT", &ctx.kT)) return -1;
+  c->kT = ctx.kT; /* the runs' temperature check */
+  if (!b) return 0;
   ctx.rc_per_voxel = c->rc_per_voxel;
   ctx.density = scene_fluid_density(t, root, ctx.density_source, sizeof ctx.density_source);
   units_mapping_t m;
@@ -326,6 +327,7 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
   c->wall_density = o->input_is_scene ? NAN : o->wall_density;
   snprintf(c->pair_rng, sizeof c->pair_rng, "%s", o->input_is_scene ? "" : o->rng);
   c->temperature_K = o->temperature_K;
+  c->kT = 1.0;
   c->energy_J = c->particle_mass_kg = NAN;
   c->target_error = o->target_error;
   c->np = o->np;

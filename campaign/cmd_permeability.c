@@ -22,7 +22,8 @@ static int run(camp_opts *o) {
   if (self_exe(o->self_exe, sizeof o->self_exe)) return 2;
   if (o->collect_dir[0]) {
     if (camp_read_manifest(o->collect_dir, &c)) return 1;
-    return camp_collect(o, &c, o->collect_dir) ? 1 : 0;
+    const int rc = camp_collect(o, &c, o->collect_dir);
+    return rc == CAMP_EXIT_NO_DARCY_RANGE ? rc : rc ? 1 : 0;
   }
   if (camp_plan(o, &c)) return 1;
   if (o->emit_dir[0]) {
@@ -36,6 +37,7 @@ static int run(camp_opts *o) {
   if (camp_write_commands(o->workdir, o, &c)) return 1;
   int rc = camp_execute(o, &c);
   int rc2 = camp_collect(o, &c, o->workdir);
+  if (!rc && rc2 == CAMP_EXIT_NO_DARCY_RANGE) return rc2; /* the runs define no k on some axis */
   return rc || rc2 ? 1 : 0;
 }
 

@@ -78,8 +78,10 @@ def main():
     rc = (2 * 3.0 * M_WATER / RHO_WATER) ** (1.0 / 3.0)
     mass = 2 * M_WATER
 
+    # Its two strong gradients heat this small DPD liquid by 11-33%: the campaign would leave both runs
+    # out of the Darcy range (no k, exit 3). This test is about the units, so it lifts the bound.
     p = mdpore("permeability", "slit.yaml", "--axis", "x", "--gradients", "0.1,0.2", "--max-steps",
-               "2000", "--target-error", "0.2", "--workdir", "camp")
+               "2000", "--target-error", "0.2", "--workdir", "camp", "--temperature-tolerance", "0.5")
     print(p.stdout[-3000:])
     if p.returncode:
         print(p.stderr[-3000:])

@@ -11,7 +11,7 @@ DEVICE_TARGETS="mdpore gpu_bench" . bench/device_build.sh
 [ "$DEVICE_BUILD_OK" = 1 ] || exit 1
 echo "build: $(( $(date +%s) - t0 )) s"
 nvidia-smi --query-gpu=name,memory.total,clocks.sm,clocks.max.sm --format=csv,noheader
-export MDPORE="$PWD/build-dev/bin/mdpore" MDPORE_CACHE_DIR="$PWD/build-dev/cache"
+export MDPORE="$PWD/build-dev/bin/mdpore" MDPORE_CACHE_DIR="${MDPORE_CACHE_DIR:-$PWD/build-dev/cache}"
 git rev-parse --short HEAD 2>/dev/null
 python3 validation/rocks/rocks.py device "$W" --jobs "$JOBS" --time-box "$BOX"
 (cd "$W" && find . \( -name summary.json -o -name run.log -o -name flux.csv \) -print | tar czf "${OUT:-/tmp}/rockruns.tgz" -T -)

@@ -1,0 +1,54 @@
+/* Whether a run's data can enter the Darcy range (campaign.h). A flow rate measured in a liquid that
+ * has cavitated or been compressed by the forcing, or that the forcing has heated, or that never
+ * settled, is not the linear response that k = mu q / G needs; such a run is reported and left out:
+ *   the flux's steady state (MSER-5, meso/analysis/steady_state.c) was found;
+ *   temperature T: |T / kT - 1| <= temperature_tol (viscous heating the thermostat does not remove:
+ *     Berea crops at the strongest auto gradients reached 1.03 to 1.05);
+ *   pore-core density n_core against the fill n_fill: |n_core / n_fill - 1| <= cavitation_tol. A
+ *     core far below the fill has cavitated (a Berea crop at 0.5 rc per voxel: 4.0 to 4.8 against
+ *     6.2). At rest the core sits a little below the fill, by what the walls adsorb (2-3% at wall
+ *     density 4: 6.0-6.1 in the CI slit, 6.02-6.03 in Berea crops at 1 rc per voxel), so this bound
+ *     is looser than the next;
+ *   pore-core density against the liquid at rest n_rest (the core of the axis's weakest admissible
+ *     run): |n_core / n_rest - 1| <= density_tol: the forcing compresses the liquid ahead of
+ *     constrictions and expands it behind them (Berea at 1 rc per voxel: 6.03 at rest, 5.81 at the
+ *     strongest auto gradient). */
+#include <math.h>
+#include <stdio.h>
+
+#include "campaign.h"
+
+int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest, char *why,
+                        int len) {
+  why[0] = 0;
+  if (r->steady == 0) {
+    snprintf(why, len, "the flux reached no steady state in %lld steps", r->steps);
+    return 0;
+  }
+  if (isfinite(r->temperature) && lim->kT > 0 &&
+      fabs(r->temperature / lim->kT - 1) > lim->temperature_tol) {
+    snprintf(
+        why, len, "temperature %.4g is %+.1f%% off kT = %g (viscous heating; tolerance %.0f%%)",
+        r->temperature, 100 * (r->temperature / lim->kT - 1), lim->kT, 100 * lim->temperature_tol);
+    return 0;
+  }
+  if (!isfinite(r->core_density)) return 1;
+  const double off_fill = r->core_density / lim->fill_density - 1;
+  if (lim->fill_density > 0 && fabs(off_fill) > lim->cavitation_tol) {
+    snprintf(why, len, "pore-core density %.4g is %+.1f%% off the fill %.4g (%s; tolerance %.0f%%)",
+             r->core_density, 100 * off_fill, lim->fill_density,
+             off_fill < 0 ? "the liquid cavitated" : "the liquid is compressed",
+             100 * lim->cavitation_tol);
+    return 0;
+  }
+  const double off_rest = n_rest > 0 ? r->core_density / n_rest - 1 : 0;
+  if (fabs(off_rest) > lim->density_tol) {
+    snprintf(why, len,
+             "pore-core density %.4g is %+.1f%% off the liquid at rest %.4g (the weakest run's; "
+             "the forcing %s it; tolerance %.0f%%)",
+             r->core_density, 100 * off_rest, n_rest, off_rest < 0 ? "expanded" : "compressed",
+             100 * lim->density_tol);
+    return 0;
+  }
+  return 1;
+}
