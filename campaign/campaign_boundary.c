@@ -11,7 +11,7 @@
  *              `mdpore foam --boundary mirror` solves;
  *   reservoir  an open fluid reservoir between the faces and an inlet force in it (--drive
  *              pressure, campaign_scene.c).
- * AUTO keeps periodic where the seam continues the image (mdp_image_seam continuity >= 0.5) and
+ * AUTO keeps periodic where the seam continues the image (mdp_image_seam continuity >= 0.8) and
  * mirrors otherwise. --sides mirror mirrors the lateral faces too (symmetry planes, as foam's
  * --sides symmetry), at four times the particles. */
 #include <math.h>

@@ -34,7 +34,8 @@ typedef struct {
   int defined;             /* the admissible runs define k (a Darcy range exists) */
   double k_all, k_all_err; /* mdpore fit's Darcy k over every admissible row (context) */
   char undefined_why[512];
-  int n_left_out; /* runs left out by camp_run_admissible */
+  int n_left_out;       /* runs left out by camp_run_admissible */
+  int n_no_temperature; /* kept runs whose summary has no temperature (stopped before its window) */
   double left_out_G[CAMP_MAX_GRADIENTS];
   char left_out_dir[CAMP_MAX_GRADIENTS][1024];
   char left_out_why[CAMP_MAX_GRADIENTS][256];
@@ -119,6 +120,11 @@ static void report_axis(int axis, const campaign *c, const camp_units *u, axis_r
   for (int i = 0; i < ar->n_left_out; i++)
     printf("  left out: G = %.5g (%s): %s\n", ar->left_out_G[i], ar->left_out_dir[i],
            ar->left_out_why[i]);
+  if (ar->n_no_temperature)
+    printf("  note: the temperature of %d kept run(s) was not measured (the run stopped early, "
+           "before the second half of its step budget where mdpore run averages thermo): the "
+           "heating check did not apply to them\n",
+           ar->n_no_temperature);
   ar->k_all = ar->k;
   ar->k_all_err = ar->k_err;
   ar->defined = !ar->undefined_why[0] && ar->linear.accepted;
@@ -194,6 +200,7 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
       ar->n_left_out++;
     }
   }
+  for (int i = 0; i < kept; i++) ar->n_no_temperature += !isfinite(rows[i]->temperature);
   const int usable = n;
   n = kept;
   ar->rows = n;
@@ -440,6 +447,7 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
     if (c->percolates[axes[a]] && !ar[a].defined)
       json_string(&j, "k_undefined_why",
                   ar[a].undefined_why[0] ? ar[a].undefined_why : "no Darcy range");
+    json_int(&j, "runs_without_temperature", ar[a].n_no_temperature);
     json_number(&j, "k_rc2_all_rows", ar[a].k_all);
     json_number(&j, "k_rc2_all_rows_err", ar[a].k_all_err);
     json_array(&j, "left_out");

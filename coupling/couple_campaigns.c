@@ -183,6 +183,7 @@ int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, in
   }
   for (int i = 0; i < n; i++) {
     couple_block *b = &blocks[i];
+    int st;
     b->pending = 0;
     if (!b->percolates) continue;
     if (b->n_extra_run == b->n_extra) continue; /* no new gradient: its runs and fit stand */
@@ -201,14 +202,23 @@ int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, in
         goto fail;
       }
       b->pending = count - before;
-      if (!b->pending && spawn(c, b, "--collect", log) != 0) {
-        fprintf(stderr, "mdpore couple: collecting block (%d,%d,%d) failed: see %s\n", b->index[0],
-                b->index[1], b->index[2], log);
+      if (!b->pending && (st = spawn(c, b, "--collect", log)) != 0) {
+        fprintf(stderr, "mdpore couple: collecting block (%d,%d,%d) %s: see %s\n", b->index[0],
+                b->index[1], b->index[2],
+                st == CAMP_EXIT_NO_DARCY_RANGE ? "found no Darcy range (its k is not defined)"
+                                               : "failed",
+                log);
         goto fail;
       }
-    } else if (spawn(c, b, "", log) != 0) {
-      fprintf(stderr, "mdpore couple: the campaign of block (%d,%d,%d) failed: see %s\n",
-              b->index[0], b->index[1], b->index[2], log);
+    } else if ((st = spawn(c, b, "", log)) != 0) {
+      if (st == CAMP_EXIT_NO_DARCY_RANGE)
+        fprintf(stderr,
+                "mdpore couple: the runs of block (%d,%d,%d) define no Darcy range: its k is not "
+                "defined, so neither is the sample's (the reasons and what to try: %s)\n",
+                b->index[0], b->index[1], b->index[2], log);
+      else
+        fprintf(stderr, "mdpore couple: the campaign of block (%d,%d,%d) failed: see %s\n",
+                b->index[0], b->index[1], b->index[2], log);
       goto fail;
     }
     if (couple_read_ladder(b)) goto fail;

@@ -147,7 +147,7 @@ int mdp_image_mirror(const mdp_image_t *in, const int mirror[3], mdp_image_t *ou
  * the pore Jaccard index (pore on both / pore on either) of the two slices against its mean over
  * adjacent interior slices. A periodic image's seam is one more interior step (continuity ~1); the
  * end slices of a crop of a rock are unrelated (continuity ~ porosity / the interior overlap). */
-#define MDP_SEAM_PERIODIC_CONTINUITY 0.5
+#define MDP_SEAM_PERIODIC_CONTINUITY 0.8
 typedef struct {
   double seam_overlap;     /* Jaccard of the last and first slices */
   double interior_overlap; /* mean Jaccard of adjacent slices inside the image */
