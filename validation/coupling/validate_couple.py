@@ -98,7 +98,9 @@ def main():
         return json.load(open(os.path.join(out, f"{case}.couple", "couple.json"))), p, t
 
     def direct(case, image):
-        args = ["permeability", image, "--axis", "x", "--np", str(opts.np), "--max-steps", str(opts.max_steps),
+        # the voxel edge the couple config gives its blocks (0.5 rc), as mdpore couple passes it
+        args = ["permeability", image, "--axis", "x", "--rc-per-voxel", "0.5", "--force", "--np", str(opts.np),
+                "--max-steps", str(opts.max_steps),
                 "--target-error", str(opts.target_error), "--mpiexec", "mpiexec --oversubscribe"]
         if opts.launcher == "slurm":
             p, t = run(args + ["--emit-scenes", f"{case}.direct"], out, f"{case}.direct.log")
