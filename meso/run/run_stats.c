@@ -13,19 +13,41 @@ void run_stats_init(run_stats_t *st, const scene_t *s, long first, long last, in
   st->last_step = last;
   st->nranks = nranks;
   if (s->profile.nbins > 0) {
-    st->window_start = s->profile.start;
+    st->window_start = st->sample_from = s->profile.start;
     st->sample_every = s->profile.every;
     st->gamma_axis = s->profile.axis;
     st->gamma_len = s->box_hi[s->profile.axis] - s->box_lo[s->profile.axis];
   } else {
-    st->window_start = first + (last - first) / 2;
+    st->window_start = first + (last - first) / 2; /* as planned */
+    /* a run that may stop early on its flux error samples from the start, and run_stats_finish
+     * keeps the second half of what it ran; the others sample the planned second half only */
+    st->sample_from = s->target_error > 0 ? first : st->window_start;
     st->sample_every = s->thermo.every > 0 ? s->thermo.every : 10;
     st->gamma_axis = -1;
   }
 }
 
 int run_stats_wants(const run_stats_t *st, long step) {
-  return step > st->first_step && step >= st->window_start && step % st->sample_every == 0;
+  return step > st->first_step && step >= st->sample_from && step % st->sample_every == 0;
+}
+
+/* Multiples of `every` in (first, b). */
+static long multiples_between(long first, long b, long every) {
+  return b > first + 1 ? (b - 1) / every - first / every : 0;
+}
+
+void run_stats_finish(run_stats_t *st, long last) {
+  if (st->gamma_axis >= 0 || st->sample_from != st->first_step ||
+      st->window_start == st->first_step)
+    return; /* a profile's window, or the planned second half sampled */
+  st->window_start = st->first_step + (last - st->first_step) / 2;
+  const long drop = multiples_between(st->first_step, st->window_start, st->sample_every);
+  for (int k = 0; k < STAT_COUNT; k++) {
+    series_t *x = &st->s[k];
+    const long d = drop < x->n ? drop : x->n;
+    if (d > 0) memmove(x->x, x->x + d, (size_t)(x->n - d) * sizeof *x->x);
+    x->n -= d;
+  }
 }
 
 void run_stats_add(run_stats_t *st, const thermo_t *t) {

@@ -26,7 +26,9 @@ extern const char *const run_stat_names[STAT_COUNT];
 
 typedef struct {
   long window_start, sample_every, first_step, last_step;
-  int gamma_axis; /* -1: no surface tension (no profile axis) */
+  long sample_from; /* first step sampled: window_start, or the run's first for a run that may
+                     * stop early (run.target_error), whose window run_stats_finish then fixes */
+  int gamma_axis;   /* -1: no surface tension (no profile axis) */
   double gamma_len;
   series_t s[STAT_COUNT];
   double loop_seconds, total_seconds;
@@ -60,6 +62,10 @@ typedef struct {
 void run_stats_init(run_stats_t *st, const scene_t *scene, long first, long last, int nranks);
 int run_stats_wants(const run_stats_t *st, long step);
 void run_stats_add(run_stats_t *st, const thermo_t *t);
+/* At the end of the run, `last` the step it ended at (earlier than planned after an early stop):
+ * without a profile the window is the second half of the steps actually run, and the samples
+ * before it are dropped. A run that stops early on its flux error then still has its averages. */
+void run_stats_finish(run_stats_t *st, long last);
 void run_stats_free(run_stats_t *st);
 
 /* Rank 0: print the human summary to `out` and write the summary JSON atomically. 0 or -1. */

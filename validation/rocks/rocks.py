@@ -201,9 +201,9 @@ def foam_reference(d, ax, refine):
                 ks[r] = (j["permeability_voxel2"], j.get("wall_s"))
     if 1 in ks and 2 in ks:  # cell-centred finite volumes on voxel walls: error ~ 1/N^2 (a slit's
         return (4 * ks[2][0] - ks[1][0]) / 3, ks  # k = (h^2/12)(1 + 2/N^2), docs/foam.md): Richardson
-    if ks:
+    if ks and len(refine) == 1:
         return ks[max(ks)][0], ks
-    return None, ks
+    return None, ks  # the extrapolation needs both meshes: no reference from the voxel mesh alone
 
 
 def report_stage(a):
