@@ -211,7 +211,7 @@ def report_stage(a):
     rows, failures = [], []
     for name, em, extra in campaigns(a):
         if os.path.exists(em + ".refused"):
-            why = open(em + ".refused").read().strip().splitlines()[-1][:400]
+            why = open(em + ".refused").read().strip().splitlines()[-1].replace(a.work + "/", "")[:400]
             rows.append({"crop": name, "campaign": os.path.basename(em), "axis": em[-1] if "_" in os.path.basename(em) else "all",
                          "rc_per_voxel": None, "boundary": None, "k_mdpd_rc2": None, "k_mdpd_rc2_err": None,
                          "darcy_range": "refused: " + why, "k_mdpd_voxel2": None, "k_foam_r1": None, "k_foam_r2": None,
