@@ -75,9 +75,10 @@ typedef struct {
   int drive;                /* CAMP_DRIVE_BODY (default) or CAMP_DRIVE_PRESSURE */
   double reservoir;         /* pressure drive: reservoir length along the axis, rc (default 4) */
   int boundary;             /* --boundary: CAMP_BOUNDARY_* (AUTO by default) */
-  double density_tolerance; /* a run whose pore core departs more from the fill is left out */
+  double density_tolerance; /* a run whose pore core departs more from the liquid at rest is out */
   double temperature_tolerance; /* a run whose temperature departs more from kT is left out */
   double cavitation_tolerance;  /* a run whose pore core departs more from the fill is left out */
+  int require_target;           /* --require-target: a run that missed its target error is out */
   int sides_mirror;        /* --sides mirror: the lateral faces mirrored too (default periodic) */
   int boundary_of_axis[3]; /* resolved per flow axis by camp_resolve_boundaries */
 } camp_opts;
@@ -97,6 +98,8 @@ typedef struct {
   double temperature, temperature_err;   /* the run's mean kinetic temperature (NAN: none) */
   int steady;                            /* the flux reached a steady state (1), not (0), -1 ? */
   int reached;                           /* 1 met the target, 0 not, -1 no target */
+  double target_error;                   /* the run's run.target_error (NAN: none) */
+  int plateau; /* the blocked error of q reached a plateau (1), not (0: q_err a lower bound), -1 ? */
   long long steps, particles, steady_from;
   double seconds; /* loop seconds of the run */
 } camp_run;
@@ -230,21 +233,30 @@ typedef struct {
 int camp_darcy_range(const double *G, const double *q, const double *sigma, int n, double mu,
                      camp_linear *out);
 
-/* campaign_checks.c: whether a run's data can enter the Darcy range: its flux steady, its
- * temperature within temperature_tol of kT (else viscous heating), its pore core's density within
- * cavitation_tol of the fill (else cavitation or compression) and within density_tol of the liquid
- * at rest n_rest (the axis's weakest admissible run; <= 0: not checked; else the forcing compresses
- * or expands it). 1 = admissible; 0 = left out, the reason (naming the measured value) in why. */
+/* campaign_checks.c: whether a run's data can enter the Darcy range: its flux steady (and, with
+ * require_target, its target error met), its temperature within temperature_tol of kT (else viscous
+ * heating, or a liquid colder than the thermostat's), its pore core's density within cavitation_tol
+ * of the fill (else cavitation or compression) and within density_tol of the liquid at rest n_rest
+ * (the axis's weakest admissible run; <= 0: not checked; else the forcing compresses or expands
+ * it). 1 = admissible; 0 = left out, with the failed check's name, the measured value and the
+ * reason (naming the value) in flag. */
 #define CAMP_DEFAULT_DENSITY_TOLERANCE 0.03
 #define CAMP_DEFAULT_CAVITATION_TOLERANCE 0.08
 #define CAMP_DEFAULT_TEMPERATURE_TOLERANCE 0.05
 typedef struct {
   double fill_density, kT;
   double density_tol, cavitation_tol, temperature_tol;
+  int require_target;
 } camp_checks;
-int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest, char *why,
-                        int len);
-/* Exit status of a campaign whose runs define no Darcy range on some axis. */
+typedef struct {
+  const char *check; /* "" (admissible), unsteady, target_missed, heated, cooled, cavitated,
+                        compressed, expanded_by_forcing, compressed_by_forcing */
+  double measured;   /* the value the check found out of bounds (NAN: none) */
+  char why[256];     /* the reason, naming the measured value and the bound */
+} camp_flag;
+int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest, camp_flag *flag);
+/* Exit status of `mdpore permeability` (run or --collect) when its runs define no Darcy range on
+ * some axis, so k is not reported there (1: an error, 2: bad usage). */
 #define CAMP_EXIT_NO_DARCY_RANGE 3
 
 /* campaign_exec.c: runs argv (execvp) in dir (NULL: here) with stdout + stderr to log (NULL: ours),

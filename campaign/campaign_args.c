@@ -12,7 +12,8 @@
 const char *camp_usage =
     "usage: mdpore permeability IMAGE|SCENE --axis x|y|z|all [options]\n"
     "       mdpore permeability IMAGE|SCENE --axis ... --emit-scenes DIR [options]\n"
-    "       mdpore permeability --collect DIR [--models LIST]\n"
+    "       mdpore permeability --collect DIR [--models LIST] [--*-tolerance F] "
+    "[--require-target]\n"
     "A ladder of body-force runs (one `mdpore run` each, cached by a hash of its inputs), the "
     "flow\n"
     "table (docs/flow-table.md), `mdpore fit` on it, k in rc^2, m^2 and nD, a PNG "
@@ -65,13 +66,21 @@ const char *camp_usage =
     "one\n"
     "                      period), mirror (the image and its reflection: each face meets itself)\n"
     "                      or reservoir (= --drive pressure)\n"
-    "  --density-tolerance F  a run whose pore-core density departs from the fill by more than F\n"
-    "                      (cavitation or compression) is left out of the Darcy range (default "
-    "0.03)\n"
+    "  --cavitation-tolerance F  a run whose pore-core density departs from the fill by more\n"
+    "                      than F (the liquid cavitated or is compressed) is left out of the\n"
+    "                      Darcy range and the fits (default 0.08: at rest the walls leave the\n"
+    "                      core 2-3% below the fill)\n"
+    "  --density-tolerance F  a run whose pore-core density departs by more than F from the\n"
+    "                      liquid at rest (the core of the weakest admissible run) is left out\n"
+    "                      (the forcing compressed or expanded it; default 0.03)\n"
     "  --temperature-tolerance F  a run whose temperature departs from kT by more than F\n"
     "                      (viscous heating) is left out (default 0.05)\n"
+    "  --require-target    a run that missed its target error is left out too (default: kept,\n"
+    "                      its larger error bar weighting it less; an unsteady run is out)\n"
     "  --sides S           the lateral faces: periodic (default) or mirror (symmetry planes, as\n"
-    "                      mdpore foam --sides symmetry; four times the particles)\n";
+    "                      mdpore foam --sides symmetry; four times the particles)\n"
+    "Exit status: 0 k reported on every axis; 3 the runs define no Darcy range on some axis (k is\n"
+    "not reported there: the report says why and what to try); 1 an error; 2 bad usage.\n";
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore permeability: %s: expected %s, got '%s'\n", opt, expected, got);
@@ -157,6 +166,10 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
     if (!strcmp(s, "--force")) { /* no value */
       o->force = 1;
+      continue;
+    }
+    if (!strcmp(s, "--require-target")) { /* no value */
+      o->require_target = 1;
       continue;
     }
     if (s[0] == '-' && s[1] == '-' && i + 1 >= argc) {

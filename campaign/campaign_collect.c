@@ -1,6 +1,8 @@
-/* Collect a campaign: per axis the flow table WORKDIR/flow_<axis>.csv (flowdata/ writer), `mdpore
- * fit` on it (subprocess: JSON WORKDIR/fit_<axis>.json, PNG WORKDIR/flow_<axis>.png when python3
- * has matplotlib), the report on stdout (k in rc^2, m^2, nD; the chosen law and its parameters) and
+/* Collect a campaign: per axis the runs the data cannot trust left out and named
+ * (campaign_checks.c), the flow table of the others WORKDIR/flow_<axis>.csv (flowdata/ writer), its
+ * Darcy range (campaign_linear.c), `mdpore fit` on it when the range exists (subprocess: JSON
+ * WORKDIR/fit_<axis>.json, PNG WORKDIR/flow_<axis>.png when python3 has matplotlib), the report on
+ * stdout (k in rc^2, m^2, nD and the chosen law, or "no Darcy range", why and what to try) and
  * WORKDIR/permeability.json. */
 #include <math.h>
 #include <stdio.h>
@@ -36,8 +38,12 @@ typedef struct {
   char undefined_why[512];
   int n_left_out;       /* runs left out by camp_run_admissible */
   int n_no_temperature; /* kept runs whose summary has no temperature (stopped before its window) */
+  int n_target_missed;  /* kept runs that missed their target error (no --require-target) */
+  int n_missing;        /* runs of the axis without a usable summary */
   double left_out_G[CAMP_MAX_GRADIENTS];
   char left_out_dir[CAMP_MAX_GRADIENTS][1024];
+  const char *left_out_check[CAMP_MAX_GRADIENTS]; /* camp_flag.check */
+  double left_out_measured[CAMP_MAX_GRADIENTS];   /* camp_flag.measured */
   char left_out_why[CAMP_MAX_GRADIENTS][256];
 } axis_result;
 
@@ -115,11 +121,16 @@ static int have_matplotlib(void) {
 }
 
 /* The axis's result: the runs left out and why, then k from the Darcy range, or the refusal. */
-static void report_axis(int axis, const campaign *c, const camp_units *u, axis_result *ar,
-                        int missing) {
+static void report_axis(int axis, const campaign *c, const camp_units *u, axis_result *ar) {
   for (int i = 0; i < ar->n_left_out; i++)
     printf("  left out: G = %.5g (%s): %s\n", ar->left_out_G[i], ar->left_out_dir[i],
            ar->left_out_why[i]);
+  if (ar->n_missing)
+    printf("  note: %d run(s) of this axis had no result (see stderr)\n", ar->n_missing);
+  if (ar->n_target_missed)
+    printf("  note: %d kept run(s) missed their target error (marked in the table): their larger "
+           "error bars weight them less; --require-target leaves them out\n",
+           ar->n_target_missed);
   if (ar->n_no_temperature)
     printf("  note: the temperature of %d kept run(s) was not measured (the run stopped early, "
            "before the second half of its step budget where mdpore run averages thermo): the "
@@ -134,7 +145,11 @@ static void report_axis(int axis, const campaign *c, const camp_units *u, axis_r
            "weaker forcing (--velocity-range, e.g. 0.005,0.05) where it was compressed, heated or "
            "left the linear law; longer runs (--max-steps) where the flux did not settle\n",
            'x' + axis, 'x' + axis, ar->undefined_why[0] ? ar->undefined_why : "no Darcy range");
-    ar->k = ar->k_err = NAN;
+    /* no law and no k over rows the data reject: permeability.json says none was chosen */
+    ar->k = ar->k_err = ar->k_all = ar->k_all_err = NAN;
+    snprintf(ar->chosen, sizeof ar->chosen, "none");
+    ar->n_par = 0;
+    ar->chi2_dof = NAN;
     return;
   }
   /* the permeability is the Darcy range's k: the fit over every admissible row is context */
@@ -151,7 +166,6 @@ static void report_axis(int axis, const campaign *c, const camp_units *u, axis_r
              ar->par_unit[p][0] ? " " : "", ar->par_unit[p]);
     printf("\n");
   }
-  if (missing) printf("  note: %d run(s) of this axis had no result (see stderr)\n", missing);
 }
 
 static int collect_axis(const camp_opts *o, const campaign *c, const char *workdir, int axis,
@@ -159,6 +173,10 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   camp_run *rows[CAMP_MAX_RUNS];
   int n = 0, missing = 0;
   char why[CAMP_PATH + 256];
+  char table[CAMP_PATH + 32], fitjson[CAMP_PATH + 32], png[CAMP_PATH + 32], err[1024];
+  snprintf(table, sizeof table, "%s/flow_%c.csv", workdir, 'x' + axis);
+  snprintf(fitjson, sizeof fitjson, "%s/fit_%c.json", workdir, 'x' + axis);
+  snprintf(png, sizeof png, "%s/flow_%c.png", workdir, 'x' + axis);
   for (int i = 0; i < c->n_runs; i++) {
     camp_run *r = (camp_run *)&c->runs[i];
     if (r->axis != axis) continue;
@@ -172,45 +190,55 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
     rows[n++] = r;
   }
   memset(ar, 0, sizeof *ar);
-  ar->k = ar->k_err = ar->k_all = ar->k_all_err = NAN;
+  ar->k = ar->k_err = ar->k_all = ar->k_all_err = ar->chi2_dof = NAN;
+  ar->n_missing = missing;
   const camp_checks lim = {
       .fill_density = c->fluid_density,
       .kT = c->kT,
       .density_tol = o ? o->density_tolerance : CAMP_DEFAULT_DENSITY_TOLERANCE,
       .cavitation_tol = o ? o->cavitation_tolerance : CAMP_DEFAULT_CAVITATION_TOLERANCE,
-      .temperature_tol = o ? o->temperature_tolerance : CAMP_DEFAULT_TEMPERATURE_TOLERANCE};
+      .temperature_tol = o ? o->temperature_tolerance : CAMP_DEFAULT_TEMPERATURE_TOLERANCE,
+      .require_target = o ? o->require_target : 0};
   qsort(rows, n, sizeof rows[0], by_g);
   /* the liquid at rest: the core of the weakest run that passes the other checks */
   double n_rest = 0;
-  char reason[256];
+  camp_flag flag;
   for (int i = 0; i < n && !(n_rest > 0); i++)
-    if (camp_run_admissible(rows[i], &lim, 0, reason, sizeof reason) &&
-        isfinite(rows[i]->core_density))
+    if (camp_run_admissible(rows[i], &lim, 0, &flag) && isfinite(rows[i]->core_density))
       n_rest = rows[i]->core_density;
   int kept = 0;
   for (int i = 0; i < n; i++) { /* runs whose liquid is not the linear response's are left out */
-    if (camp_run_admissible(rows[i], &lim, n_rest, reason, sizeof reason)) {
+    if (camp_run_admissible(rows[i], &lim, n_rest, &flag)) {
       rows[kept++] = rows[i];
       continue;
     }
     if (ar->n_left_out < CAMP_MAX_GRADIENTS) {
       ar->left_out_G[ar->n_left_out] = rows[i]->G;
       snprintf(ar->left_out_dir[ar->n_left_out], 1024, "%.1023s", rows[i]->dir);
-      snprintf(ar->left_out_why[ar->n_left_out], 256, "%s", reason);
+      ar->left_out_check[ar->n_left_out] = flag.check;
+      ar->left_out_measured[ar->n_left_out] = flag.measured;
+      snprintf(ar->left_out_why[ar->n_left_out], 256, "%s", flag.why);
       ar->n_left_out++;
     }
   }
-  for (int i = 0; i < kept; i++) ar->n_no_temperature += !isfinite(rows[i]->temperature);
+  for (int i = 0; i < kept; i++) {
+    ar->n_no_temperature += !isfinite(rows[i]->temperature);
+    ar->n_target_missed += rows[i]->reached == 0;
+  }
   const int usable = n;
   n = kept;
   ar->rows = n;
   if (n < 2) {
     if (usable >= 2) { /* runs there are, but not two the data can trust */
       snprintf(ar->undefined_why, sizeof ar->undefined_why,
-               "%d of %d runs left out (cavitated, compressed, heated or unsteady liquid), %d "
-               "left",
-               ar->n_left_out, usable, n);
-      report_axis(axis, c, u, ar, missing);
+               "%d of %d runs left out (each named above with its reason), %d left", ar->n_left_out,
+               usable, n);
+      /* no table, fit or plot of this axis: none from an earlier collect may stand for it */
+      unlink(table);
+      unlink(fitjson);
+      unlink(png);
+      printf("\n== permeability along %c: %s ==\n", 'x' + axis, c->sample);
+      report_axis(axis, c, u, ar);
       return 0;
     }
     fprintf(stderr,
@@ -257,6 +285,12 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   flow_table_add_comment(&t, line);
   snprintf(line, sizeof line, "run_length = steps run; target relative error %g", c->target_error);
   flow_table_add_comment(&t, line);
+  /* the runs left out are no rows of the table (nor of the fits): named here with the reason */
+  for (int i = 0; i < ar->n_left_out; i++) {
+    snprintf(line, sizeof line, "left out (%s): G = %.6g: %.1023s: %s", ar->left_out_check[i],
+             ar->left_out_G[i], ar->left_out_dir[i], ar->left_out_why[i]);
+    flow_table_add_comment(&t, line);
+  }
   for (int i = 0; i < n; i++) {
     char measured[160] = "";
     if (c->drive == CAMP_DRIVE_PRESSURE)
@@ -278,10 +312,18 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
         sqrt(rows[i]->q_err * rows[i]->q_err + rows[i]->q * rows[i]->q * rel_G * rel_G);
     flow_table_add_row(&t, rows[i]->G, rows[i]->q, sigma, (double)rows[i]->steps);
   }
-  char table[CAMP_PATH + 32], fitjson[CAMP_PATH + 32], png[CAMP_PATH + 32], err[1024];
-  snprintf(table, sizeof table, "%s/flow_%c.csv", workdir, 'x' + axis);
-  snprintf(fitjson, sizeof fitjson, "%s/fit_%c.json", workdir, 'x' + axis);
-  snprintf(png, sizeof png, "%s/flow_%c.png", workdir, 'x' + axis);
+  /* the Darcy range decides whether these rows define k at all, before any law is fitted to them */
+  const camp_linear *L = &ar->linear;
+  camp_darcy_range(t.G, t.q, t.sigma, t.n, c->viscosity, &ar->linear); /* n >= 2: 0 */
+  if (!L->accepted) {
+    snprintf(ar->undefined_why, sizeof ar->undefined_why,
+             "the %d lowest of %d admissible gradients do not fit a Darcy law (chi2/dof %.3g "
+             "above %.3g: the rows scatter beyond their error bars)",
+             L->rows, t.n, L->chi2_dof, 1.0 + 3.0 * sqrt(2.0 / (L->rows - 1)));
+    snprintf(line, sizeof line, "no Darcy range: %s; no law fitted, k not defined",
+             ar->undefined_why);
+    flow_table_add_comment(&t, line);
+  }
   int rc = flow_table_write(table, &t, err, sizeof err);
   if (rc) fprintf(stderr, "mdpore permeability: %s\n", err);
   printf("\n== permeability along %c: %s ==\n", 'x' + axis, c->sample);
@@ -306,7 +348,13 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   }
   printf("  wrote %s\n", table);
   fflush(stdout);
-  if (!rc) {
+  if (!rc && !L->accepted) { /* no law and no k from rows that a Darcy law does not fit */
+    unlink(fitjson);
+    unlink(png);
+    printf("  mdpore fit not run: these rows define no Darcy range, so no law is chosen for them "
+           "(the table stays for inspection: mdpore fit %s)\n",
+           table);
+  } else if (!rc) {
     char *argv[16];
     int a = 0;
     char fit_word[] = "fit", json_flag[] = "--json", plot_flag[] = "--plot",
@@ -348,23 +396,15 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
       rc = -1;
     }
   }
-  if (!rc && !camp_darcy_range(t.G, t.q, t.sigma, t.n, c->viscosity, &ar->linear)) {
-    const camp_linear *L = &ar->linear;
-    if (!L->accepted)
-      snprintf(ar->undefined_why, sizeof ar->undefined_why,
-               "the %d lowest of %d admissible gradients do not fit a Darcy law (chi2/dof %.3g "
-               "above %.3g: the rows scatter beyond their error bars)",
-               L->rows, t.n, L->chi2_dof, 1.0 + 3.0 * sqrt(2.0 / (L->rows - 1)));
-    else
-      printf("  Darcy range: the %d lowest of %d gradients (G <= %.4g) fit a Darcy law (chi2/dof "
-             "%.3g): k = %.5g +- %.2g rc^2 = %.4g +- %.2g nD%s\n",
-             L->rows, t.n, L->G_max, L->chi2_dof, L->k, L->k_err, L->k * u->k_m2 * NANODARCY_PER_M2,
-             L->k_err * u->k_m2 * NANODARCY_PER_M2,
-             L->rows < t.n ? "; the gradients above leave the linear law (the fit over all rows "
-                             "is pulled by them): this k is the permeability"
-                           : "");
-  }
-  if (!rc) report_axis(axis, c, u, ar, missing);
+  if (!rc && L->accepted)
+    printf("  Darcy range: the %d lowest of %d gradients (G <= %.4g) fit a Darcy law (chi2/dof "
+           "%.3g): k = %.5g +- %.2g rc^2 = %.4g +- %.2g m^2 = %.4g +- %.2g nD%s\n",
+           L->rows, t.n, L->G_max, L->chi2_dof, L->k, L->k_err, L->k * u->k_m2, L->k_err * u->k_m2,
+           L->k * u->k_m2 * NANODARCY_PER_M2, L->k_err * u->k_m2 * NANODARCY_PER_M2,
+           L->rows < t.n ? "; the gradients above leave the linear law (the fit over all rows "
+                           "is pulled by them): this k is the permeability"
+                         : "");
+  if (!rc) report_axis(axis, c, u, ar);
   flow_table_free(&t);
   return rc;
 }
@@ -448,6 +488,8 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
       json_string(&j, "k_undefined_why",
                   ar[a].undefined_why[0] ? ar[a].undefined_why : "no Darcy range");
     json_int(&j, "runs_without_temperature", ar[a].n_no_temperature);
+    json_int(&j, "runs_without_result", ar[a].n_missing);
+    json_int(&j, "runs_target_missed_kept", ar[a].n_target_missed);
     json_number(&j, "k_rc2_all_rows", ar[a].k_all);
     json_number(&j, "k_rc2_all_rows_err", ar[a].k_all_err);
     json_array(&j, "left_out");
@@ -455,6 +497,8 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
       json_object(&j, NULL);
       json_number(&j, "G", ar[a].left_out_G[i]);
       json_string(&j, "run", ar[a].left_out_dir[i]);
+      json_string(&j, "check", ar[a].left_out_check[i]);
+      json_number(&j, "measured", ar[a].left_out_measured[i]);
       json_string(&j, "why", ar[a].left_out_why[i]);
       json_object_end(&j);
     }
@@ -465,9 +509,14 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
       json_bool(&j, "accepted", ar[a].linear.accepted);
       json_number(&j, "G_max", ar[a].linear.G_max);
       json_number(&j, "chi2_dof", ar[a].linear.chi2_dof);
-      json_number(&j, "k_rc2", ar[a].linear.k);
-      json_number(&j, "k_rc2_err", ar[a].linear.k_err);
-      json_number(&j, "k_nD", ar[a].linear.k * u->k_m2 * NANODARCY_PER_M2);
+      json_number(&j, "chi2_dof_max", 1.0 + 3.0 * sqrt(2.0 / (ar[a].linear.rows - 1)));
+      /* a slope the rows reject is no permeability: null, as k_rc2 */
+      const double k_range = ar[a].linear.accepted ? ar[a].linear.k : NAN;
+      const double k_range_err = ar[a].linear.accepted ? ar[a].linear.k_err : NAN;
+      json_number(&j, "k_rc2", k_range);
+      json_number(&j, "k_rc2_err", k_range_err);
+      json_number(&j, "k_m2", k_range * u->k_m2);
+      json_number(&j, "k_nD", k_range * u->k_m2 * NANODARCY_PER_M2);
       json_string(&j, "rule",
                   "the most lowest-G rows (>= 3; 2 with 2 rows) that Darcy through the origin "
                   "fits with chi2/dof <= 1 + 3 sqrt(2 / dof)");

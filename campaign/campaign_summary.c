@@ -49,6 +49,12 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   int b = 0;
   r->reached =
       (!reached || yt_is_null(reached)) ? -1 : (yt_bool(&t, reached, "reached", &b) ? -1 : b);
+  r->target_error = num(&t, flux, "target_error");
+  yaml_node_t *plateau = yt_get(&t, flux, "plateau");
+  int plateau_b = 0;
+  r->plateau = (!plateau || yt_is_null(plateau) || yt_bool(&t, plateau, "plateau", &plateau_b))
+                   ? -1
+                   : plateau_b;
   yaml_node_t *thermo = yt_get(&t, root, "thermo"), *temp;
   temp = thermo && thermo->type == YAML_MAPPING_NODE ? yt_get(&t, thermo, "T") : NULL;
   r->temperature = temp && temp->type == YAML_MAPPING_NODE ? num(&t, temp, "mean") : NAN;

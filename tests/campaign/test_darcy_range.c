@@ -1,7 +1,7 @@
 /* The Darcy range of a flow table (campaign/campaign_linear.c): rows that follow q = (k / mu) G up
  * to some gradient and rise above it are cut where the rise starts, and k is the slope of the kept
  * rows; rows that all follow the law are all kept; a table that never fits is flagged (at least 3
- * rows are kept where there are 3). */
+ * rows are kept where there are 3), rows that are not monotone in G included. */
 #include <math.h>
 #include <stdio.h>
 
@@ -38,6 +38,17 @@ int main(void) {
   for (int i = 0; i < 6; i++) q[i] = k / mu * G[i] * (1.0 + 0.1 * i); /* never linear */
   check(camp_darcy_range(G, q, sigma, 6, mu, &L) == 0 && !L.accepted && L.rows == 3,
         "a table that leaves the law from the start: the 3 lowest rows, flagged not accepted");
+  /* q not monotone in G (lower at the 3rd gradient than the 2nd's line allows, higher at the 5th)
+   * with 0.1% error bars: no prefix of 3 or more fits, so no Darcy range (k not defined) */
+  const double wobble[5] = {1.0, 0.90, 1.12, 0.88, 1.10};
+  for (int i = 0; i < 5; i++) {
+    q[i] = k / mu * G[i] * wobble[i];
+    sigma[i] = 0.001 * q[i];
+  }
+  check(camp_darcy_range(G, q, sigma, 5, mu, &L) == 0 && !L.accepted && L.rows == 3 &&
+            L.chi2_dof > 1.0 + 3.0 * sqrt(2.0 / 2),
+        "rows not monotone in G, 0.1% errors: not accepted (chi2/dof above 1 + 3 sqrt(2/dof))");
+  printf("  chi2/dof %.3g over the 3 lowest rows\n", L.chi2_dof);
   check(camp_darcy_range(G, q, sigma, 2, mu, &L) == 0 && L.rows == 2, "two rows: both");
   check(camp_darcy_range(G, q, sigma, 1, mu, &L) == -1, "one row: no range (-1)");
   return failures ? 1 : 0;
