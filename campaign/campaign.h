@@ -25,6 +25,13 @@
  * fluid (validation/walls/slit_poiseuille.py --wall-density). geometry.wall_density keeps 8. */
 #define CAMP_DEFAULT_WALL_DENSITY 4.0
 #define CAMP_WALL_DENSITY_TEXT "4"
+/* What the template's walls (density 4) adsorb: fluid particles per rc^2 of pore-solid voxel face
+ * beyond the pore core's density, measured at rest on a slit image 16 voxels wide
+ * (validation/permeability/wall_adsorption.py: 0.256 +- 0.014 at 1 rc per voxel, 0.276 +- 0.044
+ * at 0.5). The template fills the pores at n + Gamma S / V so that the core is at the liquid's
+ * density n (docs/permeability.md, "Fill"). */
+#define CAMP_DEFAULT_WALL_ADSORPTION 0.26
+#define CAMP_WALL_ADSORPTION_TEXT "0.26"
 
 /* How the runs are driven (--drive): a body force on every fluid particle, or an inlet force in an
  * open reservoir added along the flow axis (pressure-driven; docs/permeability.md). */
@@ -62,6 +69,8 @@ typedef struct {
   int viscosity_given;
   double wall_density; /* image input: geometry.wall_density of the template */
   int wall_density_given;
+  double wall_adsorption; /* image input: Gamma, particles per rc^2 of wall face (the fill) */
+  int wall_adsorption_given;
   char rng[16]; /* image input: dpd_thermostat rng of the template (philox, philox2x32, fast) */
   int rng_given;
   double temperature_K;  /* units: kT of the reduced units */
@@ -108,13 +117,15 @@ typedef struct {
 typedef struct {
   char sample[256];
   char input[CAMP_PATH];
-  char image[CAMP_PATH]; /* image of the geometry ("" for a scene without geometry) */
-  double porosity;       /* pore voxels / all voxels (NAN without an image) */
-  double rc_per_voxel;   /* NAN without an image */
-  double h_hydraulic;    /* 2 V_pore / S_pore, rc (NAN without an image) */
-  int percolates[3];     /* along x, y, z (1 without an image) */
-  double fluid_density;  /* n, particles per rc^3 */
-  double viscosity;      /* mu, reduced */
+  char image[CAMP_PATH];  /* image of the geometry ("" for a scene without geometry) */
+  double porosity;        /* pore voxels / all voxels (NAN without an image) */
+  double rc_per_voxel;    /* NAN without an image */
+  double h_hydraulic;     /* 2 V_pore / S_pore, rc (NAN without an image) */
+  int percolates[3];      /* along x, y, z (1 without an image) */
+  double fluid_density;   /* n, particles per rc^3: the liquid's density in the pore core */
+  double fill_density;    /* the template's fill, n + wall_adsorption S / V (NAN: a scene's own) */
+  double wall_adsorption; /* Gamma of the fill, particles per rc^2 (NAN: a scene's own) */
+  double viscosity;       /* mu, reduced */
   char viscosity_source[256];
   double wall_density;  /* wall particles per rc^3 of the template (NAN: a scene's own) */
   char pair_rng[16];    /* the template's pair random numbers' generator ("": a scene's own) */

@@ -46,6 +46,11 @@ const char *camp_usage =
     "                      gamma=4.5 rd=0.75, validation/engine/viscosity.py)\n"
     "  --wall-density W    image: wall patch density, particles per rc^3 "
     "(default " CAMP_WALL_DENSITY_TEXT ": no slip on slits, docs/walls.md section 16)\n"
+    "  --wall-adsorption G  image: particles per rc^2 of wall face that the walls hold beyond\n"
+    "                      the core's density; the pores are filled at 6.2 + G S / V so that the\n"
+    "                      core is at 6.2 (default " CAMP_WALL_ADSORPTION_TEXT
+    ", measured at wall density " CAMP_WALL_DENSITY_TEXT "; 0 at\n"
+    "                      another --wall-density unless given; 0: a uniform fill at 6.2)\n"
     "  --rng R             image: generator of the pair random numbers, philox (default),\n"
     "                      philox2x32 or fast (dpd_thermostat rng; the same statistics, a cheaper\n"
     "                      step: docs/accuracy.md)\n"
@@ -68,8 +73,8 @@ const char *camp_usage =
     "                      or reservoir (= --drive pressure)\n"
     "  --cavitation-tolerance F  a run whose pore-core density departs from the fill by more\n"
     "                      than F (the liquid cavitated or is compressed) is left out of the\n"
-    "                      Darcy range and the fits (default 0.08: at rest the walls leave the\n"
-    "                      core 2-3% below the fill)\n"
+    "                      Darcy range and the fits (default 0.08; an IMAGE's fill adds what\n"
+    "                      the walls adsorb, a scene's uniform fill leaves the core 2-3% below)\n"
     "  --density-tolerance F  a run whose pore-core density departs by more than F from the\n"
     "                      liquid at rest (the core of the weakest admissible run) is left out\n"
     "                      (the forcing compressed or expanded it; default 0.03)\n"
@@ -148,6 +153,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->min_throat = 4.0;
   o->viscosity = 5.41;
   o->wall_density = CAMP_DEFAULT_WALL_DENSITY;
+  o->wall_adsorption = CAMP_DEFAULT_WALL_ADSORPTION;
   snprintf(o->rng, sizeof o->rng, "philox");
   o->temperature_K = 298.15;
   o->seed = 12345;
@@ -235,6 +241,11 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
                        &o->wall_density))
         return -1;
       o->wall_density_given = 1;
+    } else if (!strcmp(s, "--wall-adsorption")) {
+      if (parse_double(s, v, -1e-300, 100, "an adsorption 0 <= G < 100 (particles per rc^2)",
+                       &o->wall_adsorption))
+        return -1;
+      o->wall_adsorption_given = 1;
     } else if (!strcmp(s, "--rng")) {
       if (strcmp(v, "philox") && strcmp(v, "philox2x32") && strcmp(v, "fast")) {
         fprintf(stderr,
@@ -331,6 +342,13 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   }
   absolute(input, o->input, sizeof o->input);
   o->input_is_scene = ends_with(input, ".yaml") || ends_with(input, ".yml");
+  if (o->input_is_scene && o->wall_adsorption_given) {
+    fprintf(stderr,
+            "mdpore permeability: --wall-adsorption: applies to an IMAGE input only (got the "
+            "scene %s: set geometry.fluid_density in it)\n",
+            input);
+    return -1;
+  }
   if (o->input_is_scene && o->wall_density_given) {
     fprintf(stderr,
             "mdpore permeability: --wall-density: applies to an IMAGE input only (got the scene "

@@ -11,9 +11,10 @@
  *     heated but its thermostat or integration is off, and is left out too);
  *   pore-core density n_core against the fill n_fill: |n_core / n_fill - 1| <= cavitation_tol. A
  *     core far below the fill has cavitated (a Berea crop at 0.5 rc per voxel: 4.0 to 4.8 against
- *     6.2). At rest the core sits a little below the fill, by what the walls adsorb (2-3% at wall
- *     density 4: 6.0-6.1 in the CI slit, 6.02-6.03 in Berea crops at 1 rc per voxel), so this bound
- *     is looser than the next;
+ *     6.2). n_fill is the liquid's density the pores were filled to: an IMAGE's template adds what
+ *     the walls adsorb (campaign_template.c), so its core sits at n_fill at rest; a scene's uniform
+ *     fill leaves the core below it by that much (2-3% at wall density 4: 6.0-6.1 in the CI slit,
+ *     6.02-6.03 in Berea crops at 1 rc per voxel), so this bound is looser than the next;
  *   pore-core density against the liquid at rest n_rest (the core of the axis's weakest admissible
  *     run): |n_core / n_rest - 1| <= density_tol: the forcing compresses the liquid ahead of
  *     constrictions and expands it behind them (Berea at 1 rc per voxel: 6.03 at rest, 5.81 at the
@@ -59,7 +60,9 @@ int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest
   if (!isfinite(r->core_density)) return 1;
   const double off_fill = r->core_density / lim->fill_density - 1;
   if (lim->fill_density > 0 && fabs(off_fill) > lim->cavitation_tol) {
-    snprintf(why, len, "pore-core density %.4g is %+.1f%% off the fill %.4g (%s; tolerance %.0f%%)",
+    snprintf(why, len,
+             "pore-core density %.4g is %+.1f%% off the liquid's density %.4g that the pores "
+             "were filled to (%s; tolerance %.0f%%)",
              r->core_density, 100 * off_fill, lim->fill_density,
              off_fill < 0 ? "the liquid cavitated" : "the liquid is compressed",
              100 * lim->cavitation_tol);

@@ -426,6 +426,11 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
   json_number(&j, "viscosity", c->viscosity);
   json_string(&j, "viscosity_source", c->viscosity_source);
   if (isfinite(c->wall_density)) json_number(&j, "wall_density", c->wall_density);
+  json_number(&j, "fluid_density", c->fluid_density);
+  if (isfinite(c->fill_density)) {
+    json_number(&j, "fill_density", c->fill_density);
+    json_number(&j, "wall_adsorption", c->wall_adsorption);
+  }
   if (c->pair_rng[0]) json_string(&j, "pair_rng", c->pair_rng);
   json_string(&j, "drive", c->drive == CAMP_DRIVE_PRESSURE ? "pressure" : "body");
   if (c->drive == CAMP_DRIVE_PRESSURE) json_number(&j, "reservoir_rc", c->reservoir);

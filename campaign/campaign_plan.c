@@ -110,6 +110,9 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   fprintf(f, "fluid_density: %.17g\nviscosity: %.17g\nviscosity_source: %s\n", c->fluid_density,
           c->viscosity, c->viscosity_source);
   if (isfinite(c->wall_density)) fprintf(f, "wall_density: %.17g\n", c->wall_density);
+  if (isfinite(c->fill_density))
+    fprintf(f, "fill_density: %.17g\nwall_adsorption: %.17g\n", c->fill_density,
+            c->wall_adsorption);
   if (c->pair_rng[0]) fprintf(f, "pair_rng: %s\n", c->pair_rng);
   fprintf(f, "length_unit_m: %.17g\nlength_source: %s\n", c->length_unit_m, c->length_source);
   fprintf(f, "temperature_K: %.17g\ntarget_error: %.17g\nnp: %d\n", c->temperature_K,
@@ -162,6 +165,7 @@ int camp_read_manifest(const char *workdir, campaign *c) {
   for (int d = 0; d < 3; d++) c->seam_continuity[d] = NAN;
   c->kT = 1.0;           /* a manifest from before the kT line: an IMAGE's template */
   c->wall_density = NAN; /* a scene's own, or a manifest from before --wall-density */
+  c->fill_density = c->wall_adsorption = NAN;  /* a scene's own, or a uniform fill at n */
   c->particles_estimate = c->min_throat = NAN; /* a scene, or a manifest from before them */
   for (int d = 0; d < 3; d++) c->throat_voxels[d] = -1;
   int ln = 0, rc = 0, head = 0;
@@ -267,7 +271,8 @@ int camp_read_manifest(const char *workdir, campaign *c) {
           {"length_unit_m", &c->length_unit_m}, {"temperature_K", &c->temperature_K},
           {"target_error", &c->target_error},   {"reservoir", &c->reservoir},
           {"energy_J", &c->energy_J},           {"particle_mass_kg", &c->particle_mass_kg},
-          {"min_throat", &c->min_throat},       {"particles_estimate", &c->particles_estimate}};
+          {"min_throat", &c->min_throat},       {"particles_estimate", &c->particles_estimate},
+          {"fill_density", &c->fill_density},   {"wall_adsorption", &c->wall_adsorption}};
       for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
         if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
       if (!strcmp(k, "np")) {

@@ -16,15 +16,29 @@
 #include "campaign.h"
 #include "mdpore_image.h"
 
-#define TEMPLATE_FLUID_DENSITY 6.2   /* the generated template's geometry.fluid_density */
-#define TEMPLATE_WALL_THICKNESS 1.75 /* its fluid-wall rc + rd: the builder's default thickness */
-#define TEMPLATE_STEPS 20000LL       /* its run.steps without --max-steps */
-#define MDPD_WATER_RC_M 8.2e-10      /* physics.md section 4: the length without a voxel size */
+#define TEMPLATE_FLUID_DENSITY 6.2     /* the generated template's geometry.fluid_density */
+#define TEMPLATE_FLUID_WALL_REACH 1.75 /* its fluid-wall rc + rd: the builder's default thickness */
+#define TEMPLATE_STEPS 20000LL         /* its run.steps without --max-steps */
+#define MDPD_WATER_RC_M 8.2e-10        /* physics.md section 4: the length without a voxel size */
 /* Measured throughput (bench/RESULTS.md): the CPU path, one rank per core, 0.59-0.9 M
  * particle-steps/s per core (2-core EPYC VM to the 16-core Xeon host; the lower end here); the
- * CUDA path on one H200, 2.3e9 particle-steps/s (the porous case, walls included). */
+ * CUDA path on one H200 depends on the run's size: 2.5e8 particle-steps/s for one run of 50k
+ * particles, 2.3e9 from 2.1M particles on (the porous case, walls included); between the two a
+ * power law through both points. */
 #define CPU_STEPS_PER_CORE 0.6e6
-#define GPU_STEPS_H200 2.3e9
+#define GPU_SMALL_PARTICLES 5e4
+#define GPU_SMALL_STEPS 2.5e8
+#define GPU_FULL_PARTICLES 2.1e6
+#define GPU_FULL_STEPS 2.3e9
+
+/* One H200's particle-steps per second for one run of n particles (the interpolation above). */
+static double gpu_steps_per_second(double n) {
+  if (n <= GPU_SMALL_PARTICLES) return GPU_SMALL_STEPS;
+  if (n >= GPU_FULL_PARTICLES) return GPU_FULL_STEPS;
+  const double slope =
+      log(GPU_FULL_STEPS / GPU_SMALL_STEPS) / log(GPU_FULL_PARTICLES / GPU_SMALL_PARTICLES);
+  return GPU_SMALL_STEPS * pow(n / GPU_SMALL_PARTICLES, slope);
+}
 /* Regimes of rc (docs/permeability.md, "Resolution"): up to 10 nm slip and layering are physics
  * and mDPD is the model; from 100 nm mDPD is a Stokes solver and `mdpore foam` the reference. */
 #define NANOPORE_RC_M 10e-9
@@ -80,7 +94,9 @@ static void print_duration(double seconds) {
 static int report_cost(const camp_opts *o, const mdp_image_t *img, const mdp_image_stats_t *st,
                        double a, campaign *c) {
   char err[MDP_IMAGE_ERR_LEN];
-  const long long walls = wall_voxels(img, TEMPLATE_WALL_THICKNESS / a, err);
+  /* the builder's default thickness: rc + rd, or one voxel edge where that is coarser */
+  const double thickness = a > TEMPLATE_FLUID_WALL_REACH ? a : TEMPLATE_FLUID_WALL_REACH;
+  const long long walls = wall_voxels(img, thickness / a, err);
   if (walls < 0) {
     fprintf(stderr, "mdpore permeability: %s: %s\n", o->input, err);
     return -1;
@@ -108,16 +124,17 @@ static int report_cost(const camp_opts *o, const mdp_image_t *img, const mdp_ima
           "in %lld pore voxels that carry flow, walls %.3g at %g per rc^3 in %lld solid voxels "
           "within %g rc of the pore; x%lld for the mirrored copies)\n",
           n[0] * a, n[1] * a, n[2] * a, c->particles_estimate, fluid_particles,
-          TEMPLATE_FLUID_DENSITY, fluid, wall_particles, o->wall_density, walls,
-          TEMPLATE_WALL_THICKNESS, mirror_factor);
+          TEMPLATE_FLUID_DENSITY, fluid, wall_particles, o->wall_density, walls, thickness,
+          mirror_factor);
   fprintf(stderr, "  time at the step budget (%d runs x %lld steps, %.3g particle-steps): CPU ",
           runs, steps, work);
   print_duration(work / (CPU_STEPS_PER_CORE * o->np));
   fprintf(stderr, " on %d core%s (%.2g per core, bench/RESULTS.md CPU path); GPU ", o->np,
           o->np > 1 ? "s" : "", CPU_STEPS_PER_CORE);
-  print_duration(work / GPU_STEPS_H200);
+  const double gpu_rate = gpu_steps_per_second(c->particles_estimate);
+  print_duration(work / gpu_rate);
   fprintf(stderr, " on one H200 (%.2g/s); runs that meet the target error stop earlier\n",
-          GPU_STEPS_H200);
+          gpu_rate);
   return 0;
 }
 
@@ -197,15 +214,14 @@ int camp_resolution(camp_opts *o, campaign *c) {
     fprintf(stderr, " %c %d", 'x' + o->axes[i], ps.throat[o->axes[i]]);
   fprintf(stderr, "; the narrowest along %c\n", 'x' + axis);
   const double needed = round_up_2(wanted);
-  const int coarse = needed > TEMPLATE_WALL_THICKNESS; /* no voxel edge the builder takes does */
   char why[512] = "";
   if (!o->rc_per_voxel_given) {
-    o->rc_per_voxel = coarse ? TEMPLATE_WALL_THICKNESS : needed;
+    o->rc_per_voxel = needed;
     snprintf(c->rc_per_voxel_source, sizeof c->rc_per_voxel_source,
              "chosen: the critical throat along %c, %d voxel%s, at least --min-throat %g rc wide "
-             "(%g / %d = %.4g, rounded up%s)",
+             "(%g / %d = %.4g, rounded up)",
              'x' + axis, throat, throat > 1 ? "s" : "", o->min_throat, o->min_throat, throat,
-             wanted, coarse ? "; capped at the wall thickness 1.75 rc" : "");
+             wanted);
   } else {
     snprintf(c->rc_per_voxel_source, sizeof c->rc_per_voxel_source, "--rc-per-voxel");
   }
@@ -217,19 +233,10 @@ int camp_resolution(camp_opts *o, campaign *c) {
              'x' + axis, throat, throat > 1 ? "s" : "", throat * o->rc_per_voxel, o->rc_per_voxel,
              o->min_throat);
   if (why[0] && !o->force) {
-    if (coarse)
-      fprintf(stderr,
-              "mdpore permeability: %s: %s. %g rc across it needs %.3g rc per voxel, more than the "
-              "wall thickness %g rc the wall builder allows (docs/walls.md): the image does not "
-              "resolve its throats for mDPD. Use a finer image (or a sample with wider throats), "
-              "or lower --min-throat; --force runs anyway (at --rc-per-voxel, else %g)\n",
-              o->input, why, o->min_throat, needed, TEMPLATE_WALL_THICKNESS,
-              TEMPLATE_WALL_THICKNESS);
-    else
-      fprintf(stderr,
-              "mdpore permeability: %s: %s. Give --rc-per-voxel %.3g or more, or leave it out (the "
-              "default resolves the throat), or lower --min-throat; --force runs anyway\n",
-              o->input, why, needed);
+    fprintf(stderr,
+            "mdpore permeability: %s: %s. Give --rc-per-voxel %.3g or more, or leave it out (the "
+            "default resolves the throat), or lower --min-throat; --force runs anyway\n",
+            o->input, why, needed);
     rc = -1;
     goto done;
   }

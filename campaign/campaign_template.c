@@ -90,7 +90,20 @@ static int image_meta(const char *path, const char *labels, const int *axis_map,
   return 0;
 }
 
-static int write_image_template(const camp_opts *o, const mdp_image_t *img, const char *path) {
+/* The fill of an IMAGE's pores (docs/permeability.md, "Fill"): the walls hold Gamma particles per
+ * rc^2 of wall face beyond the core's density, so N = n V + Gamma S fills V at
+ * n + Gamma S / V = n + 2 Gamma / h (h = 2 V / S, the hydraulic size) and leaves the core at the
+ * liquid's density n, the density whose viscosity k = mu q / G uses. */
+static void fill_density(const camp_opts *o, campaign *c) {
+  double gamma = o->wall_adsorption;
+  if (!o->wall_adsorption_given && o->wall_density != CAMP_DEFAULT_WALL_DENSITY) gamma = 0;
+  c->wall_adsorption = gamma;
+  c->fill_density = c->fluid_density;
+  if (gamma > 0 && c->h_hydraulic > 0) c->fill_density += 2 * gamma / c->h_hydraulic;
+}
+
+static int write_image_template(const camp_opts *o, const campaign *c, const mdp_image_t *img,
+                                const char *path) {
   long long n_org = 0, n_inorg = 0;
   for (size_t v = 0; v < mdp_image_count(img); v++) {
     int ph = mdp_image_phase(img, v);
@@ -121,8 +134,9 @@ static int write_image_template(const camp_opts *o, const mdp_image_t *img, cons
           "body_force: {liquid: [0.0, 0.0, 0.0]}, bounce_back: {}}\n",
           thermostat);
   fprintf(f, "geometry:\n  image: \"%s\"\n  rc_per_voxel: %.17g\n  flow_axis: x\n", o->input, a);
-  fprintf(f, "  fluid_density: %g\n  wall_density: %.17g\n  species: {fluid: liquid",
-          DEFAULT_FLUID_DENSITY, o->wall_density);
+  /* %g: a uniform fill keeps the text (and the run hashes) of a plain 6.2 */
+  fprintf(f, "  fluid_density: %.6g\n  wall_density: %.17g\n  species: {fluid: liquid",
+          c->fill_density, o->wall_density);
   if (n_inorg) fprintf(f, ", inorganic: quartz");
   if (n_org) fprintf(f, ", organic: kerogen");
   fprintf(f, "}\n");
@@ -319,6 +333,7 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
   c->length_source[0] = 0;
   for (int d = 0; d < 3; d++) c->percolates[d] = 1;
   c->fluid_density = DEFAULT_FLUID_DENSITY;
+  c->fill_density = c->wall_adsorption = NAN;
   c->viscosity = o->viscosity;
   snprintf(c->viscosity_source, sizeof c->viscosity_source, "%s",
            o->viscosity_given ? "--viscosity"
@@ -359,7 +374,17 @@ int camp_make_template(camp_opts *o, campaign *c, char *template_path, int len) 
     if (camp_resolution(o, c)) return -1;
     if (image_meta(o->input, NULL, NULL, o->rc_per_voxel, o, c, &img)) return -1;
     snprintf(template_path, len, "%s/template.yaml", o->workdir);
-    int rc = write_image_template(o, &img, template_path);
+    fill_density(o, c);
+    if (c->h_hydraulic > 0)
+      fprintf(stderr,
+              "  fill %.4g particles per rc^3 of pore: the liquid's %g in the core plus what the "
+              "walls adsorb (%g per rc^2 of wall face x S / V = 2 / h = %.3g per rc%s)\n",
+              c->fill_density, c->fluid_density, c->wall_adsorption, 2 / c->h_hydraulic,
+              c->wall_adsorption > 0 ? ""
+              : o->wall_density != CAMP_DEFAULT_WALL_DENSITY
+                  ? "; none: measured for the default wall density only, give --wall-adsorption"
+                  : "; none: --wall-adsorption 0");
+    int rc = write_image_template(o, c, &img, template_path);
     if (!rc) rc = camp_write_boundary_images(o, &img);
     mdp_image_free(&img);
     if (rc) return -1;

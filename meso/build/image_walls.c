@@ -100,8 +100,10 @@ static int edt_pore(const uint8_t *phase, const int n[3], const int periodic[3],
 /* ---- the build ------------------------------------------------------------------------------------ */
 
 /* Wall thickness (rc): geometry.wall_thickness, or when <= 0 the largest rc + rd of the fluid-wall
- * pairs: a fluid particle then sees a full wall within every cutoff it has (forces and density). */
-static double wall_thickness(const scene_t *s) {
+ * pairs: a fluid particle then sees a full wall within every cutoff it has (forces and density).
+ * A voxel edge h coarser than that keeps one voxel layer (thickness h >= rc + rd): the face
+ * neighbours of every pore voxel, which is all the cutoffs need. */
+static double wall_thickness(const scene_t *s, double h) {
   const scene_geometry_t *geo = &s->geometry;
   if (geo->wall_thickness > 0) return geo->wall_thickness;
   const int walls[2] = {geo->organic_species, geo->inorganic_species};
@@ -111,7 +113,7 @@ static double wall_thickness(const scene_t *s) {
     const scene_pair_t *p = &s->pair[geo->fluid_species][walls[k]];
     if (p->rc + p->rd > t) t = p->rc + p->rd;
   }
-  return t;
+  return t > h ? t : h;
 }
 
 /* The wall species of a voxel's phase (-1: pore or a phase without one). */
@@ -261,7 +263,7 @@ static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_l
   g->h = geo->rc_per_voxel;
   g->min_distance = geo->min_wall_distance;
   for (int d = 0; d < 3; d++) g->lo[d] = s->box_lo[d], g->periodic[d] = s->periodic[d];
-  g->thickness = wall_thickness(s);
+  g->thickness = wall_thickness(s, g->h);
   char err[4 * MDP_IMAGE_ERR_LEN] = "";
   uint8_t *phase = NULL;
   int rc = read_stage(s, g, sub_lo, sub_hi, &phase, err, sizeof err);
@@ -478,7 +480,9 @@ void image_walls_report(const image_walls_t *g, FILE *out) {
       "  walls: thickness %g rc (%.3g voxels)%s; wall voxels kept %lld (organic %lld, inorganic "
       "%lld), deep solid voxels dropped %lld (organic %lld, inorganic %lld)\n",
       g->thickness, g->thickness / g->h,
-      geo->wall_thickness > 0 ? "" : " = rc + rd of the fluid-wall pairs",
+      geo->wall_thickness > 0 ? ""
+      : g->thickness > g->h   ? " = rc + rd of the fluid-wall pairs"
+                              : " = one voxel edge (coarser than rc + rd of the fluid-wall pairs)",
       ct->wall_voxels[0] + ct->wall_voxels[1], ct->wall_voxels[0], ct->wall_voxels[1],
       ct->deep_voxels[0] + ct->deep_voxels[1], ct->deep_voxels[0], ct->deep_voxels[1]);
   char cache[1024];

@@ -70,7 +70,7 @@ def main():
         sys.exit("image make failed: " + p.stderr)
     open(os.path.join(OUT, "scene.yaml"), "w").write("name: x\n")
     grads = ["--gradients", "0.1,0.2"]
-    common = ["--max-steps", "4000", "--target-error", "0.05", "--np", NP]
+    common = ["--max-steps", "8000", "--target-error", "0.05", "--np", NP]
 
     # 1. bad input
     expect_error(["permeability", "slit.h5", "--axis", "x", "--drive", "piston"], "--drive", "unknown drive")

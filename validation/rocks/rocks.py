@@ -55,8 +55,19 @@ def sh(*args, cwd=None, check=True):
 
 
 def crops(a):
-    """(rock, size, name) of every crop asked for."""
+    """(rock, size, name) of every crop asked for: --crops ROCK:SIZE[:OFFSET] ..., else every --rock
+    at every --sizes (at --offset)."""
+    if a.crops:
+        return [(c.split(":")[0], int(c.split(":")[1]), f"{c.split(':')[0]}_{c.split(':')[1]}") for c in a.crops]
     return [(r, s, f"{r}_{s}") for r in a.rock for s in a.sizes]
+
+
+def crop_offset(a, rock, size):
+    for c in a.crops or []:
+        f = c.split(":")
+        if f[0] == rock and int(f[1]) == size and len(f) > 2:
+            return int(f[2])
+    return a.offset
 
 
 def make_crop(a, rock, size, name):
@@ -65,7 +76,7 @@ def make_crop(a, rock, size, name):
     img = os.path.join(d, "crop.raw")
     if not os.path.exists(img):
         base, n = ROCK_FILES[rock]
-        o = a.offset
+        o = crop_offset(a, rock, size)
         sh("image", "convert", os.path.join(ROCKS, base, base + ".raw"), "--crop",
            f"{o}:{o + size},{o}:{o + size},{o}:{o + size}", "-o", img)
     return d, img
@@ -138,6 +149,15 @@ def emit_stage(a):
                     return emit_stage(a)
                 open(em + ".refused", "w").write(p.stderr)
                 continue
+        est = next((float(l.split()[1]) for l in open(os.path.join(em, "campaign.txt"))
+                    if l.startswith("particles_estimate:")), 0.0)
+        if a.max_particles and est > a.max_particles:
+            open(em + ".skipped", "w").write(
+                f"not run: about {est:.3g} particles per run at the default resolution, more than this "
+                f"validation's --max-particles {a.max_particles:.3g} (see {os.path.basename(em)}.emit.log "
+                f"for the time estimate)\n")
+            print(f"{name} {os.path.basename(em)}: skipped ({est:.3g} particles per run)")
+            continue
         for line in open(os.path.join(em, "campaign.txt")):
             if line.startswith("run: "):
                 rd = line.split(maxsplit=3)[3].strip()
@@ -210,11 +230,14 @@ def report_stage(a):
     os.makedirs(RESULTS, exist_ok=True)
     rows, failures = [], []
     for name, em, extra in campaigns(a):
-        if os.path.exists(em + ".refused"):
-            why = open(em + ".refused").read().strip().splitlines()[-1].replace(a.work + "/", "")[:400]
+        if os.path.exists(em + ".refused") or os.path.exists(em + ".skipped"):
+            f = em + (".refused" if os.path.exists(em + ".refused") else ".skipped")
+            why = open(f).read().strip().splitlines()[-1].replace(a.work + "/", "")[:400]
+            if f.endswith(".refused"):
+                why = "refused: " + why
             rows.append({"crop": name, "campaign": os.path.basename(em), "axis": em[-1] if "_" in os.path.basename(em) else "all",
                          "rc_per_voxel": None, "boundary": None, "k_mdpd_rc2": None, "k_mdpd_rc2_err": None,
-                         "darcy_range": "refused: " + why, "k_mdpd_voxel2": None, "k_foam_r1": None, "k_foam_r2": None,
+                         "darcy_range": why, "k_mdpd_voxel2": None, "k_foam_r1": None, "k_foam_r2": None,
                          "k_foam_ref": None, "ratio": None, "max_core_density_dev": None, "penetrations": 0,
                          "run_seconds": None, "particles": 0, "backend": None, "runs": 0,
                          "max_core_density_dev_all": None, "left_out": 0})
@@ -442,9 +465,13 @@ def main():
     ap.add_argument("--rock", nargs="+", default=["berea"], choices=sorted(ROCK_FILES))
     ap.add_argument("--sizes", type=int, nargs="+", default=[48, 64])
     ap.add_argument("--offset", type=int, default=100, help="the crops' corner, voxels on each axis")
+    ap.add_argument("--crops", nargs="+", default=[],
+                    help="ROCK:SIZE[:OFFSET] per crop (instead of every --rock at every --sizes)")
     ap.add_argument("--foam-refine", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--refine-rc", type=float, nargs="*", default=[], help="extra rc per voxel of the smallest crop")
     ap.add_argument("--max-steps", type=int, default=20000)
+    ap.add_argument("--max-particles", type=float, default=0,
+                    help="emit: leave out (reported as not run) a campaign whose runs hold more particles")
     ap.add_argument("--per-axis", action="store_true",
                     help="one default campaign per axis (mdpore permeability --axis A: each axis at its own resolution)")
     ap.add_argument("--campaign-args", default="", help="extra options of the default campaigns")
