@@ -27,9 +27,10 @@
 #define CAMP_WALL_DENSITY_TEXT "4"
 /* What the template's walls (density 4) adsorb: fluid particles per rc^2 of pore-solid voxel face
  * beyond the pore core's density, measured at rest on a slit image 16 voxels wide
- * (validation/permeability/wall_adsorption.py: 0.256 +- 0.014 at 1 rc per voxel, 0.276 +- 0.044
- * at 0.5). The template fills the pores at n + Gamma S / V so that the core is at the liquid's
- * density n (docs/permeability.md, "Fill"). */
+ * (validation/permeability/wall_adsorption.py: 0.22-0.28 over five runs at 1 and 0.5 rc per voxel,
+ * 0.222 +- 0.010 in the longest; 0.26 was the first, and moves a Berea core by 0.4% from 0.23).
+ * The template fills the pores at n + Gamma S / V so that the core is at the liquid's density n
+ * (docs/permeability.md, "Fill"). */
 #define CAMP_DEFAULT_WALL_ADSORPTION 0.26
 #define CAMP_WALL_ADSORPTION_TEXT "0.26"
 
