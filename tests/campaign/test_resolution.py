@@ -10,6 +10,9 @@ along x and z, none along y):
 - W = 6: 4 / 6 rounded up to 0.67; with --rc-per-voxel 0.5 (a 3 rc throat) refused, naming the
   throat, the limit and what to try, nothing planned; with --force planned, the warning on stderr,
   in the manifest, in permeability.json and in the report; --min-throat 3 accepts 0.5;
+- W = 2: 2 rc per voxel, coarser than the walls' reach (rc + rd = 1.75): the estimate counts one wall
+  layer, the fill adds what the walls adsorb, and a short run of the scene builds one voxel layer of
+  wall with no particle inside it;
 - the regime: no voxel size (the water mapping, 0.82 nm) nanopore, 10 nm voxels at 0.5 rc per voxel
   (rc 20 nm) intermediate, 1 um voxels continuum.
 """
@@ -115,6 +118,29 @@ def main():
     check(p.returncode == 0 and "warning" not in p.stderr, f"--min-throat 3 accepts 0.5 (exit {p.returncode})")
     p = mdpore("permeability", "slit6.h5", "--axis", "x", "--min-throat", "-1", "--emit-scenes", "bad")
     check(p.returncode != 0 and "--min-throat" in p.stderr, "--min-throat -1 refused")
+
+    # width 2: the throat made 4 rc wide at 2 rc per voxel, coarser than the walls' reach rc + rd = 1.75:
+    # the wall builder keeps one voxel layer (2 rc); the fill adds what the walls adsorb
+    slit(2, "slit2.h5")
+    p = mdpore("permeability", "slit2.h5", "--axis", "x", "--emit-scenes", "w2")
+    m = manifest("w2")
+    check(p.returncode == 0 and float(m.get("rc_per_voxel", "nan")) == 2 and "resolution_warning" not in m,
+          f"slit 2: default rc_per_voxel 2, no warning (exit {p.returncode}, manifest {m.get('rc_per_voxel')}; "
+          f"{p.stderr[-300:]})")
+    parts = float(m.get("particles_estimate", "nan"))
+    # fluid: 12 x 2 x 8 pore voxels of 8 rc^3 at 6.2; walls: one solid layer each side (centres 1 voxel
+    # = 2 rc from the pore), 2 x 12 x 8 voxels at density 4
+    check(abs(parts - (6.2 * 192 * 8 + 4.0 * 192 * 8)) < 1e-6, f"slit 2: particles estimate {parts} (9523.2 + 6144)")
+    fill = float(m.get("fill_density", "nan"))
+    check(abs(fill - (6.2 + 2 * 0.26 / 4.0)) < 1e-9 and float(m.get("wall_adsorption", "nan")) == 0.26,
+          f"slit 2: fill 6.2 + 2 Gamma / h = 6.33 (h = 4 rc) in the manifest ({fill})")
+    runs = os.path.join(OUT, "w2", "runs")
+    run = os.path.join(runs, sorted(os.listdir(runs))[0]) if os.path.isdir(runs) else OUT
+    r = subprocess.run([MDPORE, "run", "scene.yaml", "--steps", "40"], capture_output=True, text=True, cwd=run)
+    out = r.stdout + r.stderr
+    check(r.returncode == 0 and "thickness 2 rc (1 voxels) = one voxel edge" in out,
+          f"slit 2: the wall builder keeps one voxel layer (exit {r.returncode}; {out[-600:]})")
+    check("penetrations: 0 of" in out, "slit 2: no particle inside a wall in 40 steps")
 
     # regimes
     for name, regime in (("slit8", "nanopore"), ("slit8_10nm", "intermediate"), ("slit8_1um", "continuum")):
