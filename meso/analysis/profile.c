@@ -11,6 +11,68 @@
 #define F_MOBILE(p) ((p)->nsp)
 #define F_V(p) ((p)->nsp + 1)
 #define F_P(p) ((p)->nsp + 4)
+#define PROFILE_PI 3.14159265358979323846
+
+/* Volume of bin b: a slab of the box, or with a radial profile (output.profile.radial) the shell
+ * between its radii: a cylindrical shell times the box length along the axis, or a spherical one. */
+static double bin_volume(const profile_t *p, int b) {
+  const scene_profile_t *c = &p->scene->profile;
+  if (!c->radial) return p->vbin;
+  const double r0 = b * c->rmax / p->nbins, r1 = (b + 1) * c->rmax / p->nbins;
+  if (c->radial == 1)
+    return PROFILE_PI * (r1 * r1 - r0 * r0) *
+           (p->scene->box_hi[c->axis] - p->scene->box_lo[c->axis]);
+  return 4.0 / 3.0 * PROFILE_PI * (r1 * r1 * r1 - r0 * r0 * r0);
+}
+
+/* Radial profiles: the centre of this sample. The given point, or the periodic centre of mass of
+ * centre_species: on each axis the angle mean of 2 pi x / L (Bai & Breen, J. Graph. Tools 13,
+ * 53 (2008)), which does not depend on where the drop sits across the periodic boundary. */
+static void radial_centre(const profile_t *p, const particles_t *pt, MPI_Comm comm, double c[3]) {
+  const scene_t *s = p->scene;
+  const scene_profile_t *pc = &s->profile;
+  for (int d = 0; d < 3; d++) c[d] = pc->centre[d];
+  if (pc->centre_species < 0) return;
+  double sum[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < pt->n_local; i++) {
+    if (pt->species[i] != pc->centre_species) continue;
+    for (int d = 0; d < 3; d++) {
+      const double th =
+          2 * PROFILE_PI * (pt->x[d][i] - s->box_lo[d]) / (s->box_hi[d] - s->box_lo[d]);
+      sum[2 * d] += cos(th);
+      sum[2 * d + 1] += sin(th);
+    }
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sum, 6, MPI_DOUBLE, MPI_SUM, comm);
+  for (int d = 0; d < 3; d++) {
+    if (pc->radial == 1 && d == pc->axis) continue;
+    if (sum[2 * d] == 0 && sum[2 * d + 1] == 0) continue; /* none of the species: the given point */
+    const double th = atan2(-sum[2 * d + 1], -sum[2 * d]) + PROFILE_PI;
+    c[d] = s->box_lo[d] + th / (2 * PROFILE_PI) * (s->box_hi[d] - s->box_lo[d]);
+  }
+}
+
+/* Bin of particle i, or -1 outside a radial profile's rmax. */
+static int bin_of(const profile_t *p, const particles_t *pt, int i, const double c[3]) {
+  const scene_t *s = p->scene;
+  const scene_profile_t *pc = &s->profile;
+  if (!pc->radial) {
+    double u = (pt->x[p->axis][i] - p->lo) / p->len;
+    u -= floor(u); /* periodic image into [0, 1) */
+    int b = (int)(u * p->nbins);
+    return b >= p->nbins ? p->nbins - 1 : b;
+  }
+  double r2 = 0;
+  for (int d = 0; d < 3; d++) {
+    if (pc->radial == 1 && d == pc->axis) continue;
+    const double l = s->box_hi[d] - s->box_lo[d];
+    double dx = pt->x[d][i] - c[d];
+    if (s->periodic[d]) dx -= l * floor(dx / l + 0.5); /* nearest image */
+    r2 += dx * dx;
+  }
+  const int b = (int)(sqrt(r2) / pc->rmax * p->nbins);
+  return b < p->nbins ? b : -1;
+}
 
 int profile_init(profile_t *p, const scene_t *s, long first, long last, MPI_Comm comm) {
   memset(p, 0, sizeof *p);
@@ -58,11 +120,11 @@ void profile_sample(profile_t *p, sim_t *sim) {
   const scene_t *s = p->scene;
   const int nf = p->nf;
   memset(p->local, 0, (size_t)p->nbins * nf * sizeof *p->local);
+  double centre[3] = {0, 0, 0};
+  if (s->profile.radial) radial_centre(p, pt, sim_comm(sim), centre);
   for (int i = 0; i < pt->n_local; i++) {
-    double u = (pt->x[p->axis][i] - p->lo) / p->len;
-    u -= floor(u); /* periodic image into [0, 1) */
-    int b = (int)(u * p->nbins);
-    if (b >= p->nbins) b = p->nbins - 1;
+    const int b = bin_of(p, pt, i, centre);
+    if (b < 0) continue;
     double *row = p->local + (size_t)b * nf;
     const int sp = pt->species[i];
     const double m = s->species[sp].mass;
@@ -97,22 +159,23 @@ void profile_sample(profile_t *p, sim_t *sim) {
 
 /* Value of one quantity of one bin from sums over `ns` samples: q = 0..nsp-1 density of a species,
  * nsp total density, nsp+1..3 velocity, nsp+4..9 pressure. */
-static double quantity(const profile_t *p, const double *row, long ns, int q) {
+static double quantity(const profile_t *p, const double *row, long ns, int q, double vbin) {
   if (ns <= 0) return NAN;
-  if (q < p->nsp) return row[q] / (ns * p->vbin);
+  if (q < p->nsp) return row[q] / (ns * vbin);
   if (q == p->nsp) {
     double c = 0;
     for (int k = 0; k < p->nsp; k++) c += row[k];
-    return c / (ns * p->vbin);
+    return c / (ns * vbin);
   }
   if (q <= p->nsp + 3)
     return row[F_MOBILE(p)] > 0 ? row[F_V(p) + q - p->nsp - 1] / row[F_MOBILE(p)] : 0;
-  return row[F_P(p) + q - p->nsp - 4] / (ns * p->vbin);
+  return row[F_P(p) + q - p->nsp - 4] / (ns * vbin);
 }
 
 /* Mean over all samples and block error of quantity q in bin b. */
 static void stat(const profile_t *p, int b, int q, double *mean, double *err) {
   const int n = p->nbins * p->nf;
+  const double vbin = bin_volume(p, b);
   double *tot = calloc((size_t)p->nf, sizeof *tot);
   long ns = 0, used = 0;
   double bm[PROFILE_BLOCKS];
@@ -120,9 +183,9 @@ static void stat(const profile_t *p, int b, int q, double *mean, double *err) {
     const double *row = p->blocks + (size_t)k * n + (size_t)b * p->nf;
     for (int f = 0; f < p->nf; f++) tot[f] += row[f];
     ns += p->block_samples[k];
-    if (p->block_samples[k] > 0) bm[used++] = quantity(p, row, p->block_samples[k], q);
+    if (p->block_samples[k] > 0) bm[used++] = quantity(p, row, p->block_samples[k], q, vbin);
   }
-  *mean = quantity(p, tot, ns, q);
+  *mean = quantity(p, tot, ns, q, vbin);
   double ss = 0;
   for (long k = 0; k < used; k++) ss += (bm[k] - *mean) * (bm[k] - *mean);
   *err = used > 1 ? sqrt(ss / (used - 1) / used) : NAN;
@@ -142,14 +205,28 @@ int profile_write(const profile_t *p, const char *path) {
       s->name, 'x' + p->axis, p->nbins, p->samples, s->profile.every, s->profile.start, p->nblocks);
   fprintf(fp, "# density = all species; v = mean velocity of mobile particles; P = (kinetic + "
               "virial) / V_bin\n");
-  fprintf(fp, "%c,density,density_err", 'x' + p->axis);
+  if (s->profile.radial)
+    fprintf(fp, "# radial profile: %s about %s (%g, %g, %g)%s%s, r < %g\n",
+            s->profile.radial == 1 ? "cylinder shells" : "spherical shells",
+            s->profile.radial == 1 ? "the line along the axis through" : "the point",
+            s->profile.centre[0], s->profile.centre[1], s->profile.centre[2],
+            s->profile.centre_species >= 0 ? ", moved each sample to the centre of mass of " : "",
+            s->profile.centre_species >= 0 ? s->species[s->profile.centre_species].name : "",
+            s->profile.rmax);
+  if (s->profile.radial)
+    fprintf(fp, "r,density,density_err");
+  else
+    fprintf(fp, "%c,density,density_err", 'x' + p->axis);
   for (int k = 0; k < p->nsp; k++)
     fprintf(fp, ",density_%s,density_%s_err", s->species[k].name, s->species[k].name);
   for (int k = 0; k < 9; k++) fprintf(fp, ",%s,%s_err", vp[k], vp[k]);
   fputc('\n', fp);
   for (int b = 0; b < p->nbins; b++) {
     double m, e;
-    fprintf(fp, "%.8g", p->lo + (b + 0.5) * p->len / p->nbins);
+    if (s->profile.radial)
+      fprintf(fp, "%.8g", (b + 0.5) * s->profile.rmax / p->nbins);
+    else
+      fprintf(fp, "%.8g", p->lo + (b + 0.5) * p->len / p->nbins);
     stat(p, b, p->nsp, &m, &e);
     fprintf(fp, ",%.8g,%.4g", m, e);
     for (int k = 0; k < p->nsp; k++) {
@@ -177,13 +254,27 @@ int profile_plateau_density(const profile_t *p, double *mean, double *err, int *
     double c = 0;
     for (int k = 0; k < p->nblocks; k++)
       c += p->blocks[(size_t)k * n + (size_t)b * p->nf + F_MOBILE(p)];
-    dens[b] = c / (p->samples * p->vbin);
+    dens[b] = c / (p->samples * bin_volume(p, b));
     if (dens[b] > mx) mx = dens[b];
     if (dens[b] < mn) mn = dens[b];
   }
   /* A liquid-vapour (or vacuum) interface along the axis: some bins hold less than half the
    * liquid density. Without one the profile is uniform and a "surface tension" means nothing. */
   *interfaces = mn < 0.5 * mx;
+  /* A liquid-liquid interface: the total stays near uniform, but some mobile species' density
+   * falls below half its maximum (two immiscible liquids, docs/twophase.md). */
+  for (int sp = 0; sp < p->nsp && !*interfaces; sp++) {
+    if (p->scene->species[sp].frozen) continue;
+    double smx = 0, smn = INFINITY;
+    for (int b = 0; b < p->nbins; b++) {
+      double c = 0;
+      for (int k = 0; k < p->nblocks; k++) c += p->blocks[(size_t)k * n + (size_t)b * p->nf + sp];
+      const double d = c / (p->samples * bin_volume(p, b));
+      if (d > smx) smx = d;
+      if (d < smn) smn = d;
+    }
+    *interfaces = smx > 0 && smn < 0.5 * smx;
+  }
   for (int b = 0; b < p->nbins; b++)
     if (dens[b] > 0.9 * mx) core[nc++] = b;
   /* Bins next to the interfaces sit on its shoulder: drop 20% at each end of the plateau. */
@@ -200,7 +291,12 @@ int profile_plateau_density(const profile_t *p, double *mean, double *err, int *
     double c = 0;
     for (int j = first; j < last; j++)
       c += p->blocks[(size_t)k * n + (size_t)core[j] * p->nf + F_MOBILE(p)];
-    bm[used++] = c / (p->block_samples[k] * p->vbin * (last - first));
+    if (p->scene->profile.radial) {
+      double v = 0;
+      for (int j = first; j < last; j++) v += bin_volume(p, core[j]);
+      bm[used++] = c / (p->block_samples[k] * v);
+    } else
+      bm[used++] = c / (p->block_samples[k] * p->vbin * (last - first));
   }
   for (int j = first; j < last; j++) tot += dens[core[j]];
   *mean = tot / (last - first);

@@ -74,6 +74,7 @@ static int offer_source(sim_t *sim, const scene_t *s, long n, source_get_fn get,
 typedef struct {
   const scene_t *s;
   long start[SCENE_MAX_FILLS + 1];
+  long *kept[SCENE_MAX_FILLS]; /* shaped fills: candidate index of each kept particle */
 } fill_ctx_t;
 
 static void fill_get(const void *vctx, long i, int64_t *id, int *sp, double x[3], double v[3]) {
@@ -82,7 +83,8 @@ static void fill_get(const void *vctx, long i, int64_t *id, int *sp, double x[3]
   while (i >= c->start[k + 1]) k++;
   *id = (int64_t)i + 1;
   *sp = c->s->init.fill[k].species;
-  init_fill_position(c->s, k, i - c->start[k], x);
+  const long j = i - c->start[k];
+  init_fill_position(c->s, k, c->kept[k] ? c->kept[k][j] : j, x);
   v[0] = v[1] = v[2] = 0;
 }
 
@@ -165,9 +167,15 @@ int init_configuration(sim_t *sim, const scene_t *s) {
     fill_ctx_t c = {.s = s};
     int rank;
     MPI_Comm_rank(comm, &rank);
+    int oom = 0;
     for (int k = 0; k < s->init.n_fill; k++) {
-      c.start[k + 1] = c.start[k] + init_fill_count(s, k);
       const scene_fill_t *f = &s->init.fill[k];
+      if (f->shape != FILL_SHAPE_NONE) {
+        oom |= !(c.kept[k] = init_fill_kept_list(s, k));
+        c.start[k + 1] = c.start[k] + (c.kept[k] ? init_fill_kept(s, k, NULL) : 0);
+        continue; /* the shape's volume is not the region's: no density check */
+      }
+      c.start[k + 1] = c.start[k] + init_fill_count(s, k);
       const double vol = (f->hi[0] - f->lo[0]) * (f->hi[1] - f->lo[1]) * (f->hi[2] - f->lo[2]);
       const double got = init_fill_count(s, k) / vol;
       if (rank == 0 && fabs(got / f->density - 1) > 0.01)
@@ -176,7 +184,12 @@ int init_configuration(sim_t *sim, const scene_t *s) {
             "%s: warning: initial.fill[%d]: the %s fill realises density %.4g (requested %.4g)\n",
             s->file, k, f->mode == FILL_LATTICE ? "lattice" : "random", got, f->density);
     }
-    return offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
+    const int rc =
+        oom ? -1 : offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
+    if (oom && rank == 0)
+      fprintf(stderr, "%s: out of memory for the shaped fill regions\n", s->file);
+    for (int k = 0; k < s->init.n_fill; k++) free(c.kept[k]);
+    return rc;
   }
   if (s->init.kind == INIT_GEOMETRY) return offer_geometry(sim, s);
   particle_set_t set;

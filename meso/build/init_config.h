@@ -15,9 +15,17 @@
  * message. */
 int init_configuration(sim_t *sim, const scene_t *scene);
 
-/* Number of particles fill region k generates, and its i-th particle (position only). */
+/* Number of particles fill region k generates (its shape applied), the number of candidate sites
+ * of its axis-aligned region, and the i-th candidate's position. */
 long init_fill_count(const scene_t *scene, int k);
+long init_fill_candidates(const scene_t *scene, int k);
 void init_fill_position(const scene_t *scene, int k, long i, double x[3]);
+
+/* Shaped fills (init_shape.c): the candidates that the region's cylinder or sphere keeps. Count
+ * them (and store their indices in `kept` unless NULL); or a malloc'ed list of them (NULL: out of
+ * memory). */
+long init_fill_kept(const scene_t *scene, int k, long *kept);
+long *init_fill_kept_list(const scene_t *scene, int k);
 
 /* Maxwell-Boltzmann velocity of particle `id` of a species at temperature kT (0 for frozen
  * species). */

@@ -18,6 +18,11 @@ static void lattice_dims(const scene_fill_t *f, long n[3]) {
 }
 
 long init_fill_count(const scene_t *s, int k) {
+  if (s->init.fill[k].shape != FILL_SHAPE_NONE) return init_fill_kept(s, k, NULL);
+  return init_fill_candidates(s, k);
+}
+
+long init_fill_candidates(const scene_t *s, int k) {
   const scene_fill_t *f = &s->init.fill[k];
   if (f->mode == FILL_LATTICE) {
     long n[3];

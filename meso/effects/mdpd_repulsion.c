@@ -5,6 +5,7 @@
 #include "effects/effect.h"
 
 #include <stddef.h>
+#include <string.h>
 
 static int check(const scene_t *s, scene_report_t *r) {
   for (int a = 0; a < s->n_species; a++)
@@ -20,21 +21,32 @@ static int check(const scene_t *s, scene_report_t *r) {
         return r->error(r, key, "expected B >= 0: the many-body term repels (got %g)", p->B);
       }
     }
-  /* Warren, PRE 87, 045303 (2013): species-dependent B or rd make the force non-conservative. */
+  /* Warren, PRE 87, 045303 (2013): species-dependent B or rd make the force non-conservative
+   * (no potential exists). The reference is the first mobile species' own pair; every pair that
+   * differs from it is named in one warning. Immiscibility and wetting come from A alone. */
+  int ref_sp = 0;
+  while (ref_sp < s->n_species - 1 && s->species[ref_sp].frozen) ref_sp++;
+  const scene_pair_t *ref = &s->pair[ref_sp][ref_sp];
+  char list[640] = "", key[160] = "";
+  int n = 0;
   for (int a = 0; a < s->n_species; a++)
     for (int b = a; b < s->n_species; b++) {
-      const scene_pair_t *p = &s->pair[a][b], *ref = &s->pair[0][0];
-      if (p->B != ref->B || p->rd != ref->rd) {
-        char key[160];
+      const scene_pair_t *p = &s->pair[a][b];
+      if (p->B == ref->B && p->rd == ref->rd) continue;
+      const size_t len = strlen(list);
+      if (!n) /* the warning points at the first pair that differs */
         snprintf(key, sizeof key, "pairs.%s-%s", s->species[a].name, s->species[b].name);
-        r->warn(r, key,
-                "B or rd differs between species pairs (B %g vs %g, rd %g vs %g): the many-body "
-                "force is then not conservative (Warren, PRE 87, 045303, 2013); keep B and rd "
-                "common, set wetting via A",
-                p->B, ref->B, p->rd, ref->rd);
-        return 0;
-      }
+      if (n++ < 8)
+        snprintf(list + len, sizeof list - len, "%s%s-%s (B %g, rd %g)", len ? ", " : "",
+                 s->species[a].name, s->species[b].name, p->B, p->rd);
     }
+  if (n)
+    r->warn(r, key,
+            "B or rd differs between species pairs: %s%s differ from %s-%s (B %g, rd %g): the "
+            "many-body force is then not conservative (Warren, PRE 87, 045303, 2013); keep B and "
+            "rd common to every pair, set immiscibility and wetting via A",
+            list, n > 8 ? " and more" : "", s->species[ref_sp].name, s->species[ref_sp].name,
+            ref->B, ref->rd);
   return 0;
 }
 

@@ -49,12 +49,22 @@ typedef struct {
 
 enum scene_fill_mode { FILL_LATTICE = 0, FILL_RANDOM = 1 };
 
+/* Optional shape cut out of a fill region (docs/twophase.md): only the candidate sites inside
+ * (or, with `outside`, outside) a cylinder or a sphere are kept: drops, threads and the phase
+ * around them. FILL_SHAPE_NONE: the whole axis-aligned region (the default). */
+enum scene_fill_shape { FILL_SHAPE_NONE = 0, FILL_SHAPE_CYLINDER = 1, FILL_SHAPE_SPHERE = 2 };
+
 /* Fill an axis-aligned region of the box with one species at a number density. */
 typedef struct {
   int species;
   int mode; /* enum scene_fill_mode */
   double density;
   double lo[3], hi[3];
+  int shape;        /* enum scene_fill_shape                                               */
+  int shape_axis;   /* cylinder: its axis (0..2); the centre's coordinate on it is unused   */
+  double centre[3]; /* cylinder axis point or sphere centre (rc, box frame)                */
+  double radius;    /* > 0                                                                   */
+  int outside;      /* 1: keep the sites outside the shape instead of inside                 */
 } scene_fill_t;
 
 enum scene_init_kind { INIT_FILL = 0, INIT_LAMMPS_DATA = 1, INIT_SNAPSHOT = 2, INIT_GEOMETRY = 3 };
@@ -110,6 +120,14 @@ typedef struct {
   int axis;   /* 0, 1, 2 = x, y, z */
   int nbins;
   char path[SCENE_PATH_LEN];
+  /* Radial profile (output.profile.radial; 0: a slab profile along `axis`): bins in the
+   * distance from the line through `centre` along `axis` (1, cylinder) or from `centre`
+   * (2, sphere), out to rmax; with centre_species >= 0 the centre follows, at each sample, the
+   * periodic centre of mass of that species (a drop or thread that drifts). */
+  int radial;
+  double centre[3];
+  double rmax;
+  int centre_species;
 } scene_profile_t;
 
 /* Flux time series along one axis (output.flux; docs/scene-format.md): the superficial (Darcy)

@@ -358,6 +358,53 @@ static int check_effects(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   return 0;
 }
 
+/* initial.fill[i].cylinder / .sphere / .outside: the shape cut out of a fill region. */
+static int parse_fill_shape(ytree_t *t, yaml_node_t *item, const char *path, const scene_t *s,
+                            scene_fill_t *f) {
+  static const char *const axis_words[] = {"x", "y", "z", NULL};
+  yaml_node_t *cyl = yt_get(t, item, "cylinder"), *sph = yt_get(t, item, "sphere"), *v, *w;
+  char sub[128], key[160];
+  if (cyl && sph) {
+    join(sub, sizeof sub, path, "sphere");
+    return yt_error(t, sph, sub, "expected one shape per region: cylinder or sphere (got both)");
+  }
+  if ((v = yt_get(t, item, "outside"))) {
+    join(sub, sizeof sub, path, "outside");
+    TRY(yt_bool(t, v, sub, &f->outside));
+    if (!cyl && !sph)
+      return yt_error(t, v, sub, "expected a cylinder or a sphere in the same region (got none)");
+  }
+  if (!cyl && !sph) return 0;
+  f->shape = cyl ? FILL_SHAPE_CYLINDER : FILL_SHAPE_SPHERE;
+  join(sub, sizeof sub, path, cyl ? "cylinder" : "sphere");
+  yaml_node_t *sh = cyl ? cyl : sph;
+  static const char *const ck[] = {"axis", "centre", "radius", NULL};
+  static const char *const sk[] = {"centre", "radius", NULL};
+  TRY(yt_expect_map(t, sh, sub));
+  TRY(yt_check_keys(t, sh, sub, cyl ? ck : sk));
+  if (cyl) {
+    join(key, sizeof key, sub, "axis");
+    if (!(w = yt_get(t, sh, "axis")))
+      return yt_error(t, sh, key, "expected x, y or z (got nothing)");
+    if ((f->shape_axis = yt_enum(t, w, key, axis_words)) < 0) return -1;
+  }
+  join(key, sizeof key, sub, "centre");
+  if (!(w = yt_get(t, sh, "centre")))
+    return yt_error(t, sh, key, "expected a point [x, y, z] (got nothing)");
+  TRY(yt_vec3(t, w, key, f->centre));
+  for (int d = 0; d < 3; d++)
+    if ((!cyl || d != f->shape_axis) &&
+        (f->centre[d] < s->box_lo[d] || f->centre[d] > s->box_hi[d]))
+      return yt_error(t, w, key, "expected a point inside the box [%g, %g] on axis %c (got %g)",
+                      s->box_lo[d], s->box_hi[d], "xyz"[d], f -> centre[d]);
+  join(key, sizeof key, sub, "radius");
+  if (!(w = yt_get(t, sh, "radius")))
+    return yt_error(t, sh, key, "expected a radius > 0 (got nothing)");
+  TRY(yt_double(t, w, key, &f->radius));
+  if (!(f->radius > 0)) return yt_error(t, w, key, "expected a radius > 0 (got %g)", f->radius);
+  return 0;
+}
+
 static int parse_fill(ytree_t *t, yaml_node_t *n, scene_t *s) {
   TRY(yt_expect_seq(t, n, "initial.fill"));
   const int count = yt_seq_size(n);
@@ -366,7 +413,8 @@ static int parse_fill(ytree_t *t, yaml_node_t *n, scene_t *s) {
   if (count > SCENE_MAX_FILLS)
     return yt_error(t, n, "initial.fill", "expected at most %d regions (got %d)", SCENE_MAX_FILLS,
                     count);
-  static const char *const keys[] = {"species", "lo", "hi", "density", "mode", NULL};
+  static const char *const keys[] = {"species",  "lo",     "hi",      "density", "mode",
+                                     "cylinder", "sphere", "outside", NULL};
   static const char *const modes[] = {"lattice", "random", NULL};
   for (int i = 0; i < count; i++) {
     char path[64], sub[96], name[SCENE_NAME_LEN];
@@ -413,6 +461,7 @@ static int parse_fill(ytree_t *t, yaml_node_t *n, scene_t *s) {
                         "expected hi > lo on every axis (got hi[%d] = %g <= lo[%d] = %g)", d,
                         f->hi[d], d, f->lo[d]);
       }
+    TRY(parse_fill_shape(t, item, path, s, f));
   }
   s->init.n_fill = count;
   return 0;
@@ -603,6 +652,48 @@ static int parse_flux(ytree_t *t, yaml_node_t *n, scene_t *s) {
   return 0;
 }
 
+/* output.profile.radial: {shape: cylinder|sphere, centre, rmax, centre_species}. */
+static int parse_profile_radial(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"shape", "centre", "rmax", "centre_species", NULL};
+  static const char *const shapes[] = {"cylinder", "sphere", NULL};
+  const char *path = "output.profile.radial";
+  scene_profile_t *p = &s->profile;
+  yaml_node_t *w;
+  TRY(yt_expect_map(t, n, path));
+  TRY(yt_check_keys(t, n, path, keys));
+  if (!(w = yt_get(t, n, "shape")))
+    return yt_error(t, n, "output.profile.radial.shape",
+                    "expected cylinder or sphere (got nothing)");
+  if ((p->radial = 1 + yt_enum(t, w, "output.profile.radial.shape", shapes)) < 1) return -1;
+  if (!(w = yt_get(t, n, "centre")))
+    return yt_error(t, n, "output.profile.radial.centre",
+                    "expected a point [x, y, z] (got nothing)");
+  TRY(yt_vec3(t, w, "output.profile.radial.centre", p->centre));
+  double half = INFINITY;
+  for (int d = 0; d < 3; d++) {
+    if (p->radial == 1 && d == p->axis) continue;
+    const double l = 0.5 * (s->box_hi[d] - s->box_lo[d]);
+    if (l < half) half = l;
+  }
+  if (!(w = yt_get(t, n, "rmax")))
+    return yt_error(t, n, "output.profile.radial.rmax", "expected a radius > 0 (got nothing)");
+  TRY(yt_double(t, w, "output.profile.radial.rmax", &p->rmax));
+  if (!(p->rmax > 0) || p->rmax > half)
+    return yt_error(t, w, "output.profile.radial.rmax",
+                    "expected 0 < rmax <= %g (half the smallest box edge across the %s; got %g)",
+                    half, p->radial == 1 ? "axis" : "box", p->rmax);
+  p->centre_species = -1;
+  if ((w = yt_get(t, n, "centre_species"))) {
+    char name[SCENE_NAME_LEN];
+    TRY(yt_string(t, w, "output.profile.radial.centre_species", name, sizeof name));
+    p->centre_species = scene_species_index(s, name);
+    if (p->centre_species < 0 || s->species[p->centre_species].frozen)
+      return yt_error(t, w, "output.profile.radial.centre_species",
+                      "expected a mobile species listed under 'species' (got '%s')", name);
+  }
+  return 0;
+}
+
 static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
   static const char *const keys[] = {"thermo",  "profile",  "snapshot", "dump", "checkpoint",
                                      "summary", "progress", "flux",     NULL};
@@ -620,7 +711,7 @@ static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
     TRY(yt_string(t, v, "output.summary", s->summary_path, SCENE_PATH_LEN));
   if ((v = yt_get(t, n, "progress"))) TRY(yt_bool(t, v, "output.progress", &s->progress));
   if ((v = yt_get(t, n, "profile"))) {
-    static const char *const pk[] = {"axis", "bins", "every", "start", "file", NULL};
+    static const char *const pk[] = {"axis", "bins", "every", "start", "file", "radial", NULL};
     scene_profile_t *p = &s->profile;
     TRY(yt_check_keys(t, v, "output.profile", pk));
     yaml_node_t *w;
@@ -649,6 +740,7 @@ static int parse_output(ytree_t *t, yaml_node_t *n, scene_t *s) {
     if (!(w = yt_get(t, v, "file")))
       return yt_error(t, v, "output.profile.file", "expected a file name (got nothing)");
     TRY(yt_string(t, w, "output.profile.file", p->path, SCENE_PATH_LEN));
+    if ((w = yt_get(t, v, "radial"))) TRY(parse_profile_radial(t, w, s));
   }
   if ((v = yt_get(t, n, "flux"))) TRY(parse_flux(t, v, s));
   return 0;
