@@ -6,7 +6,7 @@
 int cmd_run(int argc, char **argv);    /* mdpore run [--explain] SCENE        (meso engine)      */
 int cmd_forces(int argc, char **argv); /* mdpore forces SCENE                 (meso engine)      */
 int cmd_image(int argc, char **argv);  /* mdpore image info|convert ...       (meso/image)       */
-int cmd_build(int argc, char **argv);  /* mdpore build patches ...            (meso/build)       */
+int cmd_build(int argc, char **argv);  /* mdpore build patches ...            (meso/populate)    */
 int cmd_foam(int argc, char **argv);   /* mdpore foam IMAGE --axis ...        (crosscheck/foam)  */
 int cmd_fit(int argc, char **argv);    /* mdpore fit TABLE                    (upscale/fit)      */
 int cmd_darcy(int argc, char **argv);  /* mdpore darcy CONFIG                 (upscale/darcy)    */

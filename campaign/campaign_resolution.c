@@ -6,7 +6,7 @@
  * so (the fewest particles that resolve the throat); a given one below it is refused unless
  * --force. The report also estimates the particles (fluid at the template's density in the pore
  * voxels that carry flow, wall particles in the solid voxels within the wall thickness of the pore,
- * as the wall builder keeps them: meso/build/image_walls.c) and the time at the measured
+ * as the wall builder keeps them: meso/populate/image_walls.c) and the time at the measured
  * throughput (bench/RESULTS.md), and places rc in metres in its regime. */
 #include <math.h>
 #include <stdio.h>

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.." || exit 1
 git rev-parse --git-dir >/dev/null 2>&1 || { echo "skipped: not a git checkout"; exit 77; }
 # Lowest first. common and flowdata sit below everything; image beside physics (no physics in it).
 order=(common flowdata physics image scene effects domain backend backend/cpu backend/cuda engine
-       analysis io build run)
+       analysis io populate run)
 rank() { # layer index of a folder key, -1 when unknown
   local i
   for i in "${!order[@]}"; do [ "${order[$i]}" = "$1" ] && { echo "$i"; return; }; done

@@ -1,7 +1,7 @@
 /* Partial reads (mdpore_image.h): the format of the file as mdp_image_read chooses it, the box
  * checked against the image's size, then the format's own box reader, and the labels of the box
  * checked against the map with the voxel named in the whole image's coordinates. A rank of the wall
- * builder reads only the voxels it needs this way (meso/build/image_window.c). */
+ * builder reads only the voxels it needs this way (meso/populate/image_window.c). */
 #include "mdpore_image.h"
 
 #include <stdio.h>

@@ -5,7 +5,7 @@
 #include "commands.h"
 #include "engine/sim.h"
 #include "io/dump_lammps.h"
-#include "build/init_config.h"
+#include "populate/init_config.h"
 
 #include <getopt.h>
 #include <math.h>

@@ -4,7 +4,7 @@
 #include "engine/sim.h"
 #include "io/checkpoint.h"
 #include "io/dump_lammps.h"
-#include "build/init_config.h"
+#include "populate/init_config.h"
 #include "io/snapshot.h"
 #include "io/thermo_log.h"
 #include "analysis/penetration.h"

@@ -71,7 +71,7 @@ enum scene_init_kind { INIT_FILL = 0, INIT_LAMMPS_DATA = 1, INIT_SNAPSHOT = 2, I
 
 /* The scene's geometry as a segmented image (docs/scene-format.md, `geometry:`): wall particles in
  * the solid voxels near the pore space, copied from a database of pre-equilibrated patches, one
- * wall species per solid phase, and fluid in the pore voxels (meso/build/image_walls.c). */
+ * wall species per solid phase, and fluid in the pore voxels (meso/populate/image_walls.c). */
 enum scene_isolated_pores { ISOLATED_EMPTY = 0, ISOLATED_FILL = 1 };
 typedef struct {
   int on;                       /* 1: a `geometry:` block was given                        */

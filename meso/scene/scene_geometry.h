@@ -1,5 +1,5 @@
 /* The `geometry:` block of a scene (docs/scene-format.md): a segmented image and how it becomes
- * walls and fluid. Parsed here; built by meso/build/image_walls.c. */
+ * walls and fluid. Parsed here; built by meso/populate/image_walls.c. */
 #ifndef MESO_SCENE_SCENE_GEOMETRY_H
 #define MESO_SCENE_SCENE_GEOMETRY_H
 

@@ -1,4 +1,4 @@
-/* The image wall builder (meso/build/image_walls.h, docs/walls.md) on a slit made with
+/* The image wall builder (meso/populate/image_walls.h, docs/walls.md) on a slit made with
  * mdp_make_slit (6 pore layers between 4-voxel walls, 16 x 14 x 8 voxels, rc_per_voxel 0.5, the
  * upper wall organic, the lower inorganic) with three extra pores cut into the walls: a dead-end
  * pocket across the periodic y face, an isolated voxel, and a voxel open to the x = 0 face that
@@ -16,8 +16,8 @@
  *    error.
  * Run on 2 ranks. With one argument SCENE.yaml it only builds that scene's geometry and exits 1
  * when that fails (the checker of tests/engine/bad_scenes/geometry). */
-#include "build/image_walls.h"
-#include "build/init_config.h"
+#include "populate/image_walls.h"
+#include "populate/init_config.h"
 #include "analysis/penetration.h"
 #include "effects/scene_load.h"
 #include "engine/sim.h"

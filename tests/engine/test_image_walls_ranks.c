@@ -1,4 +1,4 @@
-/* The rank-local geometry build (meso/build/image_walls.h, docs/walls.md section 6) on 1, 2, 3 and
+/* The rank-local geometry build (meso/populate/image_walls.h, docs/walls.md section 6) on 1, 2, 3 and
  * 4 ranks (sub-communicators of a 4-rank run): the same particles, bitwise (ids, species,
  * positions, velocities), the same counts (clusters and their categories, walls, fluid), and each
  * rank reading only its share plus the halo. The image (48 x 15 x 8 voxels, rc_per_voxel 0.5,
@@ -10,8 +10,8 @@
  *  - a dead-end pocket across the periodic y face (y 0 and y 14, x 4..5, z 2..3: two clusters).
  * The voxel counts are asserted against the image by brute force (the same numbers on 1 rank).
  * Run on 4 ranks. */
-#include "build/image_walls.h"
-#include "build/init_config.h"
+#include "populate/image_walls.h"
+#include "populate/init_config.h"
 #include "effects/scene_load.h"
 #include "engine/sim.h"
 #include "io/gather.h"

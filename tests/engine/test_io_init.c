@@ -5,7 +5,7 @@
 #include "effects/scene_load.h"
 #include "engine/sim.h"
 #include "io/gather.h"
-#include "build/init_config.h"
+#include "populate/init_config.h"
 
 #include <math.h>
 #include <stdio.h>

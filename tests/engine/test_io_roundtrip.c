@@ -1,7 +1,7 @@
 /* Round trips through the file formats: a particle set written as a LAMMPS data file and as an HDF5
  * snapshot reads back identically (ids, species, positions, velocities to the last bit); a data
  * file whose atom type has no species is rejected with a message naming the file and line. */
-#include "build/lammps_data.h"
+#include "populate/lammps_data.h"
 #include "io/snapshot.h"
 
 #include <math.h>

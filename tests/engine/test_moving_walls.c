@@ -20,7 +20,7 @@
  * With the argument "cuda" the run part on the CUDA backend (one rank; skipped without a GPU). */
 #include "test_cuda_common.h"
 
-#include "build/init_config.h"
+#include "populate/init_config.h"
 #include "effects/scene_load.h"
 #include "physics/density_kernels.h"
 

@@ -1,9 +1,9 @@
-/* The wall patch database (meso/build/wall_patches.h), CI-sized: short equilibration runs
+/* The wall patch database (meso/populate/wall_patches.h), CI-sized: short equilibration runs
  * (TEST_STEPS instead of WALL_PATCHES_STEPS) of the edge-1 box at density 8. Checks the patches
  * (count, bounds, density, no overlapping particles), determinism, the file round trip, the cache
  * (into this test's working directory, never $HOME) and its in-memory fallback, the refusal of
  * mismatching or corrupt files, and the 24 cube rotations. */
-#include "build/wall_patches.h"
+#include "populate/wall_patches.h"
 
 #include <math.h>
 #include <mpi.h>

@@ -1,6 +1,6 @@
 /* Fuzz entry: a LAMMPS data file (atomic style) through lammps_data_read, against a fixed scene of
  * two species (masses 1 and 2) in the box [0, 10]^3. */
-#include "build/lammps_data.h"
+#include "populate/lammps_data.h"
 #include "fuzz_util.h"
 
 #include <math.h>

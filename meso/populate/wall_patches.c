@@ -34,7 +34,7 @@
  * and description (text: the parameters and steps of the run). Written to a temporary file renamed
  * over the target (common/atomic_file.h), without modification times, so the same (edge, density,
  * seed, steps) gives the same bytes. */
-#include "build/wall_patches.h"
+#include "populate/wall_patches.h"
 #include "common/atomic_file.h"
 
 #include <errno.h>

@@ -1,6 +1,6 @@
 /* mdpore build patches [--edge E] [--density D] [--seed S] [--out FILE]: build (or find) the wall
- * patch database (build/wall_patches.h) and print one line about it. */
-#include "build/wall_patches.h"
+ * patch database (populate/wall_patches.h) and print one line about it. */
+#include "populate/wall_patches.h"
 
 #include <errno.h>
 #include <getopt.h>

@@ -14,7 +14,7 @@
  * voxels, drawn with probabilities proportional to frac(m w_v) (the smallest keys -ln(u_v) /
  * frac(m w_v), u_v the same Philox number as above: Efraimidis & Spirakis' weighted sampling
  * without replacement), and its positions are uniform in the voxel's part inside the box. */
-#include "build/image_walls.h"
+#include "populate/image_walls.h"
 
 #include <Random123/philox.h>
 #include <math.h>

@@ -2,7 +2,7 @@
  * et al. JCP 355 (2018) 534, section 2.3): the image as the box sees it, the pore clusters that get
  * fluid, an exact Euclidean distance transform of the pore space to find the solid voxels within the
  * wall thickness, and per wall voxel a patch of the database in one of the 24 cube orientations. */
-#include "build/image_walls.h"
+#include "populate/image_walls.h"
 #include "scene/scene_geometry.h"
 
 #include <Random123/philox.h>

@@ -1,7 +1,7 @@
 /* The equilibration runs of the wall patch database and the cutting of their boxes into cubes
  * (wall_patches_build; wall_patches.c has how and why, the file and the cache). */
-#include "build/init_random.h"
-#include "build/wall_patches.h"
+#include "populate/init_random.h"
+#include "populate/wall_patches.h"
 #include "effects/effect.h"
 #include "engine/sim.h"
 

@@ -1,8 +1,8 @@
 /* Fill regions of the box with one species at a number density, on a cubic lattice or at random.
  * Global ids run 1, 2, ... over the regions in scene order; random positions come from a Philox
  * stream keyed on (seed, region, index), so every rank generates the same particles. */
-#include "build/init_config.h"
-#include "build/init_random.h"
+#include "populate/init_config.h"
+#include "populate/init_random.h"
 
 #include <math.h>
 

@@ -7,7 +7,7 @@
  * line of its gen voxels from its own cut (or from the line's ends across a periodic x face),
  * adding the counts of the voxels it passes, which it knows: they are all in its window. The table
  * holds 16 bytes per line and segment (2 MB for a 256^3 image cut twice along x). */
-#include "build/image_walls.h"
+#include "populate/image_walls.h"
 
 #include <stdlib.h>
 #include <string.h>

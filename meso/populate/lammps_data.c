@@ -1,5 +1,5 @@
 /* LAMMPS data files (atomic style): reader and writer. */
-#include "build/lammps_data.h"
+#include "populate/lammps_data.h"
 #include "common/atomic_file.h"
 #include "io/gather.h"
 

@@ -1,7 +1,7 @@
 /* Initial configurations: fill regions (lattice or random), LAMMPS data files, HDF5 snapshots,
  * geometry images. Every rank generates or reads the same global set and offers each particle to
  * sim_add_particle, which keeps the ones in its subdomain; a geometry image is built rank-locally
- * instead (build/image_walls.h: each rank generates the particles of the voxels overlapping its
+ * instead (populate/image_walls.h: each rank generates the particles of the voxels overlapping its
  * subdomain, with the ids of the whole list). Velocities not given by the source are Maxwell-Boltzmann
  * at the scene's initial temperature, keyed on the particle id (independent of the decomposition),
  * with the centre-of-mass velocity of the mobile particles removed; frozen species get v = 0. */

@@ -4,7 +4,7 @@
  * the same region, one inside and one outside, make a drop or a thread of one liquid in another.
  * The distance is the plain one in the box frame (no periodic image): keep the shape inside the
  * region. */
-#include "build/init_config.h"
+#include "populate/init_config.h"
 
 #include <stdlib.h>
 

@@ -3,7 +3,7 @@
  * HDF5 hyperslabs, raw runs, TIFF pages) so that no rank holds the whole image. Along a periodic
  * axis a range is taken modulo the image size (a window across the periodic face is read as two
  * pieces); a range as long as the axis is the whole axis, never more, so no voxel is held twice. */
-#include "build/image_walls.h"
+#include "populate/image_walls.h"
 #include "scene/scene_geometry.h"
 
 #include <math.h>

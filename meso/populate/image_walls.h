@@ -26,7 +26,7 @@
 #ifndef MESO_BUILD_IMAGE_WALLS_H
 #define MESO_BUILD_IMAGE_WALLS_H
 
-#include "build/wall_patches.h"
+#include "populate/wall_patches.h"
 #include "scene/scene.h"
 
 #include <mpi.h>

@@ -10,7 +10,7 @@
  * ranks), then the clusters that face each other across a periodic face (the "joined" rule),
  * counts, and sends every rank the fill flag of its open components. The lists scale with the
  * ranks' surfaces, not with the image. */
-#include "build/image_walls.h"
+#include "populate/image_walls.h"
 #include "mdpore_image.h"
 
 #include <limits.h>

@@ -1,8 +1,8 @@
 /* Initial configuration: offer a global particle source to the engine, generating Maxwell-Boltzmann
  * velocities (momentum-free) where the source has none. */
-#include "build/init_config.h"
-#include "build/image_walls.h"
-#include "build/lammps_data.h"
+#include "populate/init_config.h"
+#include "populate/image_walls.h"
+#include "populate/lammps_data.h"
 #include "io/snapshot.h"
 
 #include <math.h>
@@ -98,7 +98,7 @@ static void set_get(const void *vctx, long i, int64_t *id, int *sp, double x[3],
   }
 }
 
-/* The geometry builder (build/image_walls.h): each rank builds the particles of the voxels that
+/* The geometry builder (populate/image_walls.h): each rank builds the particles of the voxels that
  * overlap its subdomain and offers them. The centre-of-mass velocity removed is that of the whole
  * list summed in id order, as offer_source sums it: the walls (ids 1..n_wall) are frozen, the fluid
  * takes ids n_wall + 1 .. total, and a Maxwell-Boltzmann velocity depends on the id and species
