@@ -27,10 +27,11 @@ int main(void) {
     q[i] = flow_law_q(&law, &fl, 0.0, G, &dq);
     double c = law.k / fl.mu, x = G / law.g0;
     check_rel("q far below G0", q[i], c * law.g0 * (x * x / 2 - x * x * x / 6), 1e-12);
-    check_rel("dq/dG far below G0", dq, c * x, 1e-9);
+    check_rel("dq/dG far below G0", dq, c * (x - x * x / 2), 1e-12);
     check_rel("q odd in G", flow_law_q(&law, &fl, 0.0, -G, NULL), -q[i], 1e-15);
   }
-  check_rel("q(G0 = 0.01) / q(G0 = 0.02)", q[0] / q[1], 2.0, 1e-9);
+  /* the ratio is 2 to O(G/G0) = 1e-8; 1 - exp(-x) in double gave one q for both */
+  check_rel("q(G0 = 0.01) / q(G0 = 0.02)", q[0] / q[1], 2.0, 1e-7);
 
   flow_law law = {.kind = LAW_THRESHOLD, .k = 1.0, .g0 = 1.0};
   double below = flow_law_q(&law, &fl, 0.0, 0.5 - 1e-12, NULL);
