@@ -215,6 +215,10 @@ char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, d
 /* campaign_hash.c: FNV-1a 64 and the version string of this binary. */
 uint64_t camp_fnv1a(uint64_t h, const void *data, size_t n);
 int camp_binary_version(const char *exe, char *out, int len);
+/* Folds into h the bytes of every absolute file path the scene text names under image:, file:,
+ * lammps_data: or snapshot: (the run's cache key holds content, not names). -1 when one cannot be
+ * read. */
+int camp_fold_named_files(uint64_t *h, const char *scene_text);
 
 /* campaign_plan.c: the scenes and the manifest. 0 or -1. */
 int camp_plan(camp_opts *o, campaign *c);

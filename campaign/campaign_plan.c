@@ -59,6 +59,10 @@ int camp_plan(camp_opts *o, campaign *c) {
       if (!scene) return -1;
       uint64_t h = camp_fnv1a(14695981039346656037ULL, scene, strlen(scene));
       h = camp_fnv1a(h, "\n", 1);
+      if (camp_fold_named_files(&h, scene)) {
+        free(scene);
+        return -1;
+      }
       h = camp_fnv1a(h, version, strlen(version));
       camp_run *r = &c->runs[c->n_runs++];
       memset(r, 0, sizeof *r);

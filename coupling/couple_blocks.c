@@ -1,7 +1,6 @@
 /* The blocks of a coupling run: the sample image cut into blocks[0] x blocks[1] x blocks[2] equal
  * boxes (or one image per block), each written as HDF5 under WORKDIR/blocks/bI_J_K/ with a file name
- * that carries a hash of its voxels, so a changed image never reuses a cached campaign (the
- * campaign's cache key holds the image path, not its content). */
+ * that carries a hash of its voxels (the campaigns' cache keys hold the image's bytes as well). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -61,6 +60,7 @@ int couple_make_blocks(const couple_config *c, couple_block *blocks, double bloc
   int rc = -1;
   mdp_image_t whole = {0};
   int first_dims[3] = {0, 0, 0};
+  double first_voxel_m = 0.0;
   if (c->image[0] && read_image(c, c->image, &whole)) return -1;
   int dims[3] = {whole.nx, whole.ny, whole.nz};
   int size[3];
@@ -100,6 +100,21 @@ int couple_make_blocks(const couple_config *c, couple_block *blocks, double bloc
               "mdpore couple: %s: key 'block_images[%d]': expected %d x %d x %d voxels like the "
               "first block (got %d x %d x %d): blocks are equal boxes of the continuum grid\n",
               c->path, b, first_dims[0], first_dims[1], first_dims[2], pd[0], pd[1], pd[2]);
+      mdp_image_free(&part);
+      goto out;
+    }
+    /* block images at different voxel sizes are different physical boxes: refused unless the
+     * config's image_voxel_size gives them one size */
+    const double voxel_m = mdp_image_voxel_size_m(&part);
+    if (b == 0) {
+      first_voxel_m = voxel_m;
+    } else if (!c->image[0] && ((voxel_m == 0.0) != (first_voxel_m == 0.0) ||
+                                fabs(voxel_m - first_voxel_m) > 1e-9 * first_voxel_m)) {
+      fprintf(stderr,
+              "mdpore couple: %s: key 'block_images[%d]': expected the voxel size of the first "
+              "block (%g m; got %g m in %s; 0 = no physical size): blocks of different voxel "
+              "sizes are not equal boxes; set image_voxel_size to read every block at one size\n",
+              c->path, b, first_voxel_m, voxel_m, c->block_image[b]);
       mdp_image_free(&part);
       goto out;
     }

@@ -3,6 +3,7 @@
  */
 #include "cell_list.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,6 +43,14 @@ static int bin_of(const cell_list_t *cl, int d, double x) {
 int cell_list_build(cell_list_t *cl, const particles_t *p, const double lo[3], const double hi[3],
                     double rcut) {
   const int n = p->n_local + p->n_ghost;
+  /* the scene's sizes were checked against memory; a grid the int index cannot count is refused */
+  double cells = 1.0;
+  for (int d = 0; d < 3; d++) {
+    const double extent = hi[d] - lo[d] + 2.0 * rcut;
+    const double per_axis = rcut > 0 ? extent / rcut : 1.0;
+    cells *= per_axis < 1.0 ? 1.0 : per_axis;
+  }
+  if (!(cells < (double)INT_MAX - 1.0)) return -1;
   cl->ncell = 1;
   for (int d = 0; d < 3; d++) {
     const double extent = hi[d] - lo[d] + 2.0 * rcut;

@@ -235,8 +235,9 @@ static inline double scene_frozen_weight(const scene_t *s) {
 struct scene_catalog;
 int scene_parse_file(const char *path, const struct scene_catalog *catalog, scene_t *scene);
 
-/* A path as written in the scene file, resolved against the scene file's folder (absolute kept). */
-void scene_relative_path(const char *scene_file, const char *path, char *out, size_t len);
+/* A path as written in the scene file, resolved against the scene file's folder (absolute kept).
+ * -1 when the resolved path does not fit in `len` bytes (the caller refuses the key). */
+int scene_relative_path(const char *scene_file, const char *path, char *out, size_t len);
 
 /* Species index of a name, or -1. */
 int scene_species_index(const scene_t *scene, const char *name);

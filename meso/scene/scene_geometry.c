@@ -98,7 +98,11 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   if (!(v = yt_get(t, n, "image")))
     return yt_error(t, n, "geometry.image", "expected an image file (got nothing)");
   TRY(yt_string(t, v, "geometry.image", text, sizeof text));
-  scene_relative_path(s->file, text, g->image, sizeof g->image);
+  if (scene_relative_path(s->file, text, g->image, sizeof g->image))
+    return yt_error(t, v, "geometry.image",
+                    "expected a path that, joined to the scene's folder, is shorter than %d "
+                    "characters",
+                    SCENE_PATH_LEN);
   if ((v = yt_get(t, n, "labels")))
     TRY(yt_string(t, v, "geometry.labels", g->labels, sizeof g->labels));
   yaml_node_t *rpv = yt_get(t, n, "rc_per_voxel"), *vpr = yt_get(t, n, "voxels_per_rc");
@@ -174,7 +178,11 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
     yaml_node_t *w;
     if ((w = yt_get(t, v, "file"))) {
       TRY(yt_string(t, w, "geometry.patches.file", text, sizeof text));
-      scene_relative_path(s->file, text, g->patches, sizeof g->patches);
+      if (scene_relative_path(s->file, text, g->patches, sizeof g->patches))
+        return yt_error(t, w, "geometry.patches.file",
+                        "expected a path that, joined to the scene's folder, is shorter than %d "
+                        "characters",
+                        SCENE_PATH_LEN);
     }
     if ((w = yt_get(t, v, "seed"))) {
       long seed = 0;

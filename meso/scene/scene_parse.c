@@ -1,6 +1,8 @@
 /* Scene file parser: YAML (libyaml) -> scene_t, with validation. The format is documented in
  * docs/scene-format.md. Every mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got
  * ...)". */
+#include "common/same_file.h"
+#include "common/size_check.h"
 #include "common/yaml_tree.h"
 #include "physics/density_kernels.h"
 #include "scene/scene.h"
@@ -490,11 +492,19 @@ static int parse_initial(ytree_t *t, yaml_node_t *n, scene_t *s) {
   } else if (data) {
     s->init.kind = INIT_LAMMPS_DATA;
     TRY(yt_string(t, data, "initial.lammps_data", p, sizeof p));
-    scene_relative_path(s->file, p, s->init.path, sizeof s->init.path);
+    if (scene_relative_path(s->file, p, s->init.path, sizeof s->init.path))
+      return yt_error(t, data, "initial.lammps_data",
+                      "expected a path that, joined to the scene's folder, is shorter than %d "
+                      "characters",
+                      SCENE_PATH_LEN);
   } else {
     s->init.kind = INIT_SNAPSHOT;
     TRY(yt_string(t, snap, "initial.snapshot", p, sizeof p));
-    scene_relative_path(s->file, p, s->init.path, sizeof s->init.path);
+    if (scene_relative_path(s->file, p, s->init.path, sizeof s->init.path))
+      return yt_error(t, snap, "initial.snapshot",
+                      "expected a path that, joined to the scene's folder, is shorter than %d "
+                      "characters",
+                      SCENE_PATH_LEN);
   }
   yaml_node_t *v = yt_get(t, n, "temperature");
   if (v) {
@@ -809,7 +819,11 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   if ((v = yt_get(t, root, "restart"))) {
     char p[SCENE_PATH_LEN];
     TRY(yt_string(t, v, "restart", p, sizeof p));
-    scene_relative_path(s->file, p, s->restart_from, sizeof s->restart_from);
+    if (scene_relative_path(s->file, p, s->restart_from, sizeof s->restart_from))
+      return yt_error(t, v, "restart",
+                      "expected a path that, joined to the scene's folder, is shorter than %d "
+                      "characters",
+                      SCENE_PATH_LEN);
   }
   if ((v = yt_get(t, root, "geometry"))) TRY(scene_parse_geometry(t, v, s));
   if ((v = yt_get(t, root, "initial")))
@@ -833,6 +847,68 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   return check_effects(t, cat, s);
 }
 
+/* Bytes per cell of a cell list (bin start and count) and per particle (state, forces, ghosts and
+ * neighbour bins): the estimates the scene's sizes are checked with before anything is built. */
+#define SCENE_BYTES_PER_CELL 8.0
+#define SCENE_BYTES_PER_PARTICLE 256.0
+
+/* The cell grid at the largest pair cutoff and the fill's particle count, checked before the run
+ * allocates them (docs/scene-format.md, "Sizes"). */
+static int check_sizes(ytree_t *t, const scene_t *s) {
+  double rcut = 0.0;
+  for (int a = 0; a < s->n_species; a++)
+    for (int b = 0; b < s->n_species; b++) {
+      if (s->pair[a][b].rc > rcut) rcut = s->pair[a][b].rc;
+      if (s->pair[a][b].rd > rcut) rcut = s->pair[a][b].rd;
+    }
+  if (!(rcut > 0)) rcut = 1.0;
+  char why[320];
+  const double cells = mdp_cell_count(s->box_lo, s->box_hi, rcut);
+  if (mdp_size_check(cells, 2147483646.0, SCENE_BYTES_PER_CELL, "cells of the cell grid", why,
+                     sizeof why))
+    return yt_error(t, node_at(t, "box.hi"), "box.hi",
+                    "expected a box the cell grid of cutoff %g fits on one rank (%s)", rcut, why);
+  double particles = 0.0;
+  for (int i = 0; i < s->init.n_fill; i++) {
+    const scene_fill_t *f = &s->init.fill[i];
+    particles += f->density * (f->hi[0] - f->lo[0]) * (f->hi[1] - f->lo[1]) * (f->hi[2] - f->lo[2]);
+  }
+  if (mdp_size_check(particles, 2147483646.0, SCENE_BYTES_PER_PARTICLE, "particles of the fill",
+                     why, sizeof why))
+    return yt_error(t, node_at(t, "initial.fill"), "initial.fill",
+                    "expected a fill that fits in memory (density x region volume; %s)", why);
+  return 0;
+}
+
+/* No output names an input (the scene, its image, patch database or initial configuration) or
+ * another output. Resuming from the scene's own checkpoint is allowed. */
+static int check_output_paths(ytree_t *t, const scene_t *s) {
+  const char *outs[7] = {s->thermo.every ? s->thermo.path : NULL,
+                         s->profile.every ? s->profile.path : NULL,
+                         s->snapshot.every ? s->snapshot.path : NULL,
+                         s->dump.every ? s->dump.path : NULL,
+                         s->checkpoint.every ? s->checkpoint.path : NULL,
+                         s->flux.every ? s->flux.path : NULL,
+                         s->summary_path};
+  static const char *const out_keys[7] = {"output.thermo", "output.profile",    "output.snapshot",
+                                          "output.dump",   "output.checkpoint", "output.flux",
+                                          "output.summary"};
+  const int has_init = s->init.kind == INIT_LAMMPS_DATA || s->init.kind == INIT_SNAPSHOT;
+  const char *ins[4] = {s->file, has_init ? s->init.path : "",
+                        s->geometry.on ? s->geometry.image : "",
+                        s->geometry.on ? s->geometry.patches : ""};
+  static const char *const in_keys[4] = {"the scene file", "initial", "geometry.image",
+                                         "geometry.patches.file"};
+  char why[2600];
+  for (int i = 0; i < 7; i++) {
+    const char *one[1] = {outs[i]}, *one_key[1] = {out_keys[i]};
+    if (mdp_check_outputs(one, one_key, 1, ins, in_keys, 4, why, sizeof why) ||
+        mdp_check_outputs(outs, out_keys, i + 1, NULL, NULL, 0, why, sizeof why))
+      return yt_error(t, node_at(t, out_keys[i]), out_keys[i], "%s", why);
+  }
+  return 0;
+}
+
 int scene_parse_file(const char *path, const scene_catalog_t *catalog, scene_t *scene) {
   int rank = 0, inited = 0;
   MPI_Initialized(&inited);
@@ -846,7 +922,9 @@ int scene_parse_file(const char *path, const scene_catalog_t *catalog, scene_t *
   set_defaults(scene);
   ytree_t t;
   if (yt_load(&t, path, rank != 0)) return -1;
-  const int rc = parse_document(&t, catalog, scene);
+  int rc = parse_document(&t, catalog, scene);
+  if (rc == 0) rc = check_sizes(&t, scene);
+  if (rc == 0) rc = check_output_paths(&t, scene);
   yt_free(&t);
   return rc;
 }

@@ -5,18 +5,14 @@
 #include <stdio.h>
 #include <string.h>
 
-void scene_relative_path(const char *scene_file, const char *p, char *out, size_t len) {
-  if (p[0] == '/') {
-    snprintf(out, len, "%s", p);
-    return;
-  }
+int scene_relative_path(const char *scene_file, const char *p, char *out, size_t len) {
+  if (p[0] == '/') return (size_t)snprintf(out, len, "%s", p) < len ? 0 : -1;
   char tmp[SCENE_PATH_LEN];
   snprintf(tmp, sizeof tmp, "%s", scene_file);
   const char *dir = dirname(tmp);
-  if (!strcmp(dir, ".") || strlen(dir) + strlen(p) + 2 > len)
-    snprintf(out, len, "%s", p);
-  else
-    snprintf(out, len, "%s/%s", dir, p);
+  if (!strcmp(dir, ".")) return (size_t)snprintf(out, len, "%s", p) < len ? 0 : -1;
+  /* never the path alone when folder + path is too long: that would read another file */
+  return (size_t)snprintf(out, len, "%s/%s", dir, p) < len ? 0 : -1;
 }
 
 int scene_species_index(const scene_t *s, const char *name) {

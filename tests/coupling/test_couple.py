@@ -88,6 +88,13 @@ def main():
         if p.returncode:
             sys.exit("image make failed: " + p.stderr)
 
+    # block images of the same voxels at 0.82 nm and 20 nm are different boxes
+    for name, size in (("d.h5", "0.82nm"), ("e.h5", "20nm")):
+        p = mdpore("image", "make", "slit", "--width", "4", "--wall", "6", "--length", "12", "--depth", "8",
+                   "--voxel-size", size, "-o", name)
+        if p.returncode:
+            sys.exit("image make failed: " + p.stderr)
+
     # 1. bad configs
     p = mdpore("couple")
     check(p.returncode == 2 and "usage" in p.stderr, "no CONFIG: usage, exit 2")
@@ -98,6 +105,9 @@ def main():
                  "wrong number of block images")
     expect_error("block_images: [a.h5, c.h5]\nblocks: [2,1,1]\naxis: x\n",
                  ["'block_images[1]'", "12 x 16 x 8"], "block images of different sizes")
+    expect_error("block_images: [d.h5, e.h5]\nblocks: [2,1,1]\naxis: x\n",
+                 ["bad.yaml", "'block_images[1]'", "voxel size", "8.2e-10 m", "2e-08 m", "image_voxel_size"],
+                 "block images of different voxel sizes")
     expect_error("image: a.h5\nblocks: [5,1,1]\naxis: x\n", ["'blocks'", "divide"], "blocks not dividing the image")
     expect_error("image: a.h5\naxis: w\n", ["'axis'", "x"], "bad axis")
     expect_error("image: a.h5\naxis: x\ngradient: 3 furlongs\n", ["'gradient'", "Pa/m"], "gradient with a bad unit")

@@ -120,6 +120,14 @@ def main():
         check(r.returncode == 0 and text and not NONFINITE.search(r.stdout + r.stderr + text),
               "%s %s: fitted, no nan or inf (rc=%d) %s" % (name, " ".join(extra), r.returncode,
                                                          r.stderr.strip()))
+    # an output that names the input is refused and the table is left as it was
+    before = open(os.path.join(work, "darcy_forcing_sweep.csv")).read()
+    for extra in (["--json", "darcy_forcing_sweep.csv"], ["--json", "./darcy_forcing_sweep.csv"],
+                  ["--json", "same.json", "--plot", "same.json"]):
+        r = run(mdpore, ["darcy_forcing_sweep.csv"] + extra, work)
+        after = open(os.path.join(work, "darcy_forcing_sweep.csv")).read()
+        check(r.returncode == 1 and extra[1] in r.stderr and "--json" in r.stderr and after == before,
+              "%s refused, table unchanged: rc=%d | %s" % (" ".join(extra), r.returncode, r.stderr.strip()))
     sys.exit(1 if failures else 0)
 
 

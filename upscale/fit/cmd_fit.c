@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "common/same_file.h"
 #include "fit_check.h"
 #include "fit_report.h"
 #include "fit_tao.h"
@@ -115,6 +116,12 @@ static int parse_args(int argc, char **argv, fit_args *a) {
 static int run_fit(const fit_args *a) {
   char err[1024], json_path[1100];
   flow_table t;
+  const char *outs[2] = {a->json, a->plot}, *out_roles[2] = {"--json", "--plot"};
+  const char *ins[1] = {a->table}, *in_roles[1] = {"the table"};
+  if (mdp_check_outputs(outs, out_roles, 2, ins, in_roles, 1, err, sizeof err)) {
+    fprintf(stderr, "mdpore fit: %s\n", err);
+    return 1;
+  }
   if (flow_table_read(a->table, &t, err, sizeof err)) {
     fprintf(stderr, "mdpore fit: %s\n", err);
     return 1;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "common/same_file.h"
 #include "slip_fit.h"
 #include "slip_input.h"
 #include "slip_report.h"
@@ -113,6 +114,21 @@ static int run_slip(const slip_args *a) {
   slip_points ps;
   slip_points_init(&ps, a->shape);
   int rc = 1;
+  {
+    char csv_out[4096], json_out[4096], png_out[4096];
+    snprintf(csv_out, sizeof csv_out, "%s.csv", a->out);
+    snprintf(json_out, sizeof json_out, "%s.json", a->out);
+    snprintf(png_out, sizeof png_out, "%s.png", a->out);
+    const char *outs[3] = {csv_out, json_out, a->plot ? png_out : NULL};
+    const char *out_roles[3] = {"--out (.csv)", "--out (.json)", "--out (.png)"};
+    for (int i = 0; i < a->n_inputs; i++) {
+      const char *in_role[1] = {"the input"};
+      if (mdp_check_outputs(outs, out_roles, 3, &a->inputs[i], in_role, 1, err, sizeof err)) {
+        fprintf(stderr, "mdpore slip: %s\n", err);
+        return 1;
+      }
+    }
+  }
   for (int i = 0; i < a->n_inputs; i++)
     if (slip_read_input(&ps, a->inputs[i], a->axis, err, sizeof err)) goto fail;
   if (ps.shape < 0) {

@@ -22,6 +22,19 @@ int flow_law_nparams(flow_law_kind kind) {
   return kind == LAW_DARCY ? 1 : 2;
 }
 
+/* x - (1 - exp(-x)) = x + expm1(-x) for x >= 0 without the cancellation of the two terms when x is
+ * small: the alternating series x^2/2 - x^3/6 + ... below x = 0.5 (terms fall by x/n, so 25 of them
+ * reach double precision), expm1 above. */
+static double threshold_excess(double x) {
+  if (x >= 0.5) return x + expm1(-x);
+  double term = x * x / 2.0, sum = 0.0;
+  for (int n = 3; n < 28 && term != 0.0; n++) {
+    sum += term;
+    term *= -x / n;
+  }
+  return sum;
+}
+
 /* Forchheimer solved for q: a q + b q|q| = G  ->  q = 2G / (a + sqrt(a^2 + 4 b |G|)) (stable root).
  */
 static double forchheimer_q(double a, double b, double G) {
@@ -55,9 +68,9 @@ double flow_law_q(const flow_law *law, const fluid_props *fl, double g_lin, doub
   case LAW_THRESHOLD: {
     /* Swartzendruber (1962): q = (k/mu)[G - G0(1 - exp(-G/G0))]; tends to (k/mu)(G - G0) for G >>
      * G0 and to (k/mu) G^2/(2 G0) near zero, so it is smooth where the hinge law has a kink. */
-    double c = law->k / fl->mu, e = exp(-aG / law->g0);
-    q = s * c * (aG - law->g0 * (1.0 - e));
-    d = c * (1.0 - e);
+    double c = law->k / fl->mu, x = aG / law->g0;
+    q = s * c * law->g0 * threshold_excess(x);
+    d = -c * expm1(-x);
     break;
   }
   case LAW_FORCHHEIMER: {
