@@ -28,11 +28,23 @@ static const command_t commands[] = {
 };
 static const int n_commands = (int)(sizeof commands / sizeof commands[0]);
 
+/* The version and the options this binary was built with (defined in app/CMakeLists.txt). */
+static void version(void) {
+  printf("mdpore %s\n", MDPORE_VERSION);
+  printf("  CUDA:      %s\n",
+         MDPORE_BUILD_CUDA ? "yes (mdpore run uses a GPU when there is one)" : "no");
+  printf("  PETSc:     %s\n",
+         MDPORE_BUILD_PETSC ? "yes (darcy, couple)" : "no (darcy, couple absent)");
+  printf("  TIFF:      %s\n", MDPORE_BUILD_TIFF ? "yes (TIFF images)" : "no (raw and HDF5 images)");
+  printf("  precision: CPU double; GPU pair math %s\n", MDPORE_BUILD_DOUBLE ? "double" : "float");
+}
+
 static void usage(FILE *to) {
   fprintf(to, "usage: mdpore COMMAND [options]\n\ncommands:\n");
   for (int i = 0; i < n_commands; i++)
     fprintf(to, "  %-8s %s\n", commands[i].name, commands[i].summary);
-  fprintf(to, "\n'mdpore COMMAND --help' describes one command.\n");
+  fprintf(to, "\n'mdpore COMMAND --help' describes one command; 'mdpore --version' the build.\n"
+              "Docs: README.md and docs/ (docs/architecture.md lists the pages).\n");
 }
 
 int main(int argc, char **argv) {
@@ -44,6 +56,9 @@ int main(int argc, char **argv) {
   if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
     if (rank == 0) usage(argc < 2 ? stderr : stdout);
     rc = argc < 2 ? 2 : 0;
+  } else if (!strcmp(argv[1], "--version")) {
+    if (rank == 0) version();
+    rc = 0;
   } else {
     const command_t *cmd = NULL;
     for (int i = 0; i < n_commands; i++)
