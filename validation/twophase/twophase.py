@@ -50,6 +50,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "engine"))
 import mdval  # noqa: E402
+from viscosity import fit_viscosity  # noqa: E402  (reverse Poiseuille, the single-liquid fit)
 
 PAIRS = {"A": -40.0, "B": 25.0, "gamma": 4.5, "rc": 1.0, "rd": 0.75}
 A_WO = -20.0  # --a-wo
@@ -244,15 +245,8 @@ def viscosity(args, out, name, gamma):
     prof = mdval.read_table(os.path.join(wd, "profile.csv"))
     y, u, du = prof["y"], prof["vx"], prof["vx_err"]
     n = float(np.mean(prof["density"]))
-    h = Ly / 2
-    yp = np.mod(y, h)
-    shape = np.where(y < h, 1.0, -1.0) * yp * (h - yp)
-    w = 1.0 / np.maximum(du, 1e-12) ** 2
-    c = np.sum(w * shape * u) / np.sum(w * shape * shape)
-    dc = 1.0 / np.sqrt(np.sum(w * shape * shape))
-    chi2 = float(np.sum(w * (u - c * shape) ** 2) / (len(u) - 1))
-    mu = n * g / (2 * c)
-    return dict(liquid=name, gamma=gamma, n=n, mu=float(mu), mu_err=float(mu * dc / c * max(1.0, math.sqrt(chi2))),
+    mu, mu_err, chi2, _ = fit_viscosity(y, u, du, n, g, Ly)
+    return dict(liquid=name, gamma=gamma, n=n, mu=float(mu), mu_err=float(mu_err),
                 chi2=chi2, steps=args.visc_steps, wall_s=wall)
 
 
