@@ -107,8 +107,10 @@ typedef struct {
   double core_density, core_density_err; /* the pore core's fluid density (NAN: none) */
   double temperature, temperature_err;   /* the run's mean kinetic temperature (NAN: none) */
   int steady;                            /* the flux reached a steady state (1), not (0), -1 ? */
-  int reached;                           /* 1 met the target, 0 not, -1 no target */
-  double target_error;                   /* the run's run.target_error (NAN: none) */
+  int before_pressure;   /* 1: the run ended within 3x its pressure-diffusion time */
+  double pressure_steps; /* that time in steps (NAN: not in the summary) */
+  int reached;           /* 1 met the target, 0 not, -1 no target */
+  double target_error;   /* the run's run.target_error (NAN: none) */
   int plateau; /* the blocked error of q reached a plateau (1), not (0: q_err a lower bound), -1 ? */
   long long steps, particles, steady_from;
   double seconds; /* loop seconds of the run */
@@ -228,6 +230,13 @@ int camp_write_commands(const char *workdir, const camp_opts *o, const campaign 
 
 /* campaign_summary.c: reads DIR/summary.json into r (have = 1 when it holds a usable flux). */
 int camp_read_summary(camp_run *r, char *why, int whylen);
+
+/* The standard mDPD water's isothermal bulk modulus K = n dp/dn at n = 6.2 (kT / rc^3): the
+ * slope at 6.2 of the quadratic through the measured bulk pressures p(5.5, 6.0, 6.5) = -7.43,
+ * -3.41, 24.0 (A = -40, B = 25, rd = 0.75; physics.md section 2, validation/engine/mdpd_eos.py),
+ * dp/dn = 50.1; Warren's equation of state gives 327. The runs' flux analysis leaves out the
+ * pressure-diffusion transient it sets (output.flux.bulk_modulus, meso/run/run_flux.c). */
+#define CAMP_WATER_BULK_MODULUS 311.0
 
 /* campaign_viscosity.c: the viscosity of the campaign's standard mDPD water (an image's template,
  * no --viscosity) at the density its runs measured in the pore core: sets c->viscosity and

@@ -1,7 +1,9 @@
 /* Whether a run's data can enter the Darcy range (campaign.h). A flow rate measured in a liquid that
  * has cavitated or been compressed by the forcing, or that the forcing has heated, or that never
  * settled, is not the linear response that k = mu q / G needs; such a run is reported and left out:
- *   the flux's steady state (MSER-5, meso/analysis/steady_state.c) was found;
+ *   the flux's steady state (MSER-5, meso/analysis/steady_state.c) was found, after 3x the
+ *     liquid's pressure-diffusion time (meso/run/run_flux.c): a run that ended sooner still
+ *     reads q high by the same fraction at every forcing;
  *   with --require-target, the run met its target error (off by default: most healthy runs of
  *     short campaigns stop at their step budget a little above it, with a larger error bar that the
  *     weighted fits already account for);
@@ -36,6 +38,13 @@ int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest
   flag->why[0] = 0;
   char *why = flag->why;
   const int len = (int)sizeof flag->why;
+  if (r->steady == 0 && r->before_pressure) {
+    snprintf(why, len,
+             "the run ended at step %lld, within 3x the liquid's pressure-diffusion time (%.0f "
+             "steps), while its flux still relaxes from above (give more --max-steps)",
+             r->steps, r->pressure_steps);
+    return left_out(flag, "unsteady", (double)r->steps);
+  }
   if (r->steady == 0) {
     snprintf(why, len, "the flux reached no steady state in %lld steps", r->steps);
     return left_out(flag, "unsteady", (double)r->steps);

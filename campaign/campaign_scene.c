@@ -321,6 +321,11 @@ char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, d
   set(d, flux, "axis", scalar(d, axis_name));
   set(d, flux, "file", scalar(d, "flux.csv"));
   if (!get(d, flux, "every")) set(d, flux, "every", number(d, o->flux_every));
+  /* the standard water's compressibility, so that each run leaves out the pressure-diffusion
+   * transient (a liquid of another viscosity, --viscosity, is not that water: its scene sets the
+   * key itself or goes without) */
+  if (!o->viscosity_given && !get(d, flux, "bulk_modulus"))
+    set(d, flux, "bulk_modulus", number(d, CAMP_WATER_BULK_MODULUS));
   set(d, output, "summary", scalar(d, "summary.json"));
   set(d, output, "progress", scalar(d, "false"));
 

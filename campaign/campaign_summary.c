@@ -59,6 +59,13 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   temp = thermo && thermo->type == YAML_MAPPING_NODE ? yt_get(&t, thermo, "T") : NULL;
   r->temperature = temp && temp->type == YAML_MAPPING_NODE ? num(&t, temp, "mean") : NAN;
   r->temperature_err = temp && temp->type == YAML_MAPPING_NODE ? num(&t, temp, "err") : NAN;
+  r->pressure_steps = num(&t, flux, "pressure_diffusion_steps");
+  yaml_node_t *before = yt_get(&t, flux, "before_pressure_diffusion");
+  int before_b = 0;
+  r->before_pressure =
+      before && !yt_is_null(before) && !yt_bool(&t, before, "before_pressure_diffusion", &before_b)
+          ? before_b
+          : 0;
   yaml_node_t *steady = yt_get(&t, flux, "steady");
   int steady_b = 0;
   r->steady =

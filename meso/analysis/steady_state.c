@@ -89,10 +89,26 @@ double integrated_autocorrelation_time(const double *x, long n) {
 }
 
 void steady_state_analyse(const double *x, long n, steady_state_t *out) {
+  steady_state_analyse_from(x, n, 0, out);
+}
+
+void steady_state_analyse_from(const double *x, long n, double tau_slow, steady_state_t *out) {
   out->n = n;
   out->tau_floor = 0;
   out->floor_governs = 0;
-  out->start = mser_truncation(x, n, STEADY_MSER_BATCH, &out->steady);
+  out->mser_start = out->start = mser_truncation(x, n, STEADY_MSER_BATCH, &out->steady);
+  out->tau_slow = tau_slow > 0 && isfinite(tau_slow) ? tau_slow : 0;
+  out->slow_governs = out->before_slow = 0;
+  if (out->tau_slow > 0) {
+    const double slow_start = ceil(STEADY_SLOW_TRANSIENT_TIMES * out->tau_slow);
+    if (slow_start > (double)(n - 2)) {
+      out->before_slow = 1; /* the transient is not over: analysed from MSER's start, not steady */
+      out->steady = 0;
+    } else if ((long)slow_start > out->start) {
+      out->start = (long)slow_start;
+      out->slow_governs = 1;
+    }
+  }
   const long m = n - out->start;
   out->avg = block_average_plateau(x + out->start, m);
   /* The autocorrelation estimate on (batch means of) the window: error sqrt(var_z 2 tau_b / k),
@@ -132,6 +148,7 @@ void steady_state_floor_tau(steady_state_t *s, const double *x, double tau_floor
 int steady_state_converged(const steady_state_t *s, double target) {
   const long window = s->n - s->start;
   return s->steady && s->avg.plateau && window >= STEADY_MIN_SAMPLES &&
-         window >= STEADY_WINDOW_OVER_TRANSIENT * s->start && s->n_eff >= STEADY_MIN_EFFECTIVE &&
-         s->rel_err <= target;
+         window >= STEADY_WINDOW_OVER_TRANSIENT * s->mser_start &&
+         (double)window >= STEADY_SLOW_WINDOW_TIMES * s->tau_slow &&
+         s->n_eff >= STEADY_MIN_EFFECTIVE && s->rel_err <= target;
 }

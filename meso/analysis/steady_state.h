@@ -16,7 +16,16 @@
  * STEADY_WINDOW_OVER_TRANSIENT times the transient it follows and STEADY_MIN_EFFECTIVE effective
  * samples: a slowly fluctuating flux (a channel's momentum relaxes over h^2 / (pi^2 nu)) can show a
  * short, quiet stretch whose block error is far too small; seen in a slit campaign that stopped
- * 18% low with a 0.9% error bar (docs/permeability.md). */
+ * 18% low with a 0.9% error bar (docs/permeability.md).
+ *
+ * A transient that the data of one run cannot show is floored from physics
+ * (steady_state_analyse_from): a slow mode known to decay as exp(-t / tau_slow) is left out for
+ * STEADY_SLOW_TRANSIENT_TIMES tau_slow, and a converged verdict asks for at least
+ * STEADY_SLOW_WINDOW_TIMES tau_slow of data after it. For a flow run through a compressible liquid
+ * the mode is the pressure diffusion that builds the pressure field of the flow (run/run_flux.c):
+ * its relative amplitude does not depend on the forcing, so MSER finds it in the strongest run of a
+ * campaign and misses it in the weakest, whose noise hides a bias of 10-15% (Berea crops at 1 rc
+ * per voxel, docs/permeability.md). */
 #ifndef MESO_ANALYSIS_STEADY_STATE_H
 #define MESO_ANALYSIS_STEADY_STATE_H
 
@@ -29,6 +38,11 @@
 #define STEADY_WINDOW_OVER_TRANSIENT 3
 /* ... and at least this many effective (independent) samples. */
 #define STEADY_MIN_EFFECTIVE 30
+/* A known slow mode: its first STEADY_SLOW_TRANSIENT_TIMES relaxation times are left out (what is
+ * left of an amplitude a is a e^-3, 1.5% of q for a = 0.3), and a converged verdict needs
+ * STEADY_SLOW_WINDOW_TIMES of them after that. */
+#define STEADY_SLOW_TRANSIENT_TIMES 3.0
+#define STEADY_SLOW_WINDOW_TIMES 2.0
 
 typedef struct {
   long n;              /* samples analysed */
@@ -42,6 +56,10 @@ typedef struct {
   double tau_floor;    /* a physical lower bound on tau_int in samples (steady_state_floor_tau; 0:
                           none applied) */
   int floor_governs;   /* 1: the floor was above the data's tau_int and set the error and n_eff */
+  long mser_start;     /* MSER-5's truncation (start is the larger of it and the slow floor) */
+  double tau_slow;     /* relaxation time of a known slow mode, in samples (0: none) */
+  int slow_governs;    /* 1: the slow mode's floor, not MSER, set start */
+  int before_slow;     /* 1: the series ends before the slow mode's transient does (steady = 0) */
 } steady_state_t;
 
 /* MSER truncation with batches of `batch` samples: the number of samples to drop (a multiple of
@@ -50,6 +68,12 @@ long mser_truncation(const double *x, long n, int batch, int *steady);
 
 /* MSER-5, then the block average of what follows. */
 void steady_state_analyse(const double *x, long n, steady_state_t *out);
+
+/* The same with a slow mode of relaxation time tau_slow samples (<= 0 or not finite: none): the
+ * window starts no earlier than STEADY_SLOW_TRANSIENT_TIMES tau_slow. A series that ends before
+ * that, or leaves fewer than 2 samples after it, is analysed from MSER's start but is not steady
+ * (before_slow = 1). */
+void steady_state_analyse_from(const double *x, long n, double tau_slow, steady_state_t *out);
 
 /* Integrated autocorrelation time (samples) of x[0..n) by Sokal's automatic window; a series
  * longer than 4096 samples is first reduced to 4096 batch means (then tau_batch x batch, an upper
@@ -67,8 +91,9 @@ double integrated_autocorrelation_time(const double *x, long n);
 void steady_state_floor_tau(steady_state_t *s, const double *x, double tau_floor);
 
 /* Whether the analysed series meets a relative error target: steady, a plateau of the blocked
- * error, at least STEADY_MIN_SAMPLES samples used, a window >= STEADY_WINDOW_OVER_TRANSIENT x the
- * transient, >= STEADY_MIN_EFFECTIVE effective samples and rel_err <= target. */
+ * error, at least STEADY_MIN_SAMPLES samples used, a window >= STEADY_WINDOW_OVER_TRANSIENT x
+ * MSER's transient and >= STEADY_SLOW_WINDOW_TIMES x tau_slow, >= STEADY_MIN_EFFECTIVE effective
+ * samples and rel_err <= target. */
 int steady_state_converged(const steady_state_t *s, double target);
 
 #endif

@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
+static const double PI = 3.14159265358979323846;
+
 int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank) {
   memset(rf, 0, sizeof *rf);
   rf->log.file = rf->log.dset = -1;
@@ -58,11 +60,36 @@ static double darcy_relaxation_steps(const run_flux_t *rf, double q_mean, double
   return isfinite(tau) && tau > 0 && dt > 0 ? tau / dt : 0;
 }
 
-/* Rank 0: the steady-state analysis of the series so far, its correlation time floored at the
- * Darcy relaxation time. */
-static void analyse(run_flux_t *rf, double dt) {
+/* The pressure-diffusion time of the slowest mode, in steps: tau_p = L^2 / (4 pi^2 D),
+ * D = k K / (phi mu) = (q / G) K / phi. A body force starts the flow at uniform density; the
+ * pressure field that steers it around the constrictions needs the liquid compressed ahead of them
+ * and thinned behind, and that mass comes through the pore network, so the density field obeys
+ * the pressure-diffusion equation of a liquid of compressibility 1 / K in a porous medium,
+ * phi / K dp/dt = div(k / mu grad p) (Bear, Dynamics of Fluids in Porous Media, 1972, 6.3). Its
+ * slowest mode in a periodic box of length L along the flow (a mirrored image: the mirrored length)
+ * has wave number 2 pi / L. Until it has decayed q is above its steady value, by the same fraction
+ * at every forcing (the pressure field is linear in G): 30-40% at the start and e-folding over
+ * 1000-2000 steps in Berea crops at 1 rc per voxel, where this estimate gives 1700-3400 steps
+ * (docs/permeability.md). 0 without output.flux.bulk_modulus or where q / G is undefined. */
+static double pressure_diffusion_steps(const run_flux_t *rf, const scene_t *s, double q_mean,
+                                       double relax_steps) {
+  const double K = s->flux.bulk_modulus, L = rf->def.length;
+  if (!(K > 0) || !(relax_steps > 0) || !(q_mean != 0) || s->dt <= 0) return 0;
+  /* q / G = relax_steps dt phi / rho (darcy_relaxation_steps), so D = relax_steps dt K / rho */
+  const double D = relax_steps * s->dt * K / rf->def.mass_density;
+  const double tau = L * L / (4.0 * PI * PI * D);
+  return isfinite(tau) && tau > 0 ? tau / s->dt : 0;
+}
+
+/* Rank 0: the steady-state analysis of the series so far: its start floored at the pressure
+ * diffusion's transient, its correlation time at the Darcy relaxation time. */
+static void analyse(run_flux_t *rf, const scene_t *s) {
   steady_state_analyse(rf->q.x, rf->q.n, &rf->result);
-  rf->relax_steps = darcy_relaxation_steps(rf, rf->result.avg.mean, dt);
+  rf->relax_steps = darcy_relaxation_steps(rf, rf->result.avg.mean, s->dt);
+  rf->pressure_steps = pressure_diffusion_steps(rf, s, rf->result.avg.mean, rf->relax_steps);
+  if (rf->pressure_steps > 0)
+    steady_state_analyse_from(rf->q.x, rf->q.n, rf->pressure_steps / (double)rf->every,
+                              &rf->result);
   steady_state_floor_tau(&rf->result, rf->q.x, rf->relax_steps / (double)rf->every);
 }
 
@@ -99,7 +126,7 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
   rf->next_check = rf->samples + grow;
   int stop = 0;
   if (rank == 0) {
-    analyse(rf, s->dt);
+    analyse(rf, s);
     stop = steady_state_converged(&rf->result, rf->target);
   }
   MPI_Bcast(&stop, 1, MPI_INT, 0, sim_comm(sim));
@@ -117,9 +144,9 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
   return stop;
 }
 
-void run_flux_finish(run_flux_t *rf, double dt, int rank) {
+void run_flux_finish(run_flux_t *rf, const scene_t *s, int rank) {
   if (!rf->on || rank != 0) return;
-  analyse(rf, dt);
+  analyse(rf, s);
   if (rf->pd.on) {
     pressure_drop_analyse(&rf->pd, rf->result.start, &rf->pd_result);
     if (pressure_drop_write_profile(&rf->pd, rf->result.start, rf->pd.profile_path))
@@ -139,19 +166,23 @@ void run_flux_finish(run_flux_t *rf, double dt, int rank) {
                          : "the blocked error has no plateau (its error bar is underestimated)");
     return;
   }
-  const char *why = !r->steady ? "no steady state found (MSER-5: the flux still drifts)"
-                    : !r->avg.plateau
-                        ? "the blocked error has no plateau yet (the series is short for its "
+  const char *why =
+      r->before_slow    ? "the run ended within 3x the pressure-diffusion time, while q still "
+                          "relaxes from above"
+      : !r->steady      ? "no steady state found (MSER-5: the flux still drifts)"
+      : !r->avg.plateau ? "the blocked error has no plateau yet (the series is short for its "
                           "correlation time)"
-                    : r->n - r->start < STEADY_MIN_SAMPLES ? "too few steady samples"
-                    : r->n - r->start < STEADY_WINDOW_OVER_TRANSIENT * r->start
-                        ? "the steady window is shorter than 3x the transient before it"
-                    : r->n_eff < STEADY_MIN_EFFECTIVE
-                        ? (r->floor_governs ? "fewer than 30 independent samples at the Darcy "
-                                              "relaxation time of the mean flow"
-                                            : "fewer than 30 independent samples (the flux is "
-                                              "correlated over long times)")
-                        : "the error is still above it";
+      : r->n - r->start < STEADY_MIN_SAMPLES ? "too few steady samples"
+      : r->n - r->start < STEADY_WINDOW_OVER_TRANSIENT * r->mser_start
+          ? "the steady window is shorter than 3x the transient before it"
+      : (double)(r->n - r->start) < STEADY_SLOW_WINDOW_TIMES * r->tau_slow
+          ? "the steady window is shorter than 2x the pressure-diffusion time"
+      : r->n_eff < STEADY_MIN_EFFECTIVE
+          ? (r->floor_governs ? "fewer than 30 independent samples at the Darcy "
+                                "relaxation time of the mean flow"
+                              : "fewer than 30 independent samples (the flux is "
+                                "correlated over long times)")
+          : "the error is still above it";
   fprintf(stderr,
           "mdpore: flux: run.target_error %g NOT reached within the step budget: relative error "
           "of q %.3g after %ld samples, %.0f independent (%s). Run longer (--steps).\n",

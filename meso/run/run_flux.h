@@ -33,6 +33,8 @@ typedef struct run_flux {
   pressure_drop_result_t pd_result; /* rank 0, after run_flux_finish */
   double relax_steps; /* rank 0: the Darcy relaxation time of the mean flow in steps, the floor of
                          the flux's correlation time (0: undefined); run_flux.c */
+  double pressure_steps; /* rank 0: the pressure-diffusion time of the liquid's slowest mode in
+                            steps, with output.flux.bulk_modulus (0: none); run_flux.c */
 } run_flux_t;
 
 /* Collective: the definitions (one flux reduction for the counts) and the file; `restart`: the run
@@ -49,7 +51,7 @@ int run_flux_check_at(const run_flux_t *rf, long step);
  * when the run should stop (target met), 0 to go on, -1 on a device error (message printed). */
 int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank);
 /* Rank 0, after the loop: analyse the whole series; say on stderr when a target was not met. */
-void run_flux_finish(run_flux_t *rf, double dt, int rank);
+void run_flux_finish(run_flux_t *rf, const scene_t *s, int rank);
 void run_flux_close(run_flux_t *rf);
 
 #endif

@@ -277,7 +277,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     st.steps_done = sim_step_index(sim) - first;
     st.last_step = sim_step_index(sim); /* earlier than planned after an early stop */
     if (rank == 0) run_stats_finish(&st, st.last_step);
-    run_flux_finish(&rf, s->dt, rank);
+    run_flux_finish(&rf, s, rank);
     run_balance_finish(&rbal, sim, &st);
     st.loop_seconds = loop;
     st.total_seconds = MPI_Wtime() - t_start;

@@ -97,10 +97,20 @@ static void flux_text(FILE *out, const run_flux_t *f, const scene_t *s) {
             p->force_per_area, p->force_per_area_err, p->balance);
   }
   if (r->n > 0)
+    fprintf(out, "  steady from step %.0f (%s%s), %ld of %ld samples used, block length %ld%s\n",
+            f->steps.x[r->start],
+            r->slow_governs ? "3x the pressure-diffusion time, after MSER-5's transient" : "MSER-5",
+            r->before_slow ? ": NO steady state: the run ended within 3x the pressure-diffusion "
+                             "time"
+            : r->steady    ? ""
+                           : ": NO steady state found",
+            r->n - r->start, r->n, r->avg.block_len,
+            r->avg.plateau ? "" : " (no plateau: error underestimated)");
+  if (r->n > 0 && f->pressure_steps > 0)
     fprintf(out,
-            "  steady from step %.0f (MSER-5%s), %ld of %ld samples used, block length %ld%s\n",
-            f->steps.x[r->start], r->steady ? "" : ": NO steady state found", r->n - r->start, r->n,
-            r->avg.block_len, r->avg.plateau ? "" : " (no plateau: error underestimated)");
+            "  pressure-diffusion time of the liquid phi L^2 G / (4 pi^2 K q) = %.0f steps (K = "
+            "%g, output.flux.bulk_modulus): q relaxes from above over it at every forcing\n",
+            f->pressure_steps, s->flux.bulk_modulus);
   if (r->n > 0)
     fprintf(out,
             "  correlation time of q %.0f steps (%s), %.1f independent samples; Darcy relaxation "
@@ -135,6 +145,10 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
   fprintf(fp, ", \"relaxation_steps\": ");
   json_num(fp, f->relax_steps);
   fprintf(fp, ", \"relaxation_governs\": %s", r->floor_governs ? "true" : "false");
+  fprintf(fp, ", \"pressure_diffusion_steps\": ");
+  json_num(fp, f->pressure_steps);
+  fprintf(fp, ", \"pressure_diffusion_governs\": %s, \"before_pressure_diffusion\": %s",
+          r->slow_governs ? "true" : "false", r->before_slow ? "true" : "false");
   fprintf(fp, ", \"G\": ");
   json_num(fp, flux_G(f));
   if (f->pd.on) {

@@ -136,8 +136,11 @@ typedef struct {
   long every;
   int axis;              /* 0, 1, 2 = x, y, z */
   unsigned species_mask; /* bit s: species s is counted (default: every mobile species) */
-  double density; /* > 0: the fluid number density n of Q (output.flux.density); 0: the scene's
+  double density;      /* > 0: the fluid number density n of Q (output.flux.density); 0: the scene's
                      own (fill or geometry.fluid_density) */
+  double bulk_modulus; /* > 0: the liquid's isothermal bulk modulus K = n dp/dn
+                          (output.flux.bulk_modulus), which sets the pressure-diffusion transient
+                          the steady-state analysis leaves out (run/run_flux.c); 0: none */
   char path[SCENE_PATH_LEN];
 } scene_flux_t;
 
