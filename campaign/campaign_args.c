@@ -92,6 +92,28 @@ static int bad(const char *opt, const char *expected, const char *got) {
   return -1;
 }
 
+/* --models: a comma-separated list of the laws mdpore fit knows, checked here so that a typo is
+ * refused before any run, not by the fit at --collect. 0 or -1 (message printed). */
+static int check_models(const char *list) {
+  static const char *const laws[] = {"darcy", "threshold", "forchheimer", "power", NULL};
+  const char *p = list;
+  do {
+    const size_t len = strcspn(p, ",");
+    int known = 0;
+    for (int i = 0; laws[i] && !known; i++)
+      known = len == strlen(laws[i]) && !strncmp(p, laws[i], len);
+    if (!known) {
+      fprintf(stderr,
+              "mdpore permeability: --models: unknown law '%.*s' in '%s' (expected a "
+              "comma-separated list of darcy, threshold, forchheimer, power)\n",
+              (int)(len > 64 ? 64 : len), p, list);
+      return -1;
+    }
+    p += len;
+  } while (*p++ == ',');
+  return 0;
+}
+
 static int parse_double(const char *opt, const char *s, double lo, double hi, const char *what,
                         double *out) {
   char *end;
@@ -267,9 +289,10 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       if (parse_ll(s, v, 1, "a positive number of steps", &ll)) return -1;
       if (ll > INT_MAX) return bad(s, "a number of steps", v);
       o->flux_every = (int)ll;
-    } else if (!strcmp(s, "--models"))
+    } else if (!strcmp(s, "--models")) {
+      if (check_models(v)) return -1;
       snprintf(o->models, sizeof o->models, "%s", v);
-    else if (!strcmp(s, "--sample"))
+    } else if (!strcmp(s, "--sample"))
       snprintf(o->sample, sizeof o->sample, "%s", v);
     else if (!strcmp(s, "--drive")) {
       if (!strcmp(v, "body"))

@@ -14,11 +14,13 @@
  * AUTO keeps periodic where the seam continues the image (mdp_image_seam continuity >= 0.8) and
  * mirrors otherwise. --sides mirror mirrors the lateral faces too (symmetry planes, as foam's
  * --sides symmetry), at four times the particles. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "campaign.h"
+#include "common/size_check.h"
 
 const char *camp_boundary_name(int boundary) {
   switch (boundary) {
@@ -101,6 +103,27 @@ static int write_image(const mdp_image_t *img, const char *path) {
   return 0;
 }
 
+/* --reservoir in voxels at rc_per_voxel, in double before any int: the padded image's length along
+ * the axis within the int range and its voxels within the memory limit. 0, or -1 and a message
+ * naming the option. */
+static int check_reservoir(const camp_opts *o, const mdp_image_t *img, int ax) {
+  const int n[3] = {img->nx, img->ny, img->nz};
+  const double voxels = round(o->reservoir / o->rc_per_voxel), along = n[ax] + voxels;
+  char why[320] = "";
+  if (along > INT_MAX)
+    snprintf(why, sizeof why, "%.3g voxels along %c, more than the %d an image can index", along,
+             'x' + ax, INT_MAX);
+  else
+    mdp_size_check(along * n[(ax + 1) % 3] * n[(ax + 2) % 3], MDP_IMAGE_MAX_VOXELS, 1.0,
+                   "voxels of the padded image", why, sizeof why);
+  if (!why[0]) return 0;
+  fprintf(stderr,
+          "mdpore permeability: %s: --reservoir %g: expected a reservoir the image padded with it "
+          "fits: at %g rc per voxel it is %.3g voxels (%s)\n",
+          o->input, o->reservoir, o->rc_per_voxel, voxels, why);
+  return -1;
+}
+
 int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img) {
   int pore = -1;
   for (int v = 0; v < 256 && pore < 0; v++)
@@ -125,10 +148,11 @@ int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img) {
       /* the reservoir's pore voxels after the high face along the axis (the sample keeps
        * [0, L_sample); periodic, so the reservoir touches both faces) */
       int w[6] = {0};
-      w[2 * ax + 1] = camp_reservoir_voxels(o);
       camp_padded_image_path(o, ax, path, sizeof path);
-      rc = pore < 0 || mdp_image_pad(base, w, (uint8_t)pore, &padded, err);
-      if (rc)
+      if ((rc = check_reservoir(o, base, ax))) {
+        /* refused, the message printed */
+      } else if ((w[2 * ax + 1] = camp_reservoir_voxels(o)),
+                 (rc = pore < 0 || mdp_image_pad(base, w, (uint8_t)pore, &padded, err)))
         fprintf(stderr, "mdpore permeability: %s: --drive pressure: %s\n", o->input,
                 pore < 0 ? "the image has no pore label for the reservoir" : err);
       else {

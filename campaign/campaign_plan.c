@@ -222,8 +222,10 @@ int camp_read_manifest(const char *workdir, campaign *c) {
     } else if (!strcmp(k, "drive")) {
       c->drive = !strcmp(v, "pressure") ? CAMP_DRIVE_PRESSURE : CAMP_DRIVE_BODY;
       if (strcmp(v, "pressure") && strcmp(v, "body")) {
-        fprintf(stderr, "mdpore permeability: %s:%d: key 'drive': expected body or pressure\n",
-                path, ln);
+        fprintf(stderr,
+                "mdpore permeability: %s:%d: key 'drive': expected body or pressure (got "
+                "'%.40s')\n",
+                path, ln, v);
         rc = -1;
       }
     } else if (!strcmp(k, "boundary")) {

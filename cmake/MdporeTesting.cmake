@@ -28,6 +28,25 @@ function(mdpore_add_test)
   endif()
 endfunction()
 
+# mdpore_add_refusal_test(NAME name [LABELS ...] [TIMEOUT s] [ENVIRONMENT VAR=value...]
+#                         EXPECT text... COMMAND cmd args...)
+# A command line that must be refused: a non-zero exit (no crash, no hang past TIMEOUT, default 60 s)
+# with every EXPECT text in stderr (cmake/run_cli_refusal.cmake). It runs in a folder of its own
+# under the build tree. No argument or text may hold '|'.
+function(mdpore_add_refusal_test)
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "COMMAND;LABELS;EXPECT;ENVIRONMENT" ${ARGN})
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 60)
+  endif()
+  string(JOIN "|" cmd ${T_COMMAND})
+  string(JOIN "|" expect ${T_EXPECT})
+  mdpore_add_test(NAME ${T_NAME} LABELS ${T_LABELS} TIMEOUT ${T_TIMEOUT}
+                  ENVIRONMENT ${T_ENVIRONMENT}
+                  COMMAND ${CMAKE_COMMAND} "-DCMD=${cmd}" "-DEXPECT=${expect}"
+                          -DWORKDIR=${CMAKE_CURRENT_BINARY_DIR}/refusal_${T_NAME}
+                          -P ${PROJECT_SOURCE_DIR}/cmake/run_cli_refusal.cmake)
+endfunction()
+
 # add_subdirectory() for each module folder (engine image foam flowdata upscale) that has a
 # CMakeLists.txt; upscale only when PETSc is enabled. Used by tests/ and validation/.
 macro(mdpore_add_module_dirs)

@@ -159,5 +159,27 @@ int units_block_read(ytree_t *t, yaml_node_t *n, const char *path, const units_c
       mass = units_water_mass(rc, m->density);
   }
   units_make(rc, energy, mass, &m->si);
+  /* values each finite can still make a factor overflow or vanish (e.g. rc 1e-300 m with energy
+   * 1e300 J: pressure e / rc^3 is infinite); summary.json and every conversion need them all */
+  const units_si_t *u = &m->si;
+  const struct {
+    const char *name;
+    double v;
+  } factors[] = {{"rc (m)", u->rc_m},
+                 {"energy (J)", u->kT_J},
+                 {"mass (kg)", u->mass_kg},
+                 {"time tau (s)", u->tau_s},
+                 {"velocity (m/s)", u->q_m_per_s},
+                 {"pressure (Pa)", u->p_Pa},
+                 {"pressure gradient (Pa/m)", u->G_Pa_per_m},
+                 {"viscosity (Pa s)", u->mu_Pa_s},
+                 {"permeability (m^2)", u->k_m2},
+                 {"permeability (nD)", u->k_nD}};
+  for (size_t i = 0; i < sizeof factors / sizeof factors[0]; i++)
+    if (!(isfinite(factors[i].v) && factors[i].v > 0))
+      return yt_error(t, n, path,
+                      "expected units whose reduced unit of every quantity is a finite positive "
+                      "number in SI (got %s = %g from rc %g m, energy %g J, mass %g kg)",
+                      factors[i].name, factors[i].v, u->rc_m, u->kT_J, u->mass_kg);
   return 0;
 }

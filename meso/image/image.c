@@ -30,10 +30,19 @@ int mdp_image_alloc(mdp_image_t *img, int nx, int ny, int nz, char *err) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "image dimensions %dx%dx%d: each must be >= 1", nx, ny, nz);
     return 1;
   }
-  size_t n = (size_t)nx * (size_t)ny * (size_t)nz;
+  /* the count in double: three int dimensions can overflow 64 bits (2^31 cubed) */
+  const double count = (double)nx * (double)ny * (double)nz;
   char what[96];
   snprintf(what, sizeof what, "an image of %dx%dx%d voxels", nx, ny, nz);
-  if (mdp_image_check_memory((double)n, "image", what, err)) return 1;
+  if (count > MDP_IMAGE_MAX_VOXELS) {
+    snprintf(err, MDP_IMAGE_ERR_LEN,
+             "%s: %.3g voxels, more than the %.3g an image can index (expected a product of the "
+             "dimensions of at most %.3g)",
+             what, count, MDP_IMAGE_MAX_VOXELS, MDP_IMAGE_MAX_VOXELS);
+    return 1;
+  }
+  if (mdp_image_check_memory(count, "image", what, err)) return 1;
+  const size_t n = (size_t)nx * (size_t)ny * (size_t)nz;
   img->label = calloc(n, 1);
   if (!img->label) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "out of memory for a %dx%dx%d image (%zu bytes)", nx, ny, nz,

@@ -2,6 +2,8 @@
 #include "image_internal.h"
 #include "mdpore_image_cli.h"
 
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,7 +73,7 @@ static int parse_pad(const char *text, mdp_image_cli_t *c) {
   if ((s[0] == 'x' || s[0] == 'y' || s[0] == 'z') && s[1] == '=') axis = s[0] - 'x', s += 2;
   char *end;
   long w = strtol(s, &end, 10);
-  if (end == s || w < 0) return 1;
+  if (end == s || w < 0 || w > INT_MAX) return 1;
   if (*end == ':') {
     char *e2;
     long lab = strtol(end + 1, &e2, 10);
@@ -141,7 +143,13 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
         bad = *p != ',' || p == v || !p[1] || p[-1] == ',';
   }
   if (bad) {
-    snprintf(err, MDP_IMAGE_ERR_LEN, "option %s: bad value '%s' (see --help)", opt, v);
+    const char *expected = !strcmp(opt, "--pad")
+                               ? "[AXIS=]W[:LABEL], W from 0 to 2147483647 layers, LABEL 0-255"
+                           : !strcmp(opt, "--crop")       ? "X0:X1,Y0:Y1,Z0:Z1 (a part may be ':')"
+                           : !strcmp(opt, "--downsample") ? "an integer factor >= 1"
+                           : !strcmp(opt, "--mirror")     ? "axes x, y, z separated by commas"
+                                                          : "a valid value (see --help)";
+    snprintf(err, MDP_IMAGE_ERR_LEN, "option %s: bad value '%s' (expected %s)", opt, v, expected);
     return -1;
   }
   (*i)++;
@@ -151,6 +159,7 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
 int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *img, char *err) {
   if (mdp_image_read(path, &c->read, img, err)) return 1;
   mdp_image_t tmp;
+  const char *step = "--crop";
   if (c->crop) {
     const int n[3] = {img->nx, img->ny, img->nz};
     int lo[3], size[3];
@@ -162,11 +171,13 @@ int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *
     mdp_image_free(img);
     *img = tmp;
   }
+  step = "--downsample";
   if (c->downsample > 1) {
     if (mdp_image_downsample(img, c->downsample, &tmp, err)) goto fail;
     mdp_image_free(img);
     *img = tmp;
   }
+  step = "--pad";
   int any_pad = 0;
   for (int s = 0; s < 6; s++) any_pad |= c->pad[s] > 0;
   if (any_pad) {
@@ -177,6 +188,7 @@ int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *
     mdp_image_free(img);
     *img = tmp;
   }
+  step = "--mirror";
   if (c->mirror[0] || c->mirror[1] || c->mirror[2]) {
     if (mdp_image_mirror(img, c->mirror, &tmp, err)) goto fail;
     mdp_image_free(img);
@@ -185,5 +197,9 @@ int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *
   return 0;
 fail:
   mdp_image_free(img);
+  /* name the file and the option whose transformation failed */
+  char inner[MDP_IMAGE_ERR_LEN];
+  snprintf(inner, sizeof inner, "%s", err);
+  snprintf(err, MDP_IMAGE_ERR_LEN, "%.300s: %s: %.600s", path, step, inner);
   return 1;
 }

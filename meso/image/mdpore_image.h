@@ -15,6 +15,9 @@
 #include <stdint.h>
 
 #define MDP_IMAGE_ERR_LEN 1024
+/* The most voxels an image may hold: 2^62, so that voxel indices and counts in int64_t and size_t
+ * never overflow (the memory limit is usually far lower). */
+#define MDP_IMAGE_MAX_VOXELS 4611686018427387904.0
 
 typedef enum {
   MDP_PHASE_PORE = 0,

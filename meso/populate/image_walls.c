@@ -61,11 +61,13 @@ static void edt_1d(const double *f, int n, double *d, int *v, double *z) {
  * within half a period is then inside); EDT_INF without any pore voxel. Three separable passes,
  * O(voxels) each (x3 along periodic axes). A voxel at least the thickness inside the window (or at
  * the image's own faces) gets the image's exact distance wherever that is within the thickness:
- * its nearest pore voxel is then in the window. 0, or -1 (memory). */
-static int edt_pore(const uint8_t *phase, const int n[3], const int periodic[3], uint32_t *d2) {
+ * its nearest pore voxel is then in the window. With to_solid the same to the nearest solid voxel
+ * (a window's distance is then never below the image's). 0, or -1 (memory). */
+static int edt_to(const uint8_t *phase, const int n[3], const int periodic[3], int to_solid,
+                  uint32_t *d2) {
   const size_t stride[3] = {1, (size_t)n[0], (size_t)n[0] * (size_t)n[1]};
   const size_t total = (size_t)n[0] * (size_t)n[1] * (size_t)n[2];
-  for (size_t i = 0; i < total; i++) d2[i] = phase[i] == MDP_PHASE_PORE ? 0 : EDT_INF;
+  for (size_t i = 0; i < total; i++) d2[i] = (phase[i] == MDP_PHASE_PORE) != to_solid ? 0 : EDT_INF;
   int nmax = n[0] > n[1] ? n[0] : n[1];
   if (n[2] > nmax) nmax = n[2];
   const size_t len = 3 * (size_t)nmax;
@@ -165,6 +167,27 @@ static int halo_voxels(const image_walls_t *g) {
   return scan + (int)ceil(g->thickness / g->h * (1 + 1e-12));
 }
 
+/* geometry.min_wall_distance within the box: no two points of it are farther apart than its
+ * diagonal (half an edge along a periodic axis, whose nearest image is used), so a larger distance
+ * leaves no place for any fluid particle, and its scan (ceil(d / voxel) voxels each side, per try)
+ * would run without end. 0 or -1 + err. */
+static int check_min_distance(const scene_t *s, const image_walls_t *g, char *err, size_t errlen) {
+  double reach2 = 0;
+  for (int d = 0; d < 3; d++) {
+    const double edge = s->box_hi[d] - s->box_lo[d], far = g->periodic[d] ? 0.5 * edge : edge;
+    reach2 += far * far;
+  }
+  const double reach = sqrt(reach2);
+  if (isfinite(g->min_distance) && g->min_distance < reach) return 0;
+  snprintf(err, errlen,
+           "%s: key 'geometry.min_wall_distance': expected a distance (rc) less than %g, the "
+           "farthest two points of the box can be apart (its diagonal, half an edge along a "
+           "periodic axis), so that the fluid has room; typical values are below rc, e.g. the "
+           "default 0.25 (got %g)",
+           s->file, reach, g->min_distance);
+  return -1;
+}
+
 /* The local steps before the first collective one: the image file, the thickness, the window. */
 static int read_stage(const scene_t *s, image_walls_t *g, const double *sub_lo,
                       const double *sub_hi, uint8_t **phase, char *err, size_t errlen) {
@@ -187,6 +210,7 @@ static int read_stage(const scene_t *s, image_walls_t *g, const double *sub_lo,
         geo->wall_thickness > 0 ? "" : ", the default rc + rd of the fluid-wall pairs");
     return -1;
   }
+  if (check_min_distance(s, g, err, errlen)) return -1;
   if (image_window_read(s, g, sub_lo, sub_hi, halo_voxels(g), phase, err, errlen)) return -1;
   const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
   g->cls = calloc(total ? (size_t)total : 1, 1);
@@ -207,7 +231,7 @@ static int classify_walls(const scene_t *s, image_walls_t *g, const uint8_t *pha
   uint32_t *d2 = malloc((total ? (size_t)total : 1) * sizeof *d2);
   int per[3];
   for (int d = 0; d < 3; d++) per[d] = g->periodic[d] && g->win_n[d] == g->n[d];
-  if (!d2 || edt_pore(phase, g->win_n, per, d2)) {
+  if (!d2 || edt_to(phase, g->win_n, per, 0, d2)) {
     free(d2);
     snprintf(err, errlen, "%s: geometry: out of memory for the distance transform", s->file);
     return -1;
@@ -238,6 +262,54 @@ static int classify_walls(const scene_t *s, image_walls_t *g, const uint8_t *pha
         own[p == MDP_PHASE_INORGANIC][(g->cls[w] & IMAGE_VOXEL_CLASS) == IMAGE_VOXEL_DEEP]++;
       }
   return 0;
+}
+
+/* The room geometry.min_wall_distance leaves: no point of a pore voxel is farther than (D + sqrt 3)
+ * voxel edges from a wall particle, D the distance (voxels) from its centre to the nearest solid
+ * voxel centre (that voxel is a wall voxel: one of its face neighbours is pore). The largest over
+ * the own pore voxels, in rc, reduced over the ranks (collective: every rank calls it, failed or
+ * not); HUGE_VAL without solid voxels. A distance at least that large leaves the fluid no place,
+ * and its scan would run without end. 0 or -1 + err (memory, or no room). */
+static int check_room(const scene_t *s, image_walls_t *g, const uint8_t *phase, int failed,
+                      char *err, size_t errlen) {
+  double room = -1; /* -1: this rank failed before */
+  if (!failed && g->min_distance > 0) {
+    const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
+    uint32_t *d2 = malloc((total ? (size_t)total : 1) * sizeof *d2);
+    int per[3];
+    for (int d = 0; d < 3; d++) per[d] = g->periodic[d] && g->win_n[d] == g->n[d];
+    if (!d2 || edt_to(phase, g->win_n, per, 1, d2)) {
+      free(d2);
+      snprintf(err, errlen, "%s: geometry: out of memory for the distance transform", s->file);
+      failed = 1;
+    } else {
+      image_walls_mem(g, total * 4);
+      uint32_t far2 = 0;
+      for (int z = 0; z < g->own_n[2]; z++)
+        for (int y = 0; y < g->own_n[1]; y++)
+          for (int x = 0; x < g->own_n[0]; x++) {
+            const int lc[3] = {x, y, z};
+            int q[3];
+            image_walls_global(g, g->own_lo, lc, q);
+            const long long w = image_walls_win(g, q);
+            if (phase[w] == MDP_PHASE_PORE && d2[w] > far2) far2 = d2[w];
+          }
+      free(d2);
+      image_walls_mem(g, -total * 4);
+      room = far2 == EDT_INF ? HUGE_VAL : (sqrt((double)far2) + sqrt(3.0)) * g->h;
+    }
+  }
+  if (!failed && g->min_distance <= 0) room = HUGE_VAL;
+  MPI_Allreduce(MPI_IN_PLACE, &room, 1, MPI_DOUBLE, MPI_MAX, g->work);
+  if (failed || room < 0) return -1;
+  if (g->min_distance < room) return 0;
+  snprintf(err, errlen,
+           "%s: key 'geometry.min_wall_distance': expected less than %g rc, the farthest a point "
+           "of a pore voxel of %s can be from every wall particle (the largest distance from a "
+           "pore voxel centre to a solid one plus a voxel diagonal), so that the fluid has room; "
+           "typical values are below rc, e.g. the default 0.25 (got %g)",
+           s->file, room, s->geometry.image, g->min_distance);
+  return -1;
 }
 
 /* Every rank's failure, agreed: the message of the lowest failing rank is printed (by it). */
@@ -317,6 +389,7 @@ static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_l
   if (!rc) rc = image_clusters_classify(s, g, phase, err, sizeof err);
   long long own[2][2] = {{0, 0}, {0, 0}};
   if (!rc) rc = classify_walls(s, g, phase, own, err, sizeof err);
+  rc = check_room(s, g, phase, rc != 0, err, sizeof err) ? -1 : rc;
   free(phase);
   image_walls_mem(g, -(long long)g->win_n[0] * g->win_n[1] * g->win_n[2]);
   if (agree(rc != 0, err, comm)) {

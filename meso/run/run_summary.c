@@ -18,6 +18,12 @@ static void json_num(FILE *fp, double v) {
     fprintf(fp, "null");
 }
 
+/* `before` (punctuation and a key) then the number, null when it is not finite */
+static void json_field(FILE *fp, const char *before, double v) {
+  fputs(before, fp);
+  json_num(fp, v);
+}
+
 static void json_stat(FILE *fp, const char *name, double mean, double err, int last) {
   fprintf(fp, "    \"%s\": {\"mean\": ", name);
   json_num(fp, mean);
@@ -58,12 +64,15 @@ static void pressure_drop_json(FILE *fp, const run_flux_t *f) {
   }
   fprintf(fp, "\"dp_over_force_per_area\": ");
   json_num(fp, r->balance);
-  fprintf(fp,
-          ",\n      \"sample\": [%.10g, %.10g], \"length\": %.10g, \"probe_in\": [%.10g, %.10g], "
-          "\"probe_out\": [%.10g, %.10g], \"samples_used\": %ld, \"profile_bins\": %d, "
-          "\"profile_file\": \"%s\",\n",
-          pd->sample_lo, pd->sample_hi, pd->length, pd->in_lo, pd->in_lo + pd->width, pd->out_lo,
-          pd->out_lo + pd->width, r->samples_used, pd->nbins, pd->profile_path);
+  json_field(fp, ",\n      \"sample\": [", pd->sample_lo);
+  json_field(fp, ", ", pd->sample_hi);
+  json_field(fp, "], \"length\": ", pd->length);
+  json_field(fp, ", \"probe_in\": [", pd->in_lo);
+  json_field(fp, ", ", pd->in_lo + pd->width);
+  json_field(fp, "], \"probe_out\": [", pd->out_lo);
+  json_field(fp, ", ", pd->out_lo + pd->width);
+  fprintf(fp, "], \"samples_used\": %ld, \"profile_bins\": %d, \"profile_file\": \"%s\",\n",
+          r->samples_used, pd->nbins, pd->profile_path);
   fprintf(fp, "      \"definition\": \"P = sum_{i in slab} (m v_a^2 + W_i,aa) / V_slab (kinetic + "
               "per-particle pair virial); dp = P_in - P_out; G = dp / length; averaged from the "
               "flux's steady-state start, block errors\"},\n");
@@ -171,12 +180,14 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
     fprintf(fp, ",\n");
   }
   if (f->pd.on) pressure_drop_json(fp, f);
-  fprintf(fp, "    \"area_total\": %.10g, \"length\": %.10g, \"fluid_fraction\": %.10g, ",
-          f->def.area, f->def.length, f->def.fluid_fraction);
-  fprintf(fp, "\"density\": {");
+  json_field(fp, "    \"area_total\": ", f->def.area);
+  json_field(fp, ", \"length\": ", f->def.length);
+  json_field(fp, ", \"fluid_fraction\": ", f->def.fluid_fraction);
+  fprintf(fp, ", \"density\": {");
   for (int sp = 0, first = 1; sp < s->n_species; sp++)
     if (f->def.mask >> sp & 1u) {
-      fprintf(fp, "%s\"%s\": %.10g", first ? "" : ", ", s->species[sp].name, f->def.n[sp]);
+      fprintf(fp, "%s\"%s\": ", first ? "" : ", ", s->species[sp].name);
+      json_num(fp, f->def.n[sp]);
       first = 0;
     }
   fprintf(fp, "}, \"density_source\": \"%s\",\n", flux_density_source_name(f->def.density_source));
@@ -191,9 +202,10 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
           r->steady ? "true" : "false", r->n, r->n - r->start, f->every, r->avg.block_len,
           r->avg.plateau ? "true" : "false");
   fprintf(fp, "    \"target_error\": ");
-  if (f->target > 0)
-    fprintf(fp, "%.10g, \"reached\": %s, ", f->target, f->reached ? "true" : "false");
-  else
+  if (f->target > 0) {
+    json_num(fp, f->target);
+    fprintf(fp, ", \"reached\": %s, ", f->reached ? "true" : "false");
+  } else
     fprintf(fp, "null, \"reached\": null, ");
   fprintf(fp, "\"stopped_early\": %s, \"file\": \"%s\",\n", f->stopped_early ? "true" : "false",
           s->flux.path);
@@ -221,22 +233,30 @@ static void units_json(FILE *fp, const scene_t *s) {
   const units_si_t *u = &m->si;
   char text[1536];
   units_mapping_describe(m, text, sizeof text);
-  fprintf(fp, "  \"units\": {\"mapping\": \"%s\", \"rc_m\": %.10g, \"tau_s\": %.10g, ",
-          m->mapping == UNITS_MAPPING_WATER ? "water" : "own", u->rc_m, u->tau_s);
-  fprintf(fp, "\"mass_kg\": %.10g, \"energy_J\": %.10g, \"temperature_K\": ", u->mass_kg, u->kT_J);
+  fprintf(fp, "  \"units\": {\"mapping\": \"%s\"",
+          m->mapping == UNITS_MAPPING_WATER ? "water" : "own");
+  json_field(fp, ", \"rc_m\": ", u->rc_m);
+  json_field(fp, ", \"tau_s\": ", u->tau_s);
+  json_field(fp, ", \"mass_kg\": ", u->mass_kg);
+  json_field(fp, ", \"energy_J\": ", u->kT_J);
+  fprintf(fp, ", \"temperature_K\": ");
   json_num(fp, m->temperature_K);
   fprintf(fp, ", \"coarse_graining\": ");
   json_num(fp, m->coarse_graining);
-  fprintf(fp, ", \"water_molecules_per_particle\": %.10g, \"density\": ", u->n_molecules);
+  json_field(fp, ", \"water_molecules_per_particle\": ", u->n_molecules);
+  fprintf(fp, ", \"density\": ");
   json_num(fp, m->density);
   fprintf(fp, ", \"density_source\": \"%s\",\n    \"length_source\": \"%s\",\n", m->density_source,
           m->length_source);
-  fprintf(fp,
-          "    \"factors\": {\"length_m\": %.10g, \"time_s\": %.10g, \"velocity_m_per_s\": "
-          "%.10g, \"pressure_Pa\": %.10g, \"pressure_gradient_Pa_per_m\": %.10g, "
-          "\"viscosity_Pa_s\": %.10g, \"permeability_m2\": %.10g, \"permeability_nD\": "
-          "%.10g},\n",
-          u->rc_m, u->tau_s, u->q_m_per_s, u->p_Pa, u->G_Pa_per_m, u->mu_Pa_s, u->k_m2, u->k_nD);
+  json_field(fp, "    \"factors\": {\"length_m\": ", u->rc_m);
+  json_field(fp, ", \"time_s\": ", u->tau_s);
+  json_field(fp, ", \"velocity_m_per_s\": ", u->q_m_per_s);
+  json_field(fp, ", \"pressure_Pa\": ", u->p_Pa);
+  json_field(fp, ", \"pressure_gradient_Pa_per_m\": ", u->G_Pa_per_m);
+  json_field(fp, ", \"viscosity_Pa_s\": ", u->mu_Pa_s);
+  json_field(fp, ", \"permeability_m2\": ", u->k_m2);
+  json_field(fp, ", \"permeability_nD\": ", u->k_nD);
+  fprintf(fp, "},\n");
   fprintf(fp, "    \"viscosity_matched\": false, \"statement\": \"%s\"},\n", text);
 }
 
@@ -264,27 +284,29 @@ static void balance_text(FILE *out, const run_stats_t *st, const scene_t *s) {
 }
 
 static void balance_json(FILE *fp, const run_stats_t *st, const scene_t *s) {
-  fprintf(fp, "  \"load_balance\": {\"cuts\": \"%s\", \"imbalance_weight\": %.6g, ",
-          s->balance.cuts == SCENE_CUTS_COST ? "cost" : "uniform", st->imbalance_weight);
-  fprintf(fp, "\"imbalance_weight_uniform_cuts\": %.6g, \"imbalance_busy\": ",
-          st->imbalance_weight_uniform);
-  if (st->imbalance_busy > 0)
-    fprintf(fp, "%.6g, \"imbalance_busy_run\": %.6g", st->imbalance_busy, st->imbalance_busy_run);
-  else
-    fprintf(fp, "null, \"imbalance_busy_run\": null");
-  fprintf(fp, ", \"busy_fraction\": %.6g",
-          st->loop_seconds > 0 && st->imbalance_busy > 0 ? st->busy_mean_seconds / st->loop_seconds
-                                                         : 0.0);
+  fprintf(fp, "  \"load_balance\": {\"cuts\": \"%s\"",
+          s->balance.cuts == SCENE_CUTS_COST ? "cost" : "uniform");
+  json_field(fp, ", \"imbalance_weight\": ", st->imbalance_weight);
+  json_field(fp, ", \"imbalance_weight_uniform_cuts\": ", st->imbalance_weight_uniform);
+  json_field(fp, ", \"imbalance_busy\": ", st->imbalance_busy > 0 ? st->imbalance_busy : NAN);
+  json_field(fp,
+             ", \"imbalance_busy_run\": ", st->imbalance_busy > 0 ? st->imbalance_busy_run : NAN);
+  json_field(fp, ", \"busy_fraction\": ",
+             st->loop_seconds > 0 && st->imbalance_busy > 0
+                 ? st->busy_mean_seconds / st->loop_seconds
+                 : 0.0);
   /* each rank's busy seconds (rank order: slab order along an axis cut alone): the slow ranks */
   const double *per_rank[2] = {st->busy_rank_since_move, st->busy_rank_run};
   const char *per_rank_key[2] = {"busy_seconds_since_move", "busy_seconds_run"};
   for (int k = 0; k < 2 && per_rank[0] && per_rank[1]; k++) {
     fprintf(fp, ", \"%s\": [", per_rank_key[k]);
-    for (int r = 0; r < st->nranks; r++) fprintf(fp, "%s%.6g", r ? ", " : "", per_rank[k][r]);
+    for (int r = 0; r < st->nranks; r++) json_field(fp, r ? ", " : "", per_rank[k][r]);
     fprintf(fp, "]");
   }
-  fprintf(fp, ", \"frozen_weight\": %.6g, \"rebalances\": %ld, \"balance_seconds\": %.6g},\n",
-          st->frozen_weight, st->rebalances, st->balance_seconds);
+  json_field(fp, ", \"frozen_weight\": ", st->frozen_weight);
+  fprintf(fp, ", \"rebalances\": %ld", st->rebalances);
+  json_field(fp, ", \"balance_seconds\": ", st->balance_seconds);
+  fprintf(fp, "},\n");
 }
 
 int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *prof, FILE *out,
@@ -434,10 +456,10 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
   if (flux) flux_json(fp, flux, s);
   if (s->units.on) units_json(fp, s);
   if (st->nranks > 1) balance_json(fp, st, s);
-  fprintf(fp,
-          "  \"timing\": {\"loop_seconds\": %.6g, \"total_seconds\": %.6g, \"steps\": %ld, "
-          "\"particles\": %ld, "
-          "\"particle_steps_per_second\": %.6g}\n}\n",
-          st->loop_seconds, st->total_seconds, st->steps_done, st->n_total, pss);
+  json_field(fp, "  \"timing\": {\"loop_seconds\": ", st->loop_seconds);
+  json_field(fp, ", \"total_seconds\": ", st->total_seconds);
+  fprintf(fp, ", \"steps\": %ld, \"particles\": %ld", st->steps_done, st->n_total);
+  json_field(fp, ", \"particle_steps_per_second\": ", pss);
+  fprintf(fp, "}\n}\n");
   return atomic_commit(fp, tmp, json_path);
 }

@@ -1,5 +1,11 @@
 /* The `guard:` block (scene_guard.h). */
 #include "scene/scene_guard.h"
+#include "common/size_check.h"
+
+#include <math.h>
+
+/* the density guard's arrays per bin: pore volume, count and reference (analysis/density_guard.c) */
+#define GUARD_BYTES_PER_BIN 24.0
 
 #define TRY(x)                                                                                     \
   do {                                                                                             \
@@ -42,8 +48,20 @@ int scene_parse_guard(ytree_t *t, yaml_node_t *n, scene_t *s) {
   }
   if ((v = yt_get(t, n, "density_bin"))) {
     TRY(yt_double(t, v, "guard.density_bin", &g->density_bin));
-    if (!(g->density_bin > 0))
-      return yt_error(t, v, "guard.density_bin", "expected a bin edge > 0 in rc (got %g)",
+    if (!(g->density_bin > 0 && isfinite(g->density_bin)))
+      return yt_error(t, v, "guard.density_bin", "expected a finite bin edge > 0 in rc (got %g)",
+                      g->density_bin);
+    /* the bins (at least one per axis) in double: a tiny edge must not overflow their count */
+    double bins = 1.0;
+    for (int d = 0; d < 3; d++) {
+      const double per_axis = floor((s->box_hi[d] - s->box_lo[d]) / g->density_bin);
+      bins *= per_axis < 1.0 ? 1.0 : per_axis;
+    }
+    char why[256];
+    if (mdp_size_check(bins, 2147483646.0, GUARD_BYTES_PER_BIN, "bins of the density guard", why,
+                       sizeof why))
+      return yt_error(t, v, "guard.density_bin",
+                      "expected a bin edge whose bins over the box fit (%s) (got %g rc)", why,
                       g->density_bin);
   }
   if ((v = yt_get(t, n, "density_fraction"))) {

@@ -123,7 +123,12 @@ static int run_slip(const slip_args *a) {
     const char *out_roles[3] = {"--out (.csv)", "--out (.json)", "--out (.png)"};
     for (int i = 0; i < a->n_inputs; i++) {
       const char *in_role[1] = {"the input"};
-      if (mdp_check_outputs(outs, out_roles, 3, &a->inputs[i], in_role, 1, err, sizeof err)) {
+      /* the file of FILE@SIZE */
+      char in_file[4096];
+      const char *at = slip_input_size(a->inputs[i]);
+      snprintf(in_file, sizeof in_file, "%.*s", at ? (int)(at - a->inputs[i]) : 4095, a->inputs[i]);
+      const char *in[1] = {in_file};
+      if (mdp_check_outputs(outs, out_roles, 3, in, in_role, 1, err, sizeof err)) {
         fprintf(stderr, "mdpore slip: %s\n", err);
         return 1;
       }

@@ -240,12 +240,17 @@ done:
   return rc;
 }
 
+const char *slip_input_size(const char *spec) {
+  const char *at = strrchr(spec, '@');
+  return at && !strchr(at, '/') ? at : NULL;
+}
+
 int slip_read_input(slip_points *ps, const char *spec, const char *axis, char *err, int len) {
   char path[SLIP_SOURCE_LEN];
   double size = NAN;
   snprintf(path, sizeof path, "%s", spec);
-  char *at = strrchr(path, '@');
-  if (at && !strchr(at, '/')) {
+  char *at = slip_input_size(spec) ? path + (slip_input_size(spec) - spec) : NULL;
+  if (at) {
     if (parse_number(at + 1, &size) || !(isfinite(size) && size > 0)) {
       snprintf(err, len, "%s: the size after '@': expected a pore size > 0 (rc), got '%s'", spec,
                at + 1);

@@ -26,5 +26,7 @@ void slip_points_free(slip_points *ps);
 /* Reads one input (CSV or JSON, by content) and appends its points. axis: "x", "y" or "z", or NULL
  * (a JSON with one axis uses it; with several, x). 0 or -1 with a message in err. */
 int slip_read_input(slip_points *ps, const char *spec, const char *axis, char *err, int len);
+/* The '@SIZE' suffix of an input spec FILE@SIZE (its '@'), or NULL when spec is a file alone. */
+const char *slip_input_size(const char *spec);
 
 #endif
