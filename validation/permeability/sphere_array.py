@@ -48,7 +48,8 @@ def foam_continuum(k_voxel_mesh, k_refined):
     """foam's continuum k of a voxel image from its voxel mesh and the mesh with each voxel cut in 2^3
     cells: the two-point scheme is second order, so Richardson's (4 k_refined - k_voxel_mesh) / 3.
     Throats a few voxels wide are where the voxel mesh alone reads high (sphere arrays 3-6%, the
-    ring and the packs 12-21%). Used by every continuum comparison (sphere arrays, ring, packs) and the README's main job."""
+    ring and the packs 12-21%). Used by every continuum comparison (sphere arrays, ring, packs)
+    and the README's main job."""
     return (4 * k_refined - k_voxel_mesh) / 3
 
 
