@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Load balance on heterogeneous rock (issue 14, item 3): one image, half dense solid and half open
+"""Load balance on heterogeneous rock: one image, half dense solid and half open
 pores along x, run on NP CPU ranks cut along x, once with uniform cuts and once with cuts placed by
 cost (balance.cuts: cost), optionally a third run whose cuts move during the run by measured cost
 (balance.every). Prints per run: particle-steps/s (all and fluid), the imbalance factors the summary
@@ -13,12 +13,12 @@ force 0.02 along x.
 
 With --gpu-compare LAYOUTS (e.g. 16x1,4x4,2x8: MPI ranks x OpenMP threads), the same scene with cost
 cuts on all those CPU layouts and once on the GPU (CUDA backend, one rank), in the same call; prints
-the GPU / fastest-CPU throughput ratio (issue 14, item 4: users compare with a CPU cluster).
+the GPU / fastest-CPU throughput ratio (users compare with a CPU cluster).
 
 usage: /usr/bin/python3 bench/balance.py [--np 2] [--nx 96] [--ny 32] [--nz 32] [--steps 400]
            [--threads 1] [--dynamic] [--check] [--workdir DIR] [--frozen-weight W]
            [--gpu-compare LAYOUTS] [--backend cpu|cuda] [--one-rank] [--image RAW] [--make-image-only]
---backend cuda: the runs on NP GPUs (one per rank; issue 15), with --one-rank the same image on one
+--backend cuda: the runs on NP GPUs (one per rank), with --one-rank the same image on one
 GPU first (strong scaling). --image: a stored image (the GPU machine has no numpy).
 --check (the ctest variant): fails unless cost cuts bring the weight imbalance to <= 1.05 and below
 the uniform cuts', the particle count is conserved, and with --dynamic a deliberately wrong

@@ -1,4 +1,4 @@
-/* GPU throughput benchmark (issue 5, item 5; not a test): particle-steps per second, ns per
+/* GPU throughput benchmark (not a test): particle-steps per second, ns per
  * particle-step and device bytes per particle of the CUDA path.
  *   bulk K   : periodic mDPD fluid, rho = 6.2, cubic box of side K
  *   porous K : the paper's homogeneous porous medium (physics.md section 7), K x K quasi-2D cells

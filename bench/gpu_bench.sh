@@ -1,5 +1,5 @@
 #!/bin/sh
-# The GPU benchmark set of issue 5 (bench/README.md): bulk mDPD fluid (rho 6.2) and the paper's
+# The GPU benchmark set (bench/README.md): bulk mDPD fluid (rho 6.2) and the paper's
 # homogeneous porous medium (physics.md section 7), each at ~2.1M and ~10M particles, one GPU.
 # usage: bench/gpu_bench.sh BUILD_DIR   (prints one line per case; copy them into bench/RESULTS.md)
 # Weak scaling on R GPUs: mpiexec -n R BUILD_DIR/bin/gpu_bench porous 33 100 50 (box R times longer in x).

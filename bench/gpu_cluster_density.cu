@@ -1,6 +1,6 @@
-/* Prototype, not the engine (issue 14, item 1: what a cluster-pair layout would give the density
+/* Prototype, not the engine (what a cluster-pair layout would give the density
  * pass). The engine's density scan gives each thread one particle and its own rows of bins: the
- * row set-up is per particle and the warp's lanes diverge (ncu, session 20: 17 of 32 threads
+ * row set-up is per particle and the warp's lanes diverge (ncu, 2026-11-27: 17 of 32 threads
  * active on average). Here, as in GROMACS' GPU pair lists (Pall and Hess 2013), particles are
  * sorted into columns along z, cut into clusters of 4, and a warp computes an 8 x 4 tile of pairs
  * at a time (an i-cluster of 8 against a j-cluster of 4, every lane busy); the lists hold cluster

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Several GPUs on the heterogeneous image (issue 15, item 2): bench/balance.py's image (x < half a
+# Several GPUs on the heterogeneous image: bench/balance.py's image (x < half a
 # dense pack of porosity 0.30, x >= half open pores of porosity 0.85; 0.5 rc voxels, 128 x 128
 # voxels across), uniform cuts against cost cuts (the weight imbalance each gives is printed).
 # Strong scaling: NX_STRONG voxels along x on 1 GPU, then on 2 and 4. Weak scaling: NX_STRONG

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 15: one GPU against two, the migration through the host arrays (MDPORE_CUDA_HOST_MIGRATE=1,
+# One GPU against two, the migration through the host arrays (MDPORE_CUDA_HOST_MIGRATE=1,
 # the CPU path's migrate_particles on downloaded fields) against the records path (one download,
 # migrate_records, one upload), each with the GPU idle probes (MDPORE_CUDA_IDLE=1: device time of
 # the migration, the ghost selection and the step's end, ms per step) and the per-phase host times.

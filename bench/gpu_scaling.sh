@@ -1,5 +1,5 @@
 #!/bin/sh
-# Several GPUs of one host (issue 15), in one call: weak scaling (the box grows with the ranks along
+# Several GPUs of one host, in one call: weak scaling (the box grows with the ranks along
 # x) and strong scaling (GPU_BENCH_STRONG=1: the same box) of bulk fluid and the paper's porous
 # medium on 1, 2, 4, ... of the visible GPUs (one per rank), with the per-phase host times; then
 # the ~240M-particle porous medium across all GPUs (strong). Efficiency = MPS(n) / (n MPS(1)).

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Issue 15: the kernels of a few steps on one GPU and on rank 0 of two (ncu, durations only; the
+# The kernels of a few steps on one GPU and on rank 0 of two (ncu, durations only; the
 # other rank runs unprofiled), to see what the several-rank step adds to the GPU's work.
 # usage: bench/gpu_step_kernels.sh BUILD_DIR [OUTDIR] [CASE]   CASE default "porous 72"
 set -u

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Image-based porous benchmark (issue 10, item 6), one GPU, in one call: the POREMAPS BCC sphere pack
+# Image-based porous benchmark, one GPU, in one call: the POREMAPS BCC sphere pack
 # (../shared/data/external/poremaps_benchmarks, 100^3 voxels, porosity 0.30) and a random-sphere
 # image (100^3, radius 8 voxels, porosity 0.35), each built by the scene path a user takes
 # (`geometry:` + bounce_back, walls from the patch database), at RC_PER_VOXEL rc per voxel, run for
@@ -10,7 +10,8 @@
 # (MDPORE_DENSITY_CACHE=0 / =1; on the GPU the cache is opt-in; docs/walls.md section 15).
 # THERMO_EVERY (default 100): thermo rows, each with the geometry's census (penetrations, pore-core
 # density: on the GPU a copy of the particles to the host); with 1000 and STEPS 1000 only the census
-# every 500 steps remains, so two runs give the census's cost (bench/RESULTS.md, session 13).
+# every 500 steps remains, so two runs give the census's cost (bench/RESULTS.md, 2026-11-26
+# dbc70cb).
 # usage: [BOUNDARY=...] [CACHE_AB=1] [THERMO_EVERY=N] bench/gpu_walls.sh BUILD_DIR BCC_RAW [RC_PER_VOXEL] [STEPS] [WORKDIR]
 set -u
 B=$1; BCC=$2; S=${3:-1.5}; N=${4:-400}; W=${5:-/tmp/gpu-walls}

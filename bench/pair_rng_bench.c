@@ -1,4 +1,4 @@
-/* The cost of the pair random numbers on this CPU (issue 14; not a test), for each generator of
+/* The cost of the pair random numbers on this CPU (not a test), for each generator of
  * dpd_thermostat's option rng (physics/pair_random.h), with the ratio to the default (philox) from
  * the same run:
  *  1. ns per xi draw: xi(seed, step, i, j) for one i against consecutive partners j at a fixed

@@ -1,6 +1,7 @@
 /* The Darcy range of an axis (campaign.h): the permeability is the zero-forcing limit, so the runs
  * whose flow has left the linear law (the fluid heats, or a strong body force compresses it ahead of
- * the obstacles: docs/permeability.md, item 7e) must not pull it. From the flow table's rows in
+ * the obstacles: docs/permeability.md, "The forcing range where Darcy holds") must not pull it.
+ * From the flow table's rows in
  * increasing G: the largest m >= 3 (2 with 2 rows) such that Darcy's q = (k / mu) G through the origin, weighted
  * least squares over the m lowest rows, fits with chi2/dof <= 1 + 3 sqrt(2 / dof) (three standard
  * deviations of chi2/dof for Gaussian errors). */

@@ -1,4 +1,4 @@
-/* Density collapse / cavitation guard (issue 13, item 2): every guard.density_every steps the
+/* Density collapse / cavitation guard: every guard.density_every steps the
  * mobile particles are counted on a coarse grid of bins (edge about guard.density_bin rc). A bin is
  * watched when it is mostly pore (at least half of its voxels pore with a geometry image; every bin
  * without one), held fluid at the first check (density at least guard.density_fraction of the mean)

@@ -68,7 +68,7 @@ int flux_def_init(flux_def_t *d, const scene_t *s, const double count[SCENE_MAX_
   }
   d->fluid_fraction = fluid_volume / d->volume;
   d->mass_density = fluid_volume > 0 ? mass / fluid_volume : 0;
-  /* G: the body force per fluid volume. A pressure-driven run (reservoir pistons, issue 11 item 4)
+  /* G: the body force per fluid volume. A pressure-driven run (reservoir pistons)
    * adds its source here and measures G per sample in flux_sample. */
   if (s->effect[EFFECT_BODY_FORCE]) {
     const body_force_params_t *b =

@@ -17,7 +17,7 @@
  * G = -dp/dx, the driving gradient: with body_force, the body force per fluid volume,
  * G = sum_s N_s F_s,axis / V_fluid, V_fluid = sum_s N_s / n_s (one species: G = n F = n m g with g
  * the acceleration); NaN with reverse_along (no net gradient); 0 without a driving effect.
- * With inlet_force and its `sample` (pressure-driven, issue 11 item 4) G is measured per sample from
+ * With inlet_force and its `sample` (pressure-driven) G is measured per sample from
  * the pressure drop across the sample (analysis/pressure_drop.h; the run's flux hook sets it): NaN
  * here. */
 #ifndef MESO_ANALYSIS_FLUX_H

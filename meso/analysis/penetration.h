@@ -1,4 +1,4 @@
-/* Penetration count (issue 10, item 3): mobile particles inside the solid voxels of the scene's
+/* Penetration count: mobile particles inside the solid voxels of the scene's
  * geometry image, and how deep. Whatever boundary a scene uses, this number must stay 0; the run
  * loop puts it in the thermo log and the summary, and with geometry.strict stops the run naming the
  * particle, the voxel and the step. The same pass counts the mobile particles of the pore core (pore

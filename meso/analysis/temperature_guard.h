@@ -1,4 +1,4 @@
-/* Temperature runaway guard (issue 13, item 2): the fluid temperature with the mean flow removed,
+/* Temperature runaway guard: the fluid temperature with the mean flow removed,
  *   T_fluid = (2 KE - |P|^2 / M) / (3 (N_mobile - 1)),
  * (KE, P: kinetic energy and momentum of the mobile particles, M their mass), at every thermo
  * sample; the run stops when it has stayed above (1 + guard.temperature_tolerance) kT at every

@@ -1,6 +1,6 @@
 /* inlet_force: a constant force g per particle of a species, applied only inside a slab [lo, hi)
  * along one periodic axis: pressure-driven flow through a sample, the force acting in an inlet
- * region of the reservoir (issue 11 item 4; docs/permeability.md "Pressure-driven runs"). With
+ * region of the reservoir (docs/permeability.md "Pressure-driven runs"). With
  * `sample: [lo, hi]` the run also measures the pressure drop between probe slabs just outside the
  * sample's faces (analysis/pressure_drop.c). The per-particle math both backends run is
  * inlet_force_particle_force in meso/physics/inlet_force.h. */

@@ -137,7 +137,7 @@ MESO_HD uint32_t pair_random_bits(int rng, uint64_t seed, uint64_t step, int64_t
  * pair_random_bits bit for bit (tests/engine/test_physics_random.c checks it for every generator).
  * The CUDA force pass uses it: its round keys are kernel parameters, so no pair recomputes them,
  * and each round's 32 x 32 -> 64 multiply is one wide multiply (Random123's 64-bit product left an
- * add of zero after each on the device: bench/RESULTS.md, session 19). */
+ * add of zero after each on the device: bench/RESULTS.md, 2026-11-27 87113e1). */
 #define PAIR_RNG_MAX_ROUNDS 10
 struct pair_rng_keys {
   uint32_t k0[PAIR_RNG_MAX_ROUNDS], k1[PAIR_RNG_MAX_ROUNDS];

@@ -3,7 +3,7 @@
 manifest and one summary.json per run, written here; nothing is simulated: seconds). The runs the
 data cannot trust are left out and named, and a campaign whose runs define no Darcy range reports no
 k, writes k null and exits 3 (campaign/campaign_checks.c, campaign_collect.c; docs/permeability.md
-items 5 and 6).
+"What it does", steps 5 and 6).
 
 - mixed: 5 healthy runs on q = (k / mu) G (one of them short of its target error) and 3 runs whose q
   is far off that line: a cavitated core (4.3 against the fill 6.2), a heated liquid (T = 1.2) and an

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ctest campaign_scene_pressure: `mdpore permeability SCENE --drive pressure` (issue 11) on the CI
+"""ctest campaign_scene_pressure: `mdpore permeability SCENE --drive pressure` on the CI
 slit (CPU, 2 gradients of <= 3000 steps on 2 ranks: about half a minute on 2 cores).
 
 A SCENE whose particles come from `geometry: {image: ...}` gets its image padded with the open

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Checkpoints under faults (issue 13 item 5), on one rank:
+# Checkpoints under faults, on one rank:
 #  1. a run killed with SIGKILL after a checkpoint, with a dump frame and a thermo line left half
 #     written and temporary files of killed writes lying beside its outputs, restarts from its
 #     checkpoint into the same folder: the temporary files are removed (said on stderr), the thermo

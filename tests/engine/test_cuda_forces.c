@@ -1,13 +1,13 @@
-/* CUDA vs CPU on the same configuration (issue 5, item 4): densities and forces of mDPD +
+/* CUDA vs CPU on the same configuration: densities and forces of mDPD +
  * thermostat + a frozen species + a reverse-Poiseuille body force agree to single-precision
  * rounding, and after a few steps (same random numbers on both paths) positions and velocities
  * still agree, which checks the device integration, walls, wrap and Groot-Warren prediction.
  * Bounds (float pair math, double separations and integration): max |f_gpu - f_cpu| <= 2e-5 of the
  * largest force component; |rho_gpu - rho_cpu| <= 2e-6 rho; after 5 steps |dx| <= 1e-6, |dv| <=
- * 1e-4. The same again with wall_boundary (Li et al.'s boundary, issue 10): the wall field from the
+ * 1e-4. The same again with wall_boundary (Li et al.'s boundary): the wall field from the
  * frozen particles, the no-slip scaling of the wall pairs' thermostat and the reflections after the
  * drift agree between the backends to the same bounds. Both again with each other generator of
- * the pair random numbers (dpd_thermostat's rng: fast, philox2x32; issue 14): the device draws
+ * the pair random numbers (dpd_thermostat's rng: fast, philox2x32): the device draws
  * the host's numbers, so forces and trajectories agree to the same bounds, and they differ from
  * the default generator's. Once more with every pair's coefficients the same (A of the wall pairs
  * as the fluid's): the force kernel then reads them at fixed offsets (dev_params.coef_uniform), and

@@ -1,5 +1,5 @@
 #!/bin/sh
-# CUDA memory modes (issue 14, item 2): with --gpu-memory auto the engine keeps the fast mode
+# CUDA memory modes: with --gpu-memory auto the engine keeps the fast mode
 # (neighbour lists) when it fits and takes the compact mode (no lists) when it would not. The test
 # pretends the device has 1 MB free (MDPORE_CUDA_TEST_FREE_BYTES): the run must say it chose the
 # compact mode and why, and finish; the same scene without the pretence runs in the fast mode.

@@ -1,4 +1,4 @@
-/* CUDA path on several ranks, one GPU each (issue 5, item 2): forces and densities at setup, and
+/* CUDA path on several ranks, one GPU each: forces and densities at setup, and
  * positions after 20 steps (particles migrate and ghosts are rebuilt every step), agree between one
  * GPU (MPI_COMM_SELF on rank 0) and all ranks' GPUs, to float rounding (same bounds as
  * test_cuda_forces.c; the ghost order differs, so sums differ in the last bits). The scene is

@@ -1,4 +1,4 @@
-/* A short mDPD + thermostat run on the CPU and on the GPU (issue 5, item 4): the trajectories
+/* A short mDPD + thermostat run on the CPU and on the GPU: the trajectories
  * diverge (chaos, float rounding), but the time averages of temperature and pressure must agree
  * within their error bars (block averages, 4 combined standard errors), and the GPU run conserves
  * the momentum along the periodic axes to float rounding. Skipped (exit 77) without a GPU. */

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ctest cuda_wall_boundary_np2 (issue 10: "a multi-rank GPU test of wall_boundary"): an image slit
+"""ctest cuda_wall_boundary_np2: an image slit
 with `wall_boundary` + `bounce_back` on 2 ranks of the CUDA backend (the ranks share the GPUs there
 are), checked against the CPU backend's 2-rank run of the same scene. Skipped (exit 77, printing
 why) without a GPU, like the other cuda_ tests.

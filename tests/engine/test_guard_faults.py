@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ctest guard_faults: the NaN and lost-particle guards triggered on purpose (issue 13 item 2), on
+"""ctest guard_faults: the NaN and lost-particle guards triggered on purpose, on
 1 and 2 ranks, through the test-only fault hook MDPORE_TEST_FAULT=KIND:STEP:ID (meso/run/run_fault.h:
 read once at the start of mdpore run; particle ID is damaged just before step STEP on its rank).
 

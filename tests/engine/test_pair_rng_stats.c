@@ -1,4 +1,4 @@
-/* Statistics of the pair random numbers of every generator (issue 14; physics/pair_random.h):
+/* Statistics of the pair random numbers of every generator (physics/pair_random.h):
  * philox (Philox4x32-10, the default), philox2x32 (Philox2x32-10) and fast (Philox2x32-7 with a
  * hashed (seed, step) key). For each, over 2^20 draws per statistic:
  *  - symmetry: xi(seed, step, i, j) == xi(seed, step, j, i) bitwise, for every draw below;

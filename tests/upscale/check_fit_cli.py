@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`mdpore fit` at the command line (issue 16, items 5 and 6):
+"""`mdpore fit` at the command line:
 * the seeded Darcy table cases/upscale/darcy_forcing_sweep.csv: Forchheimer's beta is at its bound 0,
   flagged in the text and the JSON ("at_bound": true), and Darcy is chosen;
 * degenerate tables (one row, one gradient, gradients equal up to rounding, all fluxes equal, no flux)

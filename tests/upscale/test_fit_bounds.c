@@ -1,4 +1,4 @@
-/* Parameters at a bound (issue 16, item 5): a seeded synthetic table whose true law is Darcy, written
+/* Parameters at a bound: a seeded synthetic table whose true law is Darcy, written
  * with the flowdata writer and read back, fitted with every law: the Forchheimer beta sits at its
  * bound 0 and is flagged (fit_result, text report, JSON), Forchheimer is not eligible and BIC
  * chooses Darcy; no report contains nan or inf. Then the choice rule on hand-made results: a law at

@@ -1,6 +1,6 @@
 /* `mdpore slip INPUT...` (also `mdpore fit slip`): the slip length b fitted to the permeabilities
  * of one pore shape at several sizes, the apparent-permeability trend k / k_noslip against the size
- * (issue 11 item 6; docs/permeability.md "Slip and apparent permeability"). No PETSc. */
+ * (docs/permeability.md "Slip and apparent permeability"). No PETSc. */
 #include <math.h>
 #include <mpi.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* Apparent permeability of a straight pore with wall slip (issue 11 item 6; docs/permeability.md,
+/* Apparent permeability of a straight pore with wall slip (docs/permeability.md,
  * "Slip and apparent permeability"; physics.md sections 4-5).
  *
  * A pore of size h (slit: width h between two flat walls; tube: radius R of a circular tube) in a
@@ -14,7 +14,7 @@
  *   shift   no-slip walls moved out by b (the parabola of the wall validations reaches zero b
  *           beyond the wall face): slit (h + 2b)^3 / h^3 = (1 + 2 b/h)^3, tube (1 + b/R)^4.
  *
- * Both agree to first order in b/h (1 + 6 b/h, 1 + 4 b/R). The issue's 1 + 4 b / h_eff is the tube
+ * Both agree to first order in b/h (1 + 6 b/h, 1 + 4 b/R). The common 1 + 4 b / h_eff is the tube
  * form with h_eff = R. b > 0: slip (the flow reaches into the wall); b < 0: a layer at the wall that
  * moves less than a no-slip flow. */
 #ifndef MDPORE_UPSCALE_SLIP_LAW_H

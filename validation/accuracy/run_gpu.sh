@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13, item 1: the accuracy-vs-time ladders on the GPU machine (1 GPU + 16 cores), one call of
+# The accuracy-vs-time ladders on the GPU machine (1 GPU + 16 cores), one call of
 # at most ~9 minutes. Run from the repository root after building there:
 #
 #   validation/accuracy/run_gpu.sh BUILD_DIR [DOUBLE_BUILD_DIR]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Validation of `mdpore couple` (issue 12, item 5; docs/coupling.md).
+"""Validation of `mdpore couple` (docs/coupling.md).
 
 (a) Layered images of two porous textures: simple-cubic sphere arrays (one 6 rc cell, 12^3 voxels of
     0.5 rc) at solid fractions c1 and c2, stacked along x (in series with the flow) and along y (in

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Validation (issue 14): the fast pair-random generator against the default one in the physics.
+"""Validation: the fast pair-random generator against the default one in the physics.
 
 dpd_thermostat's option rng picks the generator of xi_ij (meso/physics/pair_random.h): philox
 (Philox4x32-10, the default), philox2x32 (Philox2x32-10) or fast (Philox2x32-7, hashed key). For each

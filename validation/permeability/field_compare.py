@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where an image's mDPD flow differs from OpenFOAM's on the same voxels (issue 11, item 7b): the
+"""Where an image's mDPD flow differs from OpenFOAM's on the same voxels: the
 mean flow velocity of both, binned by the distance of the voxel to the solid.
 
 Inputs: an `mdpore run` folder of a body-force run on a geometry image with HDF5 snapshots

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 11, item 7(e): the forcing range where Darcy holds, and what the fit says beyond it.
+"""The forcing range where Darcy holds, and what the fit says beyond it.
 
 For each permeability campaign folder given (mdpore permeability's --workdir, or an emitted and
 collected folder: flow_x.csv + fit_x.json), per row of the flow table: the apparent permeability
@@ -94,7 +94,7 @@ def main():
                 w.writerow([s["label"], f"{r['G']:.6g}", f"{r['q']:.6g}", f"{r['q_err']:.3g}", f"{r['u']:.4g}",
                             f"{r['Re']:.4g}", f"{r['k_app']:.5g}", f"{r['k_err']:.3g}", f"{r['ratio']:.4f}",
                             f"{r['ratio_err']:.4f}", int(r["darcy"])])
-    lines = ["# Where Darcy holds, and what the fit says beyond it (issue 11, 7e)", "",
+    lines = ["# Where Darcy holds, and what the fit says beyond it", "",
              "Command: `/usr/bin/python3 validation/permeability/forcing_range.py " + " ".join(sys.argv[1:]) + "`. "
              "k_app = mu q / G per flow-table row; k0 = the error-weighted mean of the two lowest-G rows; "
              "Re = rho u D / mu with u = q / porosity (mean pore velocity), D the sphere diameter, rho = 6.2. "

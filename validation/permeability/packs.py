@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 11, item 7(d): the POREMAPS BCC and FCC overlapping-sphere packs (../shared/data/external/
+"""The POREMAPS BCC and FCC overlapping-sphere packs (../shared/data/external/
 poremaps_benchmarks, 100^3 voxels, porosity 0.30), mDPD against `mdpore foam` on the SAME voxels: a
 table of k_mDPD / k_foam with error bars and a PNG. Both run on the image downsampled by
 --downsample (majority vote; 2: 50^3 voxels, a 25 rc box, for a GPU; 4, the default: 25^3 voxels, a
@@ -101,7 +101,7 @@ def report(a):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    lines = ["# POREMAPS BCC / FCC packs: mDPD against OpenFOAM on the same voxels (issue 11, 7d)", "",
+    lines = ["# POREMAPS BCC / FCC packs: mDPD against OpenFOAM on the same voxels", "",
              f"Command: `/usr/bin/python3 validation/permeability/packs.py run WORK --downsample {a.downsample} "
              f"--np {a.np} --max-steps {a.max_steps} --target-error {a.target_error} --pack {' '.join(a.pack)}"
              + (f" --wall-density {a.wall_density:g}" if a.wall_density is not None else "")

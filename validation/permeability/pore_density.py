@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The fluid's number density in the pores of an image, as a function of the distance to the solid
-(issue 11, item 7b: which density, hence which viscosity, the pore fluid has).
+(which density, hence which viscosity, the pore fluid has).
 
 For each IMAGE: the campaign's own scene (`mdpore permeability IMAGE --emit-scenes`, its template:
 the same walls, fill and wall density a campaign uses) run without a body force for --steps steps on

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 11, item 7(c): the paper's ring medium (physics.md section 7; usermeso25 section 5.1) as an
+"""The paper's ring medium (physics.md section 7; usermeso25 section 5.1) as an
 image, its mDPD permeability (`mdpore permeability`, body force along z as the paper drives it)
 against `mdpore foam` (OpenFOAM, Stokes flow) on the SAME voxels.
 
@@ -16,8 +16,8 @@ Ly is 2 rc; the flow is two-dimensional, so k does not depend on Ly, and the ima
       the image, foam (periodic drive), the campaign (here, on the CPU: ~8k particles), the report;
   ring.py report WORK      the table again from WORK.
 Writes validation/permeability/results/ring.{md,csv,png}; exit 1 when k_mDPD / k_foam is off 1 by
-more than 5% + 2 sigma (the continuum-limit band of item 7(b)), which a 2 rc gap need not meet:
-the table says so either way. Run with /usr/bin/python3 (numpy, matplotlib).
+more than 5% + 2 sigma (the sphere arrays' continuum-limit band), which a 2 rc gap need not
+meet: the table says so either way. Run with /usr/bin/python3 (numpy, matplotlib).
 """
 import argparse
 import csv
@@ -100,7 +100,7 @@ def report(a):
         w = csv.DictWriter(f, fieldnames=list(row))
         w.writeheader()
         w.writerow(row)
-    lines = ["# The paper's ring medium: mDPD against OpenFOAM on the same voxels (issue 11, 7c)", "",
+    lines = ["# The paper's ring medium: mDPD against OpenFOAM on the same voxels", "",
              f"Command: `/usr/bin/python3 validation/permeability/ring.py run WORK --np {a.np} --max-steps "
              f"{a.max_steps} --target-error {a.target_error}"
              + (f" --gradients {a.gradients}" if a.gradients else "") + "".join(f" --extra={x}" for x in a.extra)

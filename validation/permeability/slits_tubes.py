@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Apparent permeability of slits and tubes against their size, and the slip length fitted to it
-(issue 11, items 6 and 7a; docs/permeability.md "Slip and apparent permeability").
+(docs/permeability.md "Slip and apparent permeability").
 
 The user's path, end to end: images (`mdpore image make slit`; tubes written from numpy as raw +
 sidecar, as validation/walls/tube_duct.py does: `mdpore image make` has no tube), one

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Issue 11, item 7(b): the continuum limit. Simple-cubic sphere arrays resolved at >= 20 rc per
+"""The continuum limit. Simple-cubic sphere arrays resolved at >= 20 rc per
 cell (40 and 48 voxels per cell edge at 0.5 rc per voxel), the mDPD permeability (mdpore
 permeability, body force along x) against Zick & Homsy (1982, Stokes) and against `mdpore foam`
-(OpenFOAM, the SAME voxels, periodic drive, staircase walls); the issue asks for agreement within 5%.
+(OpenFOAM, the SAME voxels, periodic drive, staircase walls); the target is agreement within 5%.
 
 Two stages, because the mDPD runs want a GPU:
   sphere_array.py emit WORK [--max-steps N] [--target-error E]
@@ -48,7 +48,8 @@ def foam_continuum(k_voxel_mesh, k_refined):
     """foam's continuum k of a voxel image from its voxel mesh and the mesh with each voxel cut in 2^3
     cells: the two-point scheme is second order, so Richardson's (4 k_refined - k_voxel_mesh) / 3.
     Throats a few voxels wide are where the voxel mesh alone reads high (sphere arrays 3-6%, the
-    ring and the packs 12-21%). Used by every item-7 comparison and the README's main job."""
+    ring and the packs 12-21%). Used by every continuum comparison (sphere arrays, ring, packs)
+    and the README's main job."""
     return (4 * k_refined - k_voxel_mesh) / 3
 
 
@@ -164,7 +165,7 @@ def report(a):
         w.writeheader()
         w.writerows(rows)
     bad = [r for r in rows if abs(r["mdpd_over_foam"] - 1) > 0.05 + 2 * r["mdpd_over_foam_err"]]
-    lines = ["# Sphere arrays at >= 20 rc per cell: mDPD against Zick & Homsy and OpenFOAM (issue 11, 7b)", "",
+    lines = ["# Sphere arrays at >= 20 rc per cell: mDPD against Zick & Homsy and OpenFOAM", "",
              f"Command: `/usr/bin/python3 validation/permeability/sphere_array.py emit|run|report WORK"
              + "".join(f" --case {x}" for x in (a.case or [])) + (f" --gradients {a.gradients}" if a.gradients else "")
              + (f" --seed {a.seed}" if a.seed is not None else "")
@@ -180,12 +181,12 @@ def report(a):
         lines.append(f"| {r['case']} | {r['cell_rc']:g} | {r['rc_per_voxel']:g} | {r['c']:g} | {r['viscosity']:.4g} | {r['k_mdpd']:.4g} +- {r['k_mdpd_err']:.2g} | "
                      f"{r['k_foam_refine1']:.4g} / {r['k_foam_refine2']:.4g} / {r['k_foam']:.4g} | {r['k_zh']:.4g} | {r['mdpd_over_foam']:.3f} +- {r['mdpd_over_foam_err']:.3f} | "
                      f"{r['mdpd_over_zh']:.3f} | {r['foam_over_zh']:.3f} |")
-    lines += ["", "Check (the issue's 5%): |mDPD/foam - 1| <= 0.05 + 2 sigma: " +
+    lines += ["", "Check (the 5% target): |mDPD/foam - 1| <= 0.05 + 2 sigma: " +
               ("passes for every case." if not bad else "FAILS for " + ", ".join(r["case"] for r in bad) + "."), "",
-              "The viscosity is the campaign's (its source above): since session 11 the standard water's at the "
+              "The viscosity is the campaign's (its source above): the standard water's at the "
               "density the runs measured in the pore core (docs/permeability.md, 'Conventions and units'); "
-              "campaigns run by an earlier binary have no such measurement and use 5.41 (n = 6.07). The history "
-              "of this comparison and what is ruled out: docs/permeability.md, item 7b."]
+              "campaigns whose summaries carry no such measurement use 5.41 (n = 6.07). What this "
+              "comparison rules out: docs/permeability.md, 'Sphere arrays against Zick & Homsy and OpenFOAM'."]
     open(os.path.join(out, f"sphere_array{a.tag}.md"), "w").write("\n".join(lines) + "\n")
     print("\n".join(lines))
     try:

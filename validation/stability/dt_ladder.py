@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Hard case: a time-step ladder up to and past the stable limit on a porous image (issue 13, item 3).
+"""Hard case: a time-step ladder up to and past the stable limit on a porous image.
 
 A simple-cubic sphere array (c = 0.125; --quick: one 6 rc cell, 12^3 voxels of 0.5 rc; full: 2^3
 cells) with the standard mDPD water scene, bounce_back walls and a body force g = 0.05 along x, run

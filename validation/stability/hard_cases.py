@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Hard geometries and forcings on 1, 2 and 4 ranks (issue 13, item 3; docs/stability.md).
+"""Hard geometries and forcings on 1, 2 and 4 ranks (docs/stability.md).
 
 Cases (images made here, standard mDPD water scene, bounce_back walls, dt 0.01, body force along x):
   strong_forcing   sphere array c = 0.125 (one 6 rc cell) at g = 0.05, 0.5 and 2 (mean pore velocity

@@ -1,5 +1,5 @@
 #!/bin/bash
-# A long run on a porous image (issue 13, item 3; docs/stability.md): a simple-cubic sphere array
+# A long run on a porous image (docs/stability.md): a simple-cubic sphere array
 # (c = 0.125, 4^3 cells of 6.4 rc at 0.4 rc per voxel, 107,741 particles), bounce_back walls,
 # g = 0.02, dt 0.01, STEPS steps (default 10^6 = 10^4 tau) on BACKEND (default cuda), then the drift
 # of T, pressure and particle count between the first and the last 10% of the thermo rows, the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The density drift of a long run (issue 13, item 3; docs/stability.md): from a LAMMPS text dump
+"""The density drift of a long run (docs/stability.md): from a LAMMPS text dump
 (`output.dump` with the mDPD density column rho), the frames of the first and of the last 10% of
 the run (step 0 left out), and for the fluid (type 1) in each window:
   - the mean local mDPD density <rho_i> (the many-body density each particle feels);

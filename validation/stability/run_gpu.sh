@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13, item 3 on a machine with several GPUs, in one call (docs/stability.md, "On the GPU
+# The hard cases on a machine with several GPUs, in one call (docs/stability.md, "On the GPU
 # backend"): each rank its own GPU (several ranks sharing one GPU are synchronisation-bound on these
 # small systems: 10-25x slower), so
 #   1. hard_cases.py --backend cuda --ranks 4 on GPUs 0-3 (when 4 are visible);

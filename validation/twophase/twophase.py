@@ -33,7 +33,7 @@ Parts (--parts, default all):
            independent (an estimate).
 
 Checks (exit 1 when one fails): flat gamma_PT > 0 and the two slabs separated (solubility < 5%);
-each cylinder's gamma_YL within 5% of the flat gamma_PT (the issue's target; 2 sigma added);
+each cylinder's gamma_YL within 5% of the flat gamma_PT (the target; 2 sigma added);
 |kr - exact| <= 0.1 + 2 sigma for each kr (M = 1 and M > 1).
 --quick: the ctest-sized variant (smaller boxes, shorter runs, looser bounds; see tests/twophase).
 

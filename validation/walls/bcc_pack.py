@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 10, validation (d): the POREMAPS BCC sphere pack (../shared/data/external/poremaps_benchmarks,
+"""The POREMAPS BCC sphere pack (../shared/data/external/poremaps_benchmarks,
 100^3 voxels, porosity 0.30) built by the path a user takes (a scene with `geometry:`, walls from the
 patch database, boundary bounce_back), run for many steps at moderate forcing; checks: zero
 penetrations at every thermo sample, the particle count kept, the temperature near kT, and the fluid

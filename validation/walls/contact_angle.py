@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Walls from an image (issue 10, item 4e): the static contact angle of an mDPD droplet on a flat image
+"""Walls from an image: the static contact angle of an mDPD droplet on a flat image
 wall for several fluid-wall attractions A_sl (physics.md section 2: with A_ll = -40, A_sl = -35 wets,
 -30 is about 90 degrees, -20 does not wet; the paper's slit, section 4.2).
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Walls from an image (issue 10, item c): plane Couette flow between a wall at rest and a moving wall.
+"""Walls from an image: plane Couette flow between a wall at rest and a moving wall.
 
 A slit of h rc along y (rc_per_voxel 0.5) between two solid walls of --wall-voxels voxels, written
 from numpy (raw + sidecar) with two solid labels: the lower wall organic (label 2, species `bottom`,

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Walls from an image (issue 10, items 4a and 5): body-force Poiseuille flow in a slit, through the
+"""Walls from an image: body-force Poiseuille flow in a slit, through the
 user's path: `mdpore image make slit` writes the image, a scene with `geometry:` builds frozen wall
 particles (patch database) and the fluid from it, the boundary of --boundary (bounce_back by default;
 wall_boundary: Li et al.'s phi-based reflection and near-wall dissipation, physics.md section 3; or
@@ -45,7 +45,7 @@ particles per bin, block errors), bins of 1/4 rc aligned with the voxel faces y_
 Checks (exit 1 when one fails): penetrations = 0; |T_thermal - 1| <= 2%; near-wall layer (0.5-1.5 rc)
 density within 10% of n at both walls; fit C explains > 0.99 of the variance (> 0.9 with --quick);
 u_c within 0.5-1.5 x the no-slip prediction with mu_ref; with --quick also a contact layer above half
-of n. The slip lengths are reported and compared with the issue's target |b| < 0.1 rc (set for Li's
+of n. The slip lengths are reported and compared with the target |b| < 0.1 rc (set for Li's
 boundary) without failing unless --slip-tol is given (then on fit D).
 --quick: h = 4, box 6 x 8 x 4, 1000 + 20000 steps, no bulk run, looser bounds (the ctest variant).
 --reuse: a run folder whose scene.yaml equals the new scene and holds a summary is analysed again
@@ -381,7 +381,7 @@ def write_tables(outdir, tag, results, bulk_rows, mu, mu_err, mu_src, args):
 
     L += ["\n## Slip lengths b (rc), lower / upper wall\n",
           "| h (rc) | fit A (mu_ref) | chi2 A | fit A' (mu_bulk) | chi2 A' | fit C (free, all bins) | fit D (free, core) "
-          "| abs(b) < 0.1 rc (issue target for Li's boundary), fit D |",
+          "| abs(b) < 0.1 rc (target for Li's boundary), fit D |",
           "|---|---|---|---|---|---|---|---|"]
     for r in results:
         tgt = max(abs(r["b_lo_D"]), abs(r["b_hi_D"])) < 0.1

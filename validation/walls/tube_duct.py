@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Walls from an image (issue 10, item 4b): body-force flow through a circular tube (Hagen-Poiseuille)
+"""Walls from an image: body-force flow through a circular tube (Hagen-Poiseuille)
 and a square duct (series solution, physics.md section 4), made as images and built by the user's
 path: the image is written from numpy as raw + sidecar (docs/images.md; `mdpore image make` has no
 tube or duct), a scene with `geometry:` builds the frozen wall particles (patch database) and the
@@ -31,7 +31,7 @@ Analysis of the snapshots after the transient (every --every steps), bins of 0.2
            --slip overrides): bounce_back leaves a layer about 0.2 rc thick that moves less than a
            no-slip flow, i.e. b < 0.
 Checks (exit 1 when one fails): penetrations = 0 at every sample; |Q / Q_ana - 1| <= --tol (3%)
-with the nominal size (the issue's target); --quick: Q / Q_ana in [0.5, 1.5] instead. The slip-corrected
+with the nominal size (the target); --quick: Q / Q_ana in [0.5, 1.5] instead. The slip-corrected
 comparison is reported (which one passes) but does not fail the run.
 --quick: tube R = 2 and duct a = 4, box length 4, 1000 + 8000 steps (the ctest variant).
 --reuse: a run folder whose scene.yaml equals the new scene is analysed again without running.

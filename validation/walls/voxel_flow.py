@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The continuum flow rate of a straight channel whose cross-section is a set of voxels (issue 10,
-item 4b): the reference a tube or duct made as an image should be held to, besides the smooth
+"""The continuum flow rate of a straight channel whose cross-section is a set of voxels: the
+reference a tube or duct made as an image should be held to, besides the smooth
 Hagen-Poiseuille or series formula.
 
 A body force along a straight prism gives Stokes flow u(y, z) with -mu lap u = G in the pore and

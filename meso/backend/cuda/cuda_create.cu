@@ -79,11 +79,11 @@ static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s
   /* The scan (docs/engine-cuda.md "Neighbour scan"), MDPORE_CUDA_SCAN: auto (default: on one
    * rank, quarter bins along x, whose rows stay those of y and z; half bins along y and z in a
    * quasi-2D box, one axis of fewer than 3 bins, else bins of the cutoff's size, as measured faster
-   * in 3D: bench/RESULTS.md, sessions 14 and 17), fine (half bins along y and z in 3D too), coarse
-   * (bins of the cutoff's size along every axis), nested (the bin-by-bin loops of coarse bins, as
-   * before the row traversal). MDPORE_CUDA_XSUB = 1, 2, 4 or 8 sets the fine bins per bin along x
-   * alone. Several ranks keep coarse keys (the ghosts' bins). Every row scan is trimmed to its
-   * caller's reach unless MDPORE_CUDA_TRIM=0. (The switches are for measuring.) */
+   * in 3D: bench/RESULTS.md, 2026-11-26 5c41b6f and 5851dff), fine (half bins along y and z in 3D
+   * too), coarse (bins of the cutoff's size along every axis), nested (the bin-by-bin loops of
+   * coarse bins, as before the row traversal). MDPORE_CUDA_XSUB = 1, 2, 4 or 8 sets the fine bins
+   * per bin along x alone. Several ranks keep coarse keys (the ghosts' bins). Every row scan is
+   * trimmed to its caller's reach unless MDPORE_CUDA_TRIM=0. (The switches are for measuring.) */
   const char *scan = getenv("MDPORE_CUDA_SCAN");
   const int nested = scan && !strcmp(scan, "nested");
   const int all_coarse = nested || (scan && !strcmp(scan, "coarse"));
@@ -223,7 +223,7 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
     return NULL;
   }
   /* The static tail (cuda_state.cuh; docs/engine-cuda.md step 2). MDPORE_CUDA_TAIL=0 turns it off
-   * (the mobile-first partition of every build instead: bench/RESULTS.md, session 18). */
+   * (the mobile-first partition of every build instead: bench/RESULTS.md, 2026-11-26 76c87e8). */
   const char *tail_env = getenv("MDPORE_CUDA_TAIL");
   g->tail_on = !(tail_env && !strcmp(tail_env, "0")) && !q->multi && !g->compact &&
                q->skin == 0.0 && q->row_scan && cuda_plan_static_tail(plan) && !q->density_cache;

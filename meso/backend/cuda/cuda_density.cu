@@ -142,8 +142,8 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
 }
 
 /* Threads per block of the scan with lists: 64 (porous 72 2300/2302 -> 2333/2335, bulk 118 1421 ->
- * 1440, the scan on porous 33 611 -> 595 us; 256: 2253/2255; bench/RESULTS.md, session 20). The
- * compact mode's scan keeps CUDA_BLOCK (64 everywhere made it 4% slower there). */
+ * 1440, the scan on porous 33 611 -> 595 us; 256: 2253/2255; bench/RESULTS.md, 2026-11-27
+ * 94ed3e8). The compact mode's scan keeps CUDA_BLOCK (64 everywhere made it 4% slower there). */
 #ifndef CUDA_SCAN_BLOCK
 #define CUDA_SCAN_BLOCK 64
 #endif

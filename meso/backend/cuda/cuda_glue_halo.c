@@ -1,4 +1,4 @@
-/* The CUDA backend's ops on several MPI ranks, one GPU each (issue 5, item 2): the device keeps the
+/* The CUDA backend's ops on several MPI ranks, one GPU each: the device keeps the
  * owned particles; each step only the leavers and the boundary set (owned particles within the
  * ghost cutoff of a face) come to the host, where the CPU path's own exchanges run on them:
  * migration (migrate.c), the 3-stage ghost build with periodic images (ghosts.c) and the density

@@ -1,4 +1,4 @@
-/* Ghosts packed on the device (issue 15, item 1), for the usual cut: one axis split between ranks,
+/* Ghosts packed on the device, for the usual cut: one axis split between ranks,
  * the other axes wrapping on the device. The host path (cuda_halo.cu + the CPU path's ghosts.c)
  * copies the boundary set into host particle arrays, selects and packs it again there, exchanges,
  * unpacks into host arrays and copies the ghosts up: ~9 ms per step for 173k boundary particles on

@@ -163,7 +163,7 @@ __device__ __forceinline__ void dev_scan_slots(const struct dev_params &q,
 /* The same over [t0, t1) and then the static tail's slots [u0, u1) of the row (its coarse edges
  * v1, v2) in one loop, so a warp runs as long as its longest lane's sum of the two ranges, not the
  * sum of each range's longest (two loops cost the density scan 495 -> 638 us on porous 33, one
- * loop 557: bench/RESULTS.md, session 18). */
+ * loop 557: bench/RESULTS.md, 2026-11-26 76c87e8). */
 template <int AX, class F>
 __device__ __forceinline__ void
 dev_scan_slots2(const struct dev_params &q, const struct dev_pos *__restrict__ pos, int t0, int t1,

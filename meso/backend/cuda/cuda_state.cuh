@@ -14,7 +14,7 @@
 #include <stdint.h>
 
 /* Threads per block of the per-particle kernels (a build option only for measuring:
- * -DCUDA_BLOCK=N in CMAKE_CUDA_FLAGS; bench/RESULTS.md, session 20). */
+ * -DCUDA_BLOCK=N in CMAKE_CUDA_FLAGS; bench/RESULTS.md, 2026-11-27 94ed3e8). */
 #ifndef CUDA_BLOCK
 #define CUDA_BLOCK 128
 #endif
@@ -72,8 +72,8 @@ struct dev_params {
   /* 1: every pair of species has the same coefficients (coef[0][0]; a scene with pairs.default
    * only): the every-step force kernel reads them at fixed offsets of the kernel parameters, not
    * from the table by the partner's species (force pass 424 -> 408 us on porous 33; the same in
-   * the density scan gained nothing: bench/RESULTS.md, session 21). MDPORE_CUDA_UNIFORM=0 turns
-   * it off, for measuring. */
+   * the density scan gained nothing: bench/RESULTS.md, 2026-11-27 2703ae8).
+   * MDPORE_CUDA_UNIFORM=0 turns it off, for measuring. */
   int coef_uniform;
   /* Verlet skin (one rank only): lists hold the partners within list_cut2 = (cutoff + skin)^2 and
    * are kept until some particle has moved more than skin / 2 since they were built (then no pair
