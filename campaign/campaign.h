@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/types.h>
 
 #include "common/units.h"
 #include "mdpore_image.h"
@@ -58,6 +59,7 @@ typedef struct {
   long long max_steps;              /* run.steps (0: 20000, or the scene's own) */
   double dt;                        /* run.dt (0: the template's) */
   int np;                           /* ranks per run */
+  int jobs;                         /* --jobs: runs at once (default 1; 0: auto) */
   char workdir[CAMP_PATH];
   char emit_dir[CAMP_PATH];    /* --emit-scenes DIR ("" = no) */
   char collect_dir[CAMP_PATH]; /* --collect DIR ("" = no) */
@@ -287,19 +289,49 @@ int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest
 /* campaign_exec.c: runs argv (execvp) in dir (NULL: here) with stdout + stderr to log (NULL: ours),
  * in the environment this process started with. Returns the exit status or -1. */
 int camp_spawn(const char *dir, char **argv, const char *log);
-/* campaign_exec.c: runs (or reuses) every run in turn, with progress on stderr. 0 or -1. */
+/* The same without waiting: the child in its own process group, registered so that a signal
+ * forwarded by camp_forward_signals(1) reaches it; extra_env (NULL-terminated NAME=VALUE, or NULL)
+ * is added to its environment. The pid or -1. camp_spawn_wait waits for it (the pid, or -1) and
+ * camp_spawn_forget drops it from the register (for a child reaped by waitpid(-1)). */
+pid_t camp_spawn_start(const char *dir, char **argv, const char *log, char *const *extra_env);
+pid_t camp_spawn_wait(pid_t pid, int *exit_status);
+void camp_spawn_forget(pid_t pid);
+/* SIGINT/SIGTERM/SIGHUP to this process: passed on to every registered child's process group, which
+ * it waits for, then the default action (on = 1); the default actions (on = 0). */
+void camp_forward_signals(int on);
+/* campaign_exec.c: runs (or reuses) every run, up to camp_jobs at once, with progress on stderr.
+ * 0 or -1. */
 int camp_execute(const camp_opts *o, campaign *c);
+
+/* campaign_jobs.c: the number of runs at once (--jobs N, or auto: on a CUDA build with a visible
+ * GPU the runs whose estimated memory fits in the free memory, at most CAMP_AUTO_JOBS_MAX; else
+ * floor(cores / np)), printed with how it was chosen when not 1. */
+#define CAMP_MAX_JOBS 64
+#define CAMP_AUTO_JOBS_MAX 8
+int camp_jobs(const camp_opts *o, const campaign *c);
+/* The pure rules of auto (unit-tested): GPU: gpus > 0 visible, free_bytes free in all, each run of
+ * particles (NAN: not known -> 1) on np ranks; CPU: cores and np. */
+int camp_jobs_auto_gpu(double free_bytes, int gpus, double particles, int np);
+int camp_jobs_auto_cpu(int cores, int np);
+/* The environment the runs get on top of ours when several run at once (NULL-terminated, static):
+ * OMP_NUM_THREADS = cores / (jobs np) unless set (OpenMP would start a thread per core in every
+ * rank of every run), and OpenMPI's binding off at np > 1 unless set (two mpiexecs would bind
+ * their ranks to the same cores). NULL at jobs 1: the runs get what they always got. */
+char *const *camp_jobs_env(const camp_opts *o, int jobs);
 
 /* campaign_progress.c: progress and ETA over the whole campaign. */
 typedef struct {
   double t0;
   int total, done;
-  double ps_done_all; /* particle-steps of every finished run (reused too) */
+  int jobs;                     /* runs at once at most */
+  int running;                  /* runs executing now */
+  double run_t0[CAMP_MAX_JOBS]; /* when each of them started */
+  double ps_done_all;           /* particle-steps of every finished run (reused too) */
   int n_finished;
   double ps_exec, s_exec; /* particle-steps and seconds of the runs executed now */
 } camp_progress;
 double camp_now(void);
-void camp_progress_start(camp_progress *p, int total);
+void camp_progress_start(camp_progress *p, int total, int jobs);
 void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds);
 
 /* campaign_units.c: the reduced -> SI mapping (the factors: common/units.h). camp_units_make: the

@@ -33,6 +33,10 @@ const char *camp_usage =
     "                      measured accuracy table (docs/accuracy.md); explicit options win\n"
     "  --np N              ranks per run: mpiexec -n N mdpore run (default 1: plain mdpore run)\n"
     "  --mpiexec CMD       launcher and its flags (default: mpiexec)\n"
+    "  --jobs N|auto       runs executed at once, each its own process (default 1: one after\n"
+    "                      another, as on a CPU CI machine). auto: on a CUDA build with a GPU,\n"
+    "                      as many as fit in its free memory (at most 8); else cores / --np.\n"
+    "                      Every run's result is the same at any N\n"
     "  --workdir DIR       campaign folder (default permeability-SAMPLE)\n"
     "  --emit-scenes DIR   write the scenes, the manifest and commands.txt, run nothing\n"
     "  --collect DIR       read a campaign folder back: tables, fits, report\n"
@@ -171,6 +175,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->u_hi = 0.2;
   o->target_error = 0.05;
   o->np = 1;
+  o->jobs = 1;
   o->rc_per_voxel = 0.5;
   o->min_throat = 4.0;
   o->viscosity = 5.41;
@@ -242,6 +247,14 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       if (parse_ll(s, v, 1, "a positive number of ranks", &ll)) return -1;
       if (ll > INT_MAX) return bad(s, "a number of ranks", v);
       o->np = (int)ll;
+    } else if (!strcmp(s, "--jobs")) {
+      if (!strcmp(v, "auto"))
+        o->jobs = 0;
+      else {
+        if (parse_ll(s, v, 1, "a positive number of runs at once, or auto", &ll)) return -1;
+        if (ll > CAMP_MAX_JOBS) return bad(s, "at most 64 runs at once, or auto", v);
+        o->jobs = (int)ll;
+      }
     } else if (!strcmp(s, "--mpiexec"))
       snprintf(o->mpiexec, sizeof o->mpiexec, "%s", v);
     else if (!strcmp(s, "--workdir"))

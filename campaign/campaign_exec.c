@@ -1,12 +1,19 @@
-/* Execute a campaign: the runs one after another, each `mpiexec -n NP mdpore run scene.yaml` (plain
- * `mdpore run` at NP = 1) in its own folder, stdout and stderr to RUN/run.log. A folder that already
- * holds summary.json is a finished run and is reused. No scheduler: bigger campaigns launch the
- * folders' commands elsewhere (--emit-scenes, commands.txt) and --collect them.
+/* Execute a campaign: each run is `mpiexec -n NP mdpore run scene.yaml` (plain `mdpore run` at
+ * NP = 1) in its own folder, stdout and stderr to RUN/run.log, up to --jobs of them at once (the
+ * slots: campaign_jobs.c chooses their number). A folder that already holds summary.json is a
+ * finished run and is reused. No scheduler beyond that: bigger campaigns launch the folders'
+ * commands elsewhere (--emit-scenes, commands.txt) and --collect them.
+ *
+ * The runs are independent processes: each its own scene, seed and folder; what they share is the
+ * wall patch database in the cache, which the first to need it builds under a lock while the others
+ * wait (meso/populate/wall_patches.c). So a run's result is bitwise the same at any --jobs.
  *
  * The child gets the environment this process started with (/proc/self/environ), not the one
  * MPI_Init left behind: a singleton MPI process carries variables that would make a nested mpiexec
- * think it runs inside a job. SIGINT/SIGTERM/SIGHUP are passed on to the running child (its process
- * group), so killing the campaign kills its run; the folder then has no summary and is rerun. */
+ * think it runs inside a job. SIGINT/SIGTERM/SIGHUP are passed on to every running child (each in
+ * its own process group), then we wait for them to exit: killing the campaign kills its runs and
+ * leaves no process behind; their folders then have no summary (mdpore run writes it atomically at
+ * the end) and are rerun. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -15,20 +22,44 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "campaign.h"
 
-static volatile pid_t child_pid = 0;
+/* The process groups of the running children, read by the signal handler: a slot is written with
+ * the signals blocked, so the handler never sees a child it cannot reach. */
+static volatile pid_t child_pid[CAMP_MAX_JOBS];
 
 static void forward(int sig) {
-  if (child_pid > 0) kill(-child_pid, sig);
+  for (int i = 0; i < CAMP_MAX_JOBS; i++)
+    if (child_pid[i] > 0) kill(-child_pid[i], sig);
+  /* wait for them (up to ~10 s, then SIGKILL): whoever killed us may check at once that nothing
+   * is left, and a run must not outlive its campaign to write a summary the rerun then trusts
+   * half-way (it would be complete, but the campaign reported the run as not done) */
+  for (int tick = 0; tick <= 1000; tick++) {
+    int left = 0;
+    for (int i = 0; i < CAMP_MAX_JOBS; i++) {
+      if (child_pid[i] <= 0) continue;
+      const pid_t w = waitpid(child_pid[i], NULL, WNOHANG);
+      if (w == child_pid[i] || (w < 0 && errno == ECHILD))
+        child_pid[i] = 0;
+      else if (tick == 1000)
+        kill(-child_pid[i], SIGKILL);
+      else
+        left++;
+    }
+    if (!left) break;
+    const struct timespec ts = {0, 10000000};
+    nanosleep(&ts, NULL);
+  }
   signal(sig, SIG_DFL);
   raise(sig);
 }
 
-/* The environment at exec time, NULL-terminated (malloc'd; NULL: use environ). */
-static char **start_env(char **blob_out) {
+/* The environment at exec time plus the extra NAME=VALUE entries (which replace the same names),
+ * NULL-terminated (malloc'd; NULL: use environ). */
+static char **start_env(char **blob_out, char *const *extra) {
   FILE *f = fopen("/proc/self/environ", "rb");
   if (!f) return NULL;
   size_t cap = 1 << 16, n = 0, r;
@@ -44,26 +75,57 @@ static char **start_env(char **blob_out) {
   fclose(f);
   if (!blob) return NULL;
   blob[n] = 0;
-  size_t count = 0;
+  size_t count = 0, n_extra = 0;
   for (size_t i = 0; i < n; i++) count += blob[i] == 0;
-  char **env = calloc(count + 2, sizeof *env);
+  while (extra && extra[n_extra]) n_extra++;
+  char **env = calloc(count + n_extra + 2, sizeof *env);
   size_t k = 0;
-  for (size_t i = 0; env && i < n; i += strlen(blob + i) + 1)
-    if (blob[i]) env[k++] = blob + i;
+  for (size_t i = 0; env && i < n; i += strlen(blob + i) + 1) {
+    if (!blob[i]) continue;
+    int replaced = 0;
+    for (size_t e = 0; e < n_extra && !replaced; e++) {
+      const size_t len = strcspn(extra[e], "=") + 1;
+      replaced = !strncmp(blob + i, extra[e], len);
+    }
+    if (!replaced) env[k++] = blob + i;
+  }
+  for (size_t e = 0; env && e < n_extra; e++) env[k++] = extra[e];
   *blob_out = blob;
   return env;
 }
 
-int camp_spawn(const char *dir, char **argv, const char *log) {
+pid_t camp_spawn_start(const char *dir, char **argv, const char *log, char *const *extra_env) {
+  int slot = -1;
+  for (int i = 0; i < CAMP_MAX_JOBS && slot < 0; i++)
+    if (child_pid[i] <= 0) slot = i;
+  if (slot < 0) {
+    fprintf(stderr, "mdpore permeability: more than %d children at once\n", CAMP_MAX_JOBS);
+    return -1;
+  }
   char *blob = NULL;
-  char **env = start_env(&blob);
+  char **env = start_env(&blob, extra_env);
+  sigset_t block, old;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  sigaddset(&block, SIGHUP);
+  sigprocmask(SIG_BLOCK, &block, &old);
   pid_t pid = fork();
   if (pid < 0) {
+    sigprocmask(SIG_SETMASK, &old, NULL);
     fprintf(stderr, "mdpore permeability: fork: %s\n", strerror(errno));
+    free(env);
+    free(blob);
     return -1;
   }
   if (pid == 0) {
     setpgid(0, 0);
+    /* our handler (inherited until exec) would act on the parent's children: default actions,
+     * then the signals unblocked (the mask survives exec) */
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    signal(SIGHUP, SIG_DFL);
+    sigprocmask(SIG_SETMASK, &old, NULL);
     if (dir && chdir(dir)) _exit(126);
     if (log) {
       int fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -80,22 +142,47 @@ int camp_spawn(const char *dir, char **argv, const char *log) {
     _exit(127);
   }
   setpgid(pid, pid);
-  child_pid = pid;
+  child_pid[slot] = pid;
+  sigprocmask(SIG_SETMASK, &old, NULL);
+  free(env);
+  free(blob);
+  return pid;
+}
+
+void camp_spawn_forget(pid_t pid) {
+  for (int i = 0; i < CAMP_MAX_JOBS; i++)
+    if (child_pid[i] == pid) child_pid[i] = 0;
+}
+
+pid_t camp_spawn_wait(pid_t pid, int *exit_status) {
+  int status = 0;
+  pid_t w;
+  while ((w = waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
+  }
+  if (w < 0) return -1;
+  camp_spawn_forget(w);
+  *exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return w;
+}
+
+void camp_forward_signals(int on) {
+  signal(SIGINT, on ? forward : SIG_DFL);
+  signal(SIGTERM, on ? forward : SIG_DFL);
+  signal(SIGHUP, on ? forward : SIG_DFL);
+}
+
+int camp_spawn(const char *dir, char **argv, const char *log) {
   /* a signal to us while the child runs goes to its process group too (mdpore couple spawns
    * campaigns, which spawn runs: killing the loop kills the run) */
   void (*old_int)(int) = signal(SIGINT, forward), (*old_term)(int) = signal(SIGTERM, forward),
        (*old_hup)(int) = signal(SIGHUP, forward);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  child_pid = 0;
+  int st = -1;
+  const pid_t pid = camp_spawn_start(dir, argv, log, NULL);
+  if (pid > 0 && camp_spawn_wait(pid, &st) < 0) st = -1;
   signal(SIGINT, old_int);
   signal(SIGTERM, old_term);
   signal(SIGHUP, old_hup);
-  free(env);
-  free(blob);
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return -1;
+  return st;
 }
 
 /* argv of one run: the launcher split on spaces, then the binary. */
@@ -118,44 +205,96 @@ static int run_argv(const camp_opts *o, char *buf, char **argv, int max) {
   return n;
 }
 
+/* One slot of the pool: the run it executes and when it started. */
+typedef struct {
+  pid_t pid;
+  int run;
+  double t0;
+} slot_t;
+
+/* The run's summary read back, or the failure counted. */
+static void finish(campaign *c, int i, int st, int *failed) {
+  camp_run *r = &c->runs[i];
+  char why[CAMP_PATH + 256];
+  if (st != 0) {
+    fprintf(stderr, "mdpore permeability: run %d/%d failed (exit %d): see %s/run.log\n", i + 1,
+            c->n_runs, st, r->dir);
+    (*failed)++;
+    return;
+  }
+  camp_read_summary(r, why, sizeof why);
+  if (!r->have) fprintf(stderr, "mdpore permeability: warning: %s\n", why);
+}
+
 int camp_execute(const camp_opts *o, campaign *c) {
-  signal(SIGINT, forward);
-  signal(SIGTERM, forward);
-  signal(SIGHUP, forward);
+  camp_forward_signals(1);
+  const int jobs = camp_jobs(o, c);
+  char *const *env = camp_jobs_env(o, jobs);
   camp_progress p;
-  camp_progress_start(&p, c->n_runs);
+  camp_progress_start(&p, c->n_runs, jobs);
   char buf[512], *argv[64], why[CAMP_PATH + 256], path[CAMP_PATH + 32];
   run_argv(o, buf, argv, 64);
-  int failed = 0;
-  for (int i = 0; i < c->n_runs; i++) {
-    camp_run *r = &c->runs[i];
-    snprintf(path, sizeof path, "%s/summary.json", r->dir);
-    double t0 = camp_now();
-    if (access(path, R_OK) == 0) {
-      r->reused = 1;
-      camp_read_summary(r, why, sizeof why);
-      fprintf(stderr, "mdpore permeability: run %d/%d (axis %c, g = %g): reused %s\n", i + 1,
-              c->n_runs, 'x' + r->axis, r->g, r->dir);
-    } else {
+  slot_t slot[CAMP_MAX_JOBS];
+  int failed = 0, next = 0, ended = -1; /* ended: a run that ended, its progress line not printed */
+  double ended_wall = 0;
+  p.running = 0;
+  for (;;) {
+    /* fill the free slots (a reused run takes none) */
+    while (next < c->n_runs && p.running < jobs) {
+      const int i = next++;
+      camp_run *r = &c->runs[i];
+      snprintf(path, sizeof path, "%s/summary.json", r->dir);
+      if (access(path, R_OK) == 0) {
+        r->reused = 1;
+        camp_read_summary(r, why, sizeof why);
+        fprintf(stderr, "mdpore permeability: run %d/%d (axis %c, g = %g): reused %s\n", i + 1,
+                c->n_runs, 'x' + r->axis, r->g, r->dir);
+        if (!r->have) fprintf(stderr, "mdpore permeability: warning: %s\n", why);
+        camp_progress_done(&p, r, 0);
+        continue;
+      }
       fprintf(stderr, "mdpore permeability: run %d/%d (axis %c, g = %g): running in %s\n", i + 1,
               c->n_runs, 'x' + r->axis, r->g, r->dir);
       unlink(path);
-      int st = camp_spawn(r->dir, argv, "run.log");
-      if (st != 0) {
-        fprintf(stderr, "mdpore permeability: run %d/%d failed (exit %d): see %s/run.log\n", i + 1,
-                c->n_runs, st, r->dir);
-        failed++;
-        camp_progress_done(&p, r, camp_now() - t0);
+      slot_t *s = &slot[p.running];
+      s->run = i;
+      s->t0 = camp_now();
+      s->pid = camp_spawn_start(r->dir, argv, "run.log", env);
+      if (s->pid < 0) {
+        finish(c, i, -1, &failed);
+        camp_progress_done(&p, r, 0);
         continue;
       }
-      camp_read_summary(r, why, sizeof why);
+      p.run_t0[p.running] = s->t0;
+      p.running++;
     }
-    if (!r->have) fprintf(stderr, "mdpore permeability: warning: %s\n", why);
-    camp_progress_done(&p, r, camp_now() - t0);
+    /* the line of the run that ended, once its slot runs the next: "N running" is what runs now */
+    if (ended >= 0) camp_progress_done(&p, &c->runs[ended], ended_wall);
+    ended = -1;
+    if (p.running == 0) break;
+    /* the first of the running children to end frees its slot */
+    int st = -1;
+    pid_t w;
+    while ((w = waitpid(-1, &st, 0)) < 0 && errno == EINTR) {
+    }
+    if (w < 0) {
+      fprintf(stderr, "mdpore permeability: waitpid: %s\n", strerror(errno));
+      camp_forward_signals(0);
+      return -1;
+    }
+    int k = 0;
+    while (k < p.running && slot[k].pid != w) k++;
+    if (k == p.running) continue; /* not a run of ours */
+    camp_spawn_forget(w);
+    const slot_t done = slot[k];
+    slot[k] = slot[p.running - 1];
+    p.run_t0[k] = p.run_t0[p.running - 1];
+    p.running--;
+    finish(c, done.run, WIFEXITED(st) ? WEXITSTATUS(st) : -1, &failed);
+    ended = done.run;
+    ended_wall = camp_now() - done.t0;
   }
-  signal(SIGINT, SIG_DFL);
-  signal(SIGTERM, SIG_DFL);
-  signal(SIGHUP, SIG_DFL);
+  camp_forward_signals(0);
   if (failed) {
     fprintf(stderr,
             "mdpore permeability: %d of %d runs failed; rerun the same command to retry "

@@ -47,6 +47,7 @@ typedef struct {
   /* campaign options (passed to mdpore permeability) */
   double rc_per_voxel;
   int np;
+  int jobs; /* runs of a campaign at once (--jobs; 0: auto, default 1) */
   int n_gradients;
   double u_lo, u_hi;
   double target_error;

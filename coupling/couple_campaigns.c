@@ -1,7 +1,8 @@
 /* The per-block permeability campaigns of the loop, through `mdpore permeability` (campaign/): the
  * same cache (a run folder named by the hash of its scene and binary), so a rerun or a later pass
  * only runs what is new. Launchers (no scheduler of our own):
- *   mpiexec  the campaign runs its runs one after another (mpiexec -n NP mdpore run);
+ *   mpiexec  the campaign runs its runs on this machine (mpiexec -n NP mdpore run), campaign.jobs
+ *            of them at once (--jobs; default 1: one after another);
  *   slurm    the campaign only writes its scenes (--emit-scenes); the unfinished runs of every block
  *            go into one job array (WORKDIR/pass_N/commands.txt + slurm.sh, one run per task); the
  *            next `mdpore couple` collects what finished and goes on. */
@@ -65,6 +66,10 @@ static int campaign_argv(const couple_config *c, const couple_block *b, const ch
   }
   snprintf(v, sizeof v, "%d", c->np);
   bad = bad || add(argv, &n, "--np") || add(argv, &n, v);
+  if (c->jobs != 1) { /* the default (1) left out: the command as it was */
+    snprintf(v, sizeof v, "%d", c->jobs);
+    bad = bad || add(argv, &n, "--jobs") || add(argv, &n, c->jobs ? v : "auto");
+  }
   snprintf(v, sizeof v, "%lld", c->seed);
   bad = bad || add(argv, &n, "--seed") || add(argv, &n, v);
   /* The blocks share the config's voxel edge (one continuum grid): a block whose critical throat

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "campaign.h" /* CAMP_MAX_JOBS */
 #include "common/yaml_tree.h"
 #include "couple.h"
 #include "darcy/darcy_units.h"
@@ -16,8 +17,9 @@ static const char *const top_keys[] = {
     "axis",    "gradient", "law",          "campaign",         "loop",   "launcher",
     "slurm",   NULL};
 static const char *const campaign_keys[] = {
-    "rc_per_voxel", "np",   "n_gradients", "velocity_range", "target_error", "max_steps",
-    "accuracy",     "seed", "voxel_size",  "viscosity",      "mpiexec",      NULL};
+    "rc_per_voxel", "np",       "n_gradients", "velocity_range", "target_error",
+    "max_steps",    "accuracy", "seed",        "voxel_size",     "viscosity",
+    "mpiexec",      "jobs",     NULL};
 static const char *const loop_keys[] = {"max_passes", "tolerance_sigma", "resolvable_fraction",
                                         "error_samples", NULL};
 static const char *const axis_words[] = {"x", "y", "z", NULL};
@@ -64,6 +66,16 @@ static int read_campaign(ytree_t *t, yaml_node_t *m, couple_config *c) {
   v = c->np;
   if (integer_in(t, m, "np", "campaign.np", 1, 4096, &v)) return -1;
   c->np = (int)v;
+  yaml_node_t *jobs = yt_get(t, m, "jobs"); /* N or auto: mdpore permeability --jobs */
+  char word[256];
+  if (jobs && yt_string(t, jobs, "campaign.jobs", word, sizeof word)) return -1;
+  if (jobs && !strcmp(word, "auto"))
+    c->jobs = 0;
+  else if (jobs) {
+    v = c->jobs;
+    if (integer_in(t, m, "jobs", "campaign.jobs", 1, CAMP_MAX_JOBS, &v)) return -1;
+    c->jobs = (int)v;
+  }
   v = c->n_gradients;
   if (integer_in(t, m, "n_gradients", "campaign.n_gradients", 5, COUPLE_MAX_GRADIENTS / 2, &v))
     return -1;
@@ -170,6 +182,7 @@ static void defaults(couple_config *c) {
   c->law_choice = COUPLE_LAW_DARCY;
   c->rc_per_voxel = 0.5;
   c->np = 1;
+  c->jobs = 1;
   c->n_gradients = 5;
   c->u_lo = 0.02;
   c->u_hi = 0.2;

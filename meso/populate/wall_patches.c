@@ -27,6 +27,12 @@
  *    run is repeated with further seeds (splitmix64 of S and the run index) until there are at
  *    least 64 patches: ceil(64 / m^3) runs.
  *  - Only rank 0 builds, writes and reads the file; it broadcasts the arrays to the other ranks.
+ *  - Processes that need the same file at once (the runs of `mdpore permeability --jobs N`) take
+ *    turns on an exclusive lock of "<file>.lock" (flock) while they look for the file and, when it
+ *    is missing, build and write it: the first builds it, the others wait and read it (a
+ *    message says so). Without the lock each would build it (the same bytes, renamed over each
+ *    other: correct, but N times the work at the start of every run). Where no lock can be made
+ *    (a read-only folder, a file system without flock) it goes on without one.
  *
  * The file (HDF5, format_version 1): datasets /start (int64, count + 1) and /x (float64, n x 3);
  * root attributes edge, density (float64), seed (uint64), count, format_version,
@@ -38,6 +44,7 @@
 #include "common/atomic_file.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <hdf5.h>
 #include <math.h>
 #include <pwd.h>
@@ -45,6 +52,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #define PATCH_PATH_LEN 4096
@@ -417,7 +425,35 @@ int wall_patches_read(const char *path, double edge, double density, uint64_t se
 
 /* ---- load or build (collective) --------------------------------------------------------------- */
 
-/* Rank 0: the database into out (read, or built and written and read back). */
+/* An exclusive lock on "<file>.lock", held until the descriptor is closed (-1: none could be
+ * taken). Says on stderr when it waits for another process. */
+static int lock_database(const char *file, int *waited) {
+  char lock[PATCH_PATH_LEN + 8];
+  *waited = 0;
+  snprintf(lock, sizeof lock, "%s.lock", file);
+  const int fd = open(lock, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) return -1;
+  if (flock(fd, LOCK_EX | LOCK_NB) == 0) return fd;
+  if (errno == EWOULDBLOCK) {
+    fprintf(stderr, "mdpore: wall patches: %s: another process is building it: waiting\n", file);
+    *waited = 1;
+    while (flock(fd, LOCK_EX) != 0)
+      if (errno != EINTR) {
+        close(fd);
+        return -1;
+      }
+    return fd;
+  }
+  close(fd);
+  return -1;
+}
+
+/* Rank 0: the database into out (read, or built and written and read back), under the file's lock.
+ */
+static int load_locked(const char *file, int cached, double edge, double density, uint64_t seed,
+                       long steps, wall_patches_t *out, wall_patches_run_t *run, char *err,
+                       size_t errlen);
+
 static int load_on_root(const char *path, double edge, double density, uint64_t seed, long steps,
                         wall_patches_t *out, wall_patches_run_t *run, char *err, size_t errlen) {
   char file[PATCH_PATH_LEN] = "";
@@ -438,6 +474,18 @@ static int load_on_root(const char *path, double edge, double density, uint64_t 
   } else {
     snprintf(file, sizeof file, "%s", path);
   }
+  int waited = 0;
+  const int lock = file[0] ? lock_database(file, &waited) : -1;
+  if (waited && access(file, F_OK) == 0)
+    fprintf(stderr, "mdpore: wall patches: %s: built by the other process, read\n", file);
+  const int rc = load_locked(file, cached, edge, density, seed, steps, out, run, err, errlen);
+  if (lock >= 0) close(lock); /* releases the lock */
+  return rc;
+}
+
+static int load_locked(const char *file, int cached, double edge, double density, uint64_t seed,
+                       long steps, wall_patches_t *out, wall_patches_run_t *run, char *err,
+                       size_t errlen) {
   if (file[0] && access(file, F_OK) == 0)
     return wall_patches_read(file, edge, density, seed, out, run, err, errlen);
   if (wall_patches_build(edge, density, seed, steps, out, run, err, errlen)) return -1;
