@@ -63,11 +63,16 @@ def crops(a):
 
 
 def crop_offset(a, rock, size):
+    """The crop's corner (x, y, z) in voxels: OFFSET of --crops is one number for all three axes or
+    X,Y,Z; else --offset on each axis."""
     for c in a.crops or []:
         f = c.split(":")
         if f[0] == rock and int(f[1]) == size and len(f) > 2:
-            return int(f[2])
-    return a.offset
+            o = [int(v) for v in f[2].split(",")]
+            if len(o) not in (1, 3):
+                sys.exit(f"--crops {c}: expected OFFSET as one number or X,Y,Z")
+            return tuple(o * 3 if len(o) == 1 else o)
+    return (a.offset,) * 3
 
 
 def make_crop(a, rock, size, name):
@@ -78,7 +83,7 @@ def make_crop(a, rock, size, name):
         base, n = ROCK_FILES[rock]
         o = crop_offset(a, rock, size)
         sh("image", "convert", os.path.join(ROCKS, base, base + ".raw"), "--crop",
-           f"{o}:{o + size},{o}:{o + size},{o}:{o + size}", "-o", img)
+           ",".join(f"{v}:{v + size}" for v in o), "-o", img)
     return d, img
 
 
@@ -487,7 +492,7 @@ def main():
     ap.add_argument("--sizes", type=int, nargs="+", default=[48, 64])
     ap.add_argument("--offset", type=int, default=100, help="the crops' corner, voxels on each axis")
     ap.add_argument("--crops", nargs="+", default=[],
-                    help="ROCK:SIZE[:OFFSET] per crop (instead of every --rock at every --sizes)")
+                    help="ROCK:SIZE[:OFFSET] per crop, OFFSET one number or X,Y,Z (instead of every --rock at every --sizes)")
     ap.add_argument("--foam-refine", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--refine-rc", type=float, nargs="*", default=[], help="extra rc per voxel of the smallest crop")
     ap.add_argument("--max-steps", type=int, default=20000)
