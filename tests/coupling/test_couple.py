@@ -3,9 +3,11 @@
 
 Two slit blocks in series along x (`mdpore image make slit`, 12 x 16 x 8 voxels at 0.5 rc): block A
 a pore of h = 4 rc, block B of h = 2 rc. Each block gets a permeability campaign (5 gradients,
-<= 2000 steps, 2 ranks); the sample is driven at G = 2.5 kT/rc^4, which puts block B's gradient in
-series (G k_eff / k_B ~ 4.5) above the range its campaign was calibrated on, so pass 1 adds a run
-at that gradient to B, pass 2 refits and solves again.
+<= 2000 steps, 2 ranks); the sample is driven at G = 2.2 kT/rc^4, which puts block B's gradient in
+series (G k_eff / k_B ~ 3.9) above the range its campaign was calibrated on, so pass 1 adds a run
+at that gradient to B, pass 2 refits and solves again. (At G = 2.5 block B sees 4.4, and the run
+added there heats the liquid by 6.5%, beyond the campaign's 5% temperature check: it is left out and
+B's range cannot cover what it sees.)
 
 Asserted:
  1. bad configs exit 1 naming the file, the key and what was expected; no CONFIG exits 2;
@@ -55,7 +57,7 @@ def config(name, workdir, extra=""):
     return write(name, f"""block_images: [a.h5, b.h5]
 blocks: [2, 1, 1]
 axis: x
-gradient: 2.5
+gradient: 2.2
 workdir: {workdir}
 campaign: {CAMPAIGN}
 loop: {{max_passes: 4}}
