@@ -163,6 +163,7 @@ typedef struct {
   char stop_reason[512];
   double keff[16], keff_err[16], max_dq_sigma[16]; /* per pass */
   int new_runs[16];
+  int left_out[16]; /* blocks outside their range whose run there the fit left out, per pass */
 } couple_history;
 int couple_write_summary(const couple_config *c, const couple_block *blocks, int n,
                          const double block_size[3], const couple_solution *s,

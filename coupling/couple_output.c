@@ -257,6 +257,7 @@ int couple_write_summary(const couple_config *c, const couple_block *blocks, int
     json_number(&j, "k_rc2_err", h->keff_err[p]);
     json_number(&j, "max_flux_change_sigma", h->max_dq_sigma[p]);
     json_int(&j, "new_runs", h->new_runs[p]);
+    json_int(&j, "blocks_with_left_out_run", h->left_out[p]);
     json_object_end(&j);
   }
   json_array_end(&j);
