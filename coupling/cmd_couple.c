@@ -65,10 +65,11 @@ static int feed_back(const couple_config *c, couple_block *b, double G) {
     double have = i < b->n_ladder ? b->ladder_g[i] : b->extra_g[i - b->n_ladder];
     if (fabs(have - g) <= 0.1 * g) {
       /* a run within 10% exists: inside the table's range it is in the fit (G moved after the
-       * refit, by less than a new run would resolve); outside it, the fit left it out. 10% slack:
-       * the table's G = n g uses the runs' measured density, a few % off the manifest's n. */
+       * refit, by less than a new run would resolve); outside it, the fit left it out. Body
+       * force only: a pressure-driven run's G is the measured drop, not n g. */
       const double Gh = have * b->density;
-      return Gh <= L->g_max * 1.1 && Gh >= L->g_min / 1.1 ? 0 : -1;
+      if (c->drive_pressure) return 0;
+      return Gh <= L->g_max * 1.05 && Gh >= L->g_min / 1.05 ? 0 : -1;
     }
   }
   if (b->n_ladder + b->n_extra >= COUPLE_MAX_GRADIENTS) return 0;

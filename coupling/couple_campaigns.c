@@ -117,7 +117,11 @@ int couple_read_ladder(couple_block *b) {
   int rc = camp_read_manifest(b->workdir, m);
   if (!rc) {
     b->n_ladder = 0;
-    b->density = m->fluid_density;
+    /* a run's G = n g with n its particles per rc^3 of pore: the template's fill (the liquid's
+     * density plus what the walls adsorb) for an image, the liquid's for a scene of its own; with
+     * the liquid's alone a feedback run landed a few % above the gradient it was meant for */
+    b->density =
+        isfinite(m->fill_density) && m->fill_density > 0 ? m->fill_density : m->fluid_density;
     camp_units u;
     camp_units_make(m->length_unit_m, m->fluid_density, m->temperature_K, &u);
     b->law.length_unit_m = m->length_unit_m;
