@@ -16,6 +16,7 @@
 #ifndef MDPORE_COUPLING_COUPLE_H
 #define MDPORE_COUPLING_COUPLE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "law/flow_law.h"
@@ -59,6 +60,8 @@ typedef struct {
   double viscosity;    /* 0 = the campaign's default */
   char mpiexec[512];   /* "" = the campaign's default */
   int drive_pressure;  /* 1: --drive pressure (inlet force in a reservoir, measured G) */
+  char boundary[16];   /* --boundary of every block campaign ("" = the campaign's default, auto) */
+  char sides[16];      /* --sides ("" = the campaign's default, periodic) */
   /* loop */
   int max_passes;
   double tolerance_sigma;     /* fluxes agree when |dq| <= tol * combined standard error */
@@ -100,6 +103,11 @@ typedef struct {
   double density; /* fluid number density n of the block's runs (G = n g) */
   couple_law law;
   int pending; /* runs not finished (slurm launcher) */
+  /* the boundary treatment its campaign resolved (campaign.txt), per axis: CAMP_BOUNDARY_* (0 = no
+   * campaign yet), the image's seam continuity and whether the lateral faces were mirrored */
+  int boundary[3];
+  double seam_continuity[3];
+  int sides_mirror;
 } couple_block;
 
 /* One continuum solve with its derived block quantities. */
@@ -144,6 +152,8 @@ int couple_solve(const couple_config *c, const couple_block *blocks, const doubl
 void couple_solution_free(couple_solution *s);
 
 /* couple_output.c */
+/* "block (i,j,k) axis x: mirror (seam continuity 0.13; auto: periodic at >= 0.80), sides periodic" */
+void couple_boundary_text(const couple_config *c, const couple_block *b, char *out, size_t len);
 int couple_write_pass_table(const couple_config *c, const couple_block *blocks, int n, int pass,
                             const couple_solution *s, const int *new_runs);
 int couple_write_field(const couple_config *c, const couple_block *blocks, int pass,
@@ -153,6 +163,7 @@ typedef struct {
   char stop_reason[512];
   double keff[16], keff_err[16], max_dq_sigma[16]; /* per pass */
   int new_runs[16];
+  int left_out[16]; /* blocks outside their range whose run there the fit left out, per pass */
 } couple_history;
 int couple_write_summary(const couple_config *c, const couple_block *blocks, int n,
                          const double block_size[3], const couple_solution *s,

@@ -84,6 +84,12 @@ static int campaign_argv(const couple_config *c, const couple_block *b, const ch
   }
   if (c->mpiexec[0]) bad = bad || add(argv, &n, "--mpiexec") || add(argv, &n, c->mpiexec);
   if (c->drive_pressure) bad = bad || add(argv, &n, "--drive") || add(argv, &n, "pressure");
+  /* Without campaign.boundary the campaign's own default (auto) applies: each block's faces are
+   * measured (seam continuity along the axis) and mirrored where they do not continue each other,
+   * the choice a single-image campaign makes. Only a given treatment is passed, so the argv (and
+   * with it nothing of the cached runs) of a config without the key is what it was. */
+  if (c->boundary[0]) bad = bad || add(argv, &n, "--boundary") || add(argv, &n, c->boundary);
+  if (c->sides[0]) bad = bad || add(argv, &n, "--sides") || add(argv, &n, c->sides);
   snprintf(v, sizeof v, "b%d_%d_%d", b->index[0], b->index[1], b->index[2]);
   bad = bad || add(argv, &n, "--sample") || add(argv, &n, v);
   argv[n] = NULL;
@@ -111,11 +117,20 @@ int couple_read_ladder(couple_block *b) {
   int rc = camp_read_manifest(b->workdir, m);
   if (!rc) {
     b->n_ladder = 0;
-    b->density = m->fluid_density;
+    /* a run's G = n g with n its particles per rc^3 of pore: the template's fill (the liquid's
+     * density plus what the walls adsorb) for an image, the liquid's for a scene of its own; with
+     * the liquid's alone a feedback run landed a few % above the gradient it was meant for */
+    b->density =
+        isfinite(m->fill_density) && m->fill_density > 0 ? m->fill_density : m->fluid_density;
     camp_units u;
     camp_units_make(m->length_unit_m, m->fluid_density, m->temperature_K, &u);
     b->law.length_unit_m = m->length_unit_m;
     b->law.G_Pa_per_m = u.G_Pa_per_m;
+    for (int d = 0; d < 3; d++) {
+      b->boundary[d] = m->boundary[d];
+      b->seam_continuity[d] = m->seam_continuity[d];
+    }
+    b->sides_mirror = m->sides_mirror;
     for (int i = 0; i < m->n_runs && b->n_ladder < COUPLE_MAX_GRADIENTS; i++) {
       int known = 0;
       for (int j = 0; j < b->n_extra; j++) known |= m->runs[i].g == b->extra_g[j];
@@ -227,6 +242,20 @@ int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, in
       goto fail;
     }
     if (couple_read_ladder(b)) goto fail;
+    char text[256];
+    couple_boundary_text(c, b, text, sizeof text);
+    printf("mdpore couple: pass %d: %s\n", pass, text);
+    /* the campaign warns in its own log; a forced periodic seam across a crop's mismatched faces
+     * can read k many times too low (docs/permeability.md, "Boundaries"), so say it here too */
+    if (b->boundary[c->axis] == CAMP_BOUNDARY_PERIODIC &&
+        b->seam_continuity[c->axis] < MDP_SEAM_PERIODIC_CONTINUITY)
+      fprintf(stderr,
+              "mdpore couple: warning: block (%d,%d,%d) runs periodic along %c, but its end slices "
+              "do not continue each other (seam continuity %.2f < %.2f): the seam closes or "
+              "invents flow paths; campaign.boundary auto or mirror treats a cut block's faces\n",
+              b->index[0], b->index[1], b->index[2], 'x' + c->axis, b->seam_continuity[c->axis],
+              MDP_SEAM_PERIODIC_CONTINUITY);
+    fflush(stdout);
     if (!b->pending) b->n_extra_run = b->n_extra;
   }
   if (array) {

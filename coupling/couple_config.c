@@ -17,9 +17,10 @@ static const char *const top_keys[] = {
     "axis",    "gradient", "law",          "campaign",         "loop",   "launcher",
     "slurm",   NULL};
 static const char *const campaign_keys[] = {
-    "rc_per_voxel", "np",       "n_gradients", "velocity_range", "target_error",
-    "max_steps",    "accuracy", "seed",        "voxel_size",     "viscosity",
-    "mpiexec",      "jobs",     NULL};
+    "rc_per_voxel", "np",        "n_gradients", "velocity_range",
+    "target_error", "max_steps", "accuracy",    "seed",
+    "voxel_size",   "viscosity", "mpiexec",     "jobs",
+    "drive",        "boundary",  "sides",       NULL};
 static const char *const loop_keys[] = {"max_passes", "tolerance_sigma", "resolvable_fraction",
                                         "error_samples", NULL};
 static const char *const axis_words[] = {"x", "y", "z", NULL};
@@ -126,6 +127,29 @@ static int read_campaign(ytree_t *t, yaml_node_t *m, couple_config *c) {
   if ((n = yt_get(t, m, "mpiexec")) &&
       yt_string(t, n, "campaign.mpiexec", c->mpiexec, sizeof c->mpiexec))
     return -1;
+  /* The faces of a block cut from a rock do not continue each other: the block campaigns choose
+   * their boundary treatment per block and axis (auto, the campaign's default) unless the config
+   * forces one; the words are the campaign's --boundary / --sides (docs/permeability.md). */
+  static const char *const boundary_words[] = {"auto", "periodic", "mirror", "reservoir", NULL};
+  static const char *const sides_words[] = {"periodic", "mirror", NULL};
+  yaml_node_t *bn = yt_get(t, m, "boundary");
+  if (bn) {
+    int b = yt_enum(t, bn, "campaign.boundary", boundary_words);
+    if (b < 0) return -1;
+    snprintf(c->boundary, sizeof c->boundary, "%s", boundary_words[b]);
+    /* the same pairing rule as the campaign's options, said here with the config's line */
+    if (c->drive_pressure && (b == 1 || b == 2))
+      return yt_error(t, bn, "campaign.boundary",
+                      "auto or reservoir with drive: pressure (the pressure drive joins the faces "
+                      "through its reservoir; got %s)",
+                      boundary_words[b]);
+    if (b == 3) c->drive_pressure = 1; /* a reservoir is what the pressure drive runs in */
+  }
+  if ((n = yt_get(t, m, "sides"))) {
+    int sd = yt_enum(t, n, "campaign.sides", sides_words);
+    if (sd < 0) return -1;
+    snprintf(c->sides, sizeof c->sides, "%s", sides_words[sd]);
+  }
   return 0;
 }
 

@@ -40,6 +40,29 @@ static const char *law_flag(const couple_law *L) {
   }
 }
 
+/* Who chose a block's treatment: the config, the pressure drive (always a reservoir) or the
+ * campaign's auto rule on the block's own seam. */
+static const char *boundary_chooser(const couple_config *c) {
+  if (c->drive_pressure) return "drive: pressure";
+  if (c->boundary[0] && strcmp(c->boundary, "auto")) return "campaign.boundary";
+  return "auto";
+}
+
+void couple_boundary_text(const couple_config *c, const couple_block *b, char *out, size_t len) {
+  const int a = c->axis;
+  if (!b->boundary[a]) {
+    snprintf(out, len, "block (%d,%d,%d) axis %c: no campaign (%s)", b->index[0], b->index[1],
+             b->index[2], 'x' + a,
+             b->percolates ? "not run yet" : "the pore space does not span the axis");
+    return;
+  }
+  snprintf(out, len, "block (%d,%d,%d) axis %c: %s (seam continuity %.2f; %s%s), sides %s",
+           b->index[0], b->index[1], b->index[2], 'x' + a, camp_boundary_name(b->boundary[a]),
+           b->seam_continuity[a], boundary_chooser(c),
+           strcmp(boundary_chooser(c), "auto") ? "" : ": periodic at >= 0.80",
+           b->sides_mirror ? "mirror" : "periodic");
+}
+
 int couple_write_pass_table(const couple_config *c, const couple_block *blocks, int n, int pass,
                             const couple_solution *s, const int *new_runs) {
   char path[COUPLE_PATH + 64], tmp[COUPLE_PATH + 128];
@@ -51,7 +74,8 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
           " q superficial = Q / A_block)\n",
           pass, 'x' + c->axis);
   fprintf(f, "i,j,k,porosity,law_used,k_or_K,second_parameter,k_darcy,k_darcy_err,chosen_law,G_min,"
-             "G_max,G_seen,range,q_continuum,q_continuum_err,q_mdpd_law,new_run_g,note\n");
+             "G_max,G_seen,range,q_continuum,q_continuum_err,q_mdpd_law,new_run_g,boundary,"
+             "seam_continuity,note\n");
   printf("pass %d: %-9s %-7s %-12s %-22s %-20s %-9s %-12s %-12s %s\n", pass, "block", "law",
          "k (rc^2)", "calibrated G", "G seen", "range", "q continuum", "q law(G)", "new run");
   for (int b = 0; b < n; b++) {
@@ -66,11 +90,15 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
                                                      : NAN;
     double first = L->law.kind == LAW_POWER ? L->law.K : L->law.k;
     double g_new = new_runs[b] ? B->extra_g[B->n_extra - 1] : NAN;
-    fprintf(f, "%d,%d,%d,%.6g,%s,%.9g,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%.9g,%s\n",
+    fprintf(f,
+            "%d,%d,%d,%.6g,%s,%.9g,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%.9g,%s,%.3g,"
+            "%s\n",
             B->index[0], B->index[1], B->index[2], B->porosity,
             B->percolates ? flow_law_name(L->law.kind) : "none", first, second, L->k_darcy,
             L->k_darcy_err, B->percolates ? L->chosen_name : "none", L->g_min, L->g_max, G,
             range_word(c, B, G), s->flux[b], s->flux_err[b], q_law, g_new,
+            B->boundary[c->axis] ? camp_boundary_name(B->boundary[c->axis]) : "none",
+            B->seam_continuity[c->axis],
             B->percolates ? law_flag(L) : "pore space does not span the axis");
     char blk[32], kk[48], cal[48], seen[32], newr[32];
     snprintf(blk, sizeof blk, "(%d,%d,%d)", B->index[0], B->index[1], B->index[2]);
@@ -229,6 +257,24 @@ int couple_write_summary(const couple_config *c, const couple_block *blocks, int
     json_number(&j, "k_rc2_err", h->keff_err[p]);
     json_number(&j, "max_flux_change_sigma", h->max_dq_sigma[p]);
     json_int(&j, "new_runs", h->new_runs[p]);
+    json_int(&j, "blocks_with_left_out_run", h->left_out[p]);
+    json_object_end(&j);
+  }
+  json_array_end(&j);
+  /* written with or without a solution: a pending slurm pass already knows its treatments */
+  json_array(&j, "block_boundaries");
+  for (int b = 0; b < n; b++) {
+    const couple_block *B = &blocks[b];
+    char text[256];
+    couple_boundary_text(c, B, text, sizeof text);
+    json_object(&j, NULL);
+    json_numbers(&j, "index", (const double[]){B->index[0], B->index[1], B->index[2]}, 3);
+    json_string(&j, "faces",
+                B->boundary[c->axis] ? camp_boundary_name(B->boundary[c->axis]) : "none");
+    json_number(&j, "seam_continuity", B->seam_continuity[c->axis]);
+    json_string(&j, "sides", B->sides_mirror ? "mirror" : "periodic");
+    json_string(&j, "chosen_by", boundary_chooser(c));
+    json_string(&j, "text", text);
     json_object_end(&j);
   }
   json_array_end(&j);
@@ -240,6 +286,8 @@ int couple_write_summary(const couple_config *c, const couple_block *blocks, int
     json_string(&j, "image", B->image);
     json_number(&j, "porosity", B->porosity);
     json_bool(&j, "percolates", B->percolates);
+    json_string(&j, "boundary",
+                B->boundary[c->axis] ? camp_boundary_name(B->boundary[c->axis]) : "none");
     json_string(&j, "law", B->percolates ? flow_law_name(B->law.law.kind) : "none");
     json_string(&j, "chosen_law", B->percolates ? B->law.chosen_name : "none");
     json_number(&j, "k_darcy_rc2", B->law.k_darcy);
