@@ -89,7 +89,8 @@ const char *camp_usage =
     "  --sides S           the lateral faces: periodic (default) or mirror (symmetry planes, as\n"
     "                      mdpore foam --sides symmetry; four times the particles)\n"
     "Exit status: 0 k reported on every axis; 3 the runs define no Darcy range on some axis (k is\n"
-    "not reported there: the report says why and what to try); 1 an error; 2 bad usage.\n";
+    "not reported there: the report says why and what to try); 1 an error; 2 bad usage.\n"
+    "More: docs/permeability.md, docs/tutorial.md (mdpore --help lists every command)\n";
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore permeability: %s: expected %s, got '%s'\n", opt, expected, got);

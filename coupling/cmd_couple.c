@@ -26,7 +26,8 @@ static const char *usage =
     "segmented image, the fitted laws into the continuum solve, block gradients fed back as new\n"
     "pore-scale runs until the block fluxes of two passes agree within their errors.\n"
     "Exit status: 0 converged, 4 stopped at loop.max_passes without agreement, 3 runs pending\n"
-    "(launcher: slurm: submit the job array it wrote, then run it again), 1 error, 2 usage.\n";
+    "(launcher: slurm: submit the job array it wrote, then run it again), 1 error, 2 usage.\n"
+    "More: docs/coupling.md (mdpore --help lists every command)\n";
 
 /* The gradient the sample is driven at, in reduced units. */
 static double drive_gradient(const couple_config *c, const couple_block *blocks, int n) {

@@ -59,6 +59,7 @@ static void usage(FILE *to) {
       "  --verbose             report each tool and convergence check on stderr\n"
       "exit: 0 converged, 1 error, 2 usage, 3 not converged, 4 OpenFOAM not installed\n");
   mdp_image_cli_help(to);
+  fputs("More: docs/foam.md (mdpore --help lists every command)\n", to);
 }
 
 static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {

@@ -28,6 +28,7 @@ static void usage(FILE *to) {
       "a periodic run sees them). make labels pore 0 and solid 1; --voxel-size sets the voxel\n"
       "size of made images.\n");
   mdp_image_cli_help(to);
+  fputs("More: docs/images.md (mdpore --help lists every command)\n", to);
 }
 
 static double now_seconds(void) {

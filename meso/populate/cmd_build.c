@@ -23,7 +23,8 @@ static void usage(FILE *to) {
           "  --density D  wall particles per rc^3 (default 8; > 0, <= %g)\n"
           "  --seed S     seed of the equilibration run (default 1; an integer >= 0)\n"
           "  --out FILE   the HDF5 file (default: the cache, $MDPORE_CACHE_DIR, else\n"
-          "               $XDG_CACHE_HOME/mdpore, else ~/.cache/mdpore)\n",
+          "               $XDG_CACHE_HOME/mdpore, else ~/.cache/mdpore)\n"
+          "More: docs/walls.md (mdpore --help lists every command)\n",
           WALL_PATCHES_EDGE_MIN, WALL_PATCHES_EDGE_MAX, WALL_PATCHES_DENSITY_MAX);
 }
 

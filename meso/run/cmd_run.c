@@ -29,7 +29,9 @@ static void usage(FILE *to) {
       "  --gpu-memory M    auto, fast or compact: the CUDA path with per-step neighbour lists\n"
       "                    (fast, ~790 bytes per particle) or without (compact, <= 200 bytes per\n"
       "                    particle, slower; the same forces). auto (default): compact only when\n"
-      "                    the fast mode would not fit in the GPU's memory\n");
+      "                    the fast mode would not fit in the GPU's memory\n"
+      "More: docs/scene-format.md, docs/engine-core.md, docs/engine-cuda.md (mdpore --help lists "
+      "every command)\n");
 }
 
 int cmd_run(int argc, char **argv) {

@@ -27,7 +27,8 @@ static const char *usage_text =
     "periodic\n"
     "boundary conditions (OPM upscale_perm's families; the config's `upscale:` key may pick "
     "some),\n"
-    "in the config's permeability unit and, under SI, in mD.\n";
+    "in the config's permeability unit and, under SI, in mD.\n"
+    "More: docs/darcy-config.md (mdpore --help lists every command)\n";
 
 /* One family's tensor, rows i (flow) by columns j (driving gradient), in m^2 (or rc^2) and mD. */
 static void print_tensor(const darcy_config *c, const darcy_upscale_result *r, int f) {

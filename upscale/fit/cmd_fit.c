@@ -24,7 +24,8 @@ static const char *usage_text =
     ".fit.json).\n"
     "  --models LIST     comma-separated subset of darcy,threshold,forchheimer,power\n"
     "  --criterion C     model selection by bic (default) or aic\n"
-    "  --plot PNG        plot data, fits and residuals (python3 + matplotlib)\n";
+    "  --plot PNG        plot data, fits and residuals (python3 + matplotlib)\n"
+    "More: docs/flow-table.md (mdpore --help lists every command)\n";
 
 #ifndef MDPORE_PYTHON_EXE
 #define MDPORE_PYTHON_EXE "/usr/bin/python3"

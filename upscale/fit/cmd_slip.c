@@ -42,7 +42,9 @@ static const char *usage_text =
     "  --rc-m M        metres per rc for b in m (default: units.rc_m of the JSON inputs)\n"
     "  --no-plot       no PNG (the plot needs python3 with matplotlib)\n"
     "Exit 0 on a fit, 1 on bad input or no fit (the message names the file, key and what was\n"
-    "expected), 2 on a usage error.\n";
+    "expected), 2 on a usage error.\n"
+    "More: docs/permeability.md, \"Slip and apparent permeability\" (mdpore --help lists every "
+    "command)\n";
 
 typedef struct {
   const char **inputs;
