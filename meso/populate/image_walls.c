@@ -222,21 +222,37 @@ static int read_stage(const scene_t *s, image_walls_t *g, const double *sub_lo,
   return check_moving_walls(s, g, *phase, err, errlen);
 }
 
+/* The squared distance transform of the window (edt_to: to the pore voxels with to_pore, else to
+ * the solid ones), periodic along the axes the window covers whole; counted in the build's memory
+ * (window_edt_free gives it back). NULL + err without memory. */
+static uint32_t *window_edt(const scene_t *s, image_walls_t *g, const uint8_t *phase, int to_pore,
+                            char *err, size_t errlen) {
+  const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
+  uint32_t *d2 = malloc((total ? (size_t)total : 1) * sizeof *d2);
+  int per[3];
+  for (int d = 0; d < 3; d++) per[d] = g->periodic[d] && g->win_n[d] == g->n[d];
+  if (!d2 || edt_to(phase, g->win_n, per, to_pore, d2)) {
+    free(d2);
+    snprintf(err, errlen, "%s: geometry: out of memory for the distance transform", s->file);
+    return NULL;
+  }
+  image_walls_mem(g, total * 4);
+  return d2;
+}
+
+static void window_edt_free(image_walls_t *g, uint32_t *d2) {
+  free(d2);
+  image_walls_mem(g, -(long long)g->win_n[0] * g->win_n[1] * g->win_n[2] * 4);
+}
+
 /* The wall voxels of the window: solid voxels whose centre is within the thickness of a pore
  * voxel centre (exact where it is used: gen and the min_wall_distance scan around it); the counts
  * of the rank's own voxels ([organic, inorganic][wall, deep]). 0 or -1 + err (memory). */
 static int classify_walls(const scene_t *s, image_walls_t *g, const uint8_t *phase,
                           long long own[2][2], char *err, size_t errlen) {
   const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
-  uint32_t *d2 = malloc((total ? (size_t)total : 1) * sizeof *d2);
-  int per[3];
-  for (int d = 0; d < 3; d++) per[d] = g->periodic[d] && g->win_n[d] == g->n[d];
-  if (!d2 || edt_to(phase, g->win_n, per, 0, d2)) {
-    free(d2);
-    snprintf(err, errlen, "%s: geometry: out of memory for the distance transform", s->file);
-    return -1;
-  }
-  image_walls_mem(g, total * 4);
+  uint32_t *d2 = window_edt(s, g, phase, 0, err, errlen);
+  if (!d2) return -1;
   const double t = g->thickness / g->h, t2 = t * t * (1 + 1e-12);
   for (long long i = 0; i < total; i++) {
     const int p = phase[i];
@@ -248,8 +264,7 @@ static int classify_walls(const scene_t *s, image_walls_t *g, const uint8_t *pha
     g->cls[i] =
         (double)d2[i] <= t2 ? (k ? IMAGE_VOXEL_INORGANIC : IMAGE_VOXEL_ORGANIC) : IMAGE_VOXEL_DEEP;
   }
-  free(d2);
-  image_walls_mem(g, -total * 4);
+  window_edt_free(g, d2);
   for (int z = 0; z < g->own_n[2]; z++)
     for (int y = 0; y < g->own_n[1]; y++)
       for (int x = 0; x < g->own_n[0]; x++) {
@@ -274,16 +289,10 @@ static int check_room(const scene_t *s, image_walls_t *g, const uint8_t *phase, 
                       char *err, size_t errlen) {
   double room = -1; /* -1: this rank failed before */
   if (!failed && g->min_distance > 0) {
-    const long long total = (long long)g->win_n[0] * g->win_n[1] * g->win_n[2];
-    uint32_t *d2 = malloc((total ? (size_t)total : 1) * sizeof *d2);
-    int per[3];
-    for (int d = 0; d < 3; d++) per[d] = g->periodic[d] && g->win_n[d] == g->n[d];
-    if (!d2 || edt_to(phase, g->win_n, per, 1, d2)) {
-      free(d2);
-      snprintf(err, errlen, "%s: geometry: out of memory for the distance transform", s->file);
+    uint32_t *d2 = window_edt(s, g, phase, 1, err, errlen);
+    if (!d2) {
       failed = 1;
     } else {
-      image_walls_mem(g, total * 4);
       uint32_t far2 = 0;
       for (int z = 0; z < g->own_n[2]; z++)
         for (int y = 0; y < g->own_n[1]; y++)
@@ -294,8 +303,7 @@ static int check_room(const scene_t *s, image_walls_t *g, const uint8_t *phase, 
             const long long w = image_walls_win(g, q);
             if (phase[w] == MDP_PHASE_PORE && d2[w] > far2) far2 = d2[w];
           }
-      free(d2);
-      image_walls_mem(g, -total * 4);
+      window_edt_free(g, d2);
       room = far2 == EDT_INF ? HUGE_VAL : (sqrt((double)far2) + sqrt(3.0)) * g->h;
     }
   }
