@@ -76,6 +76,10 @@ typedef struct backend_ops {
    * particles between steps; a rank that does not own it changes nothing. NULL: the engine writes
    * st->p. 0 or -1. */
   int (*fault_write)(sim_state_t *st, int64_t id, int field, int axis, double value, int add);
+  /* Flooding (run/run_flood.c): every owned particle of species `from` whose coordinate along
+   * `axis` lies in the periodic slab [lo, hi) becomes species `to` (of equal mass; velocities
+   * kept); *changed: how many on this rank. NULL: the engine changes st->p. 0 or -1. */
+  int (*recolor)(sim_state_t *st, int axis, double lo, double hi, int from, int to, long *changed);
 } backend_ops_t;
 
 /* The CPU backend (backend/cpu/cpu_backend.c). */

@@ -186,5 +186,18 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
   print_list(s, &plan, ops, 1, out);
   fprintf(out, "every step, %d phases:\n", plan.n_step);
   print_list(s, &plan, ops, 0, out);
+  if (s->flood.on) {
+    const scene_flood_t *f = &s->flood;
+    const char ax = (char)('x' + f->axis);
+    fprintf(out,
+            "after the step (flood, run/run_flood.c): at step %ld the %s on the injection side "
+            "(%c from %g round to %g) becomes %s; after every later step the %s in the sink %c in "
+            "[%g, %g) does (%s); census of the sample %c in [%g, %g) every %ld steps (particles "
+            "read on the host)%s\n",
+            f->start, s->species[f->defending].name, ax, f->sink_lo, f->sample_lo,
+            s->species[f->invading].name, s->species[f->defending].name, ax, f->sink_lo, f->sink_hi,
+            ops && ops->recolor ? "on the device" : "on the host particles", ax, f->sample_lo,
+            f->sample_hi, f->every, f->map_every > 0 ? "; saturation maps" : "");
+  }
   plan_release(&plan);
 }

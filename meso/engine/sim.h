@@ -59,6 +59,12 @@ void sim_thermo(sim_t *sim, thermo_t *out);
 int sim_flux_sums(sim_t *sim, int axis, double count[SCENE_MAX_SPECIES],
                   double vsum[SCENE_MAX_SPECIES]);
 
+/* Collective (flooding, run/run_flood.c): every particle of species `from` whose coordinate along
+ * `axis` lies in the periodic slab [lo, hi) becomes species `to` (equal masses; velocities kept),
+ * where the backend keeps the particles. *changed: how many over all ranks. 0, or -1 (message
+ * printed) when a device call failed. */
+int sim_recolor(sim_t *sim, int axis, double lo, double hi, int from, int to, long *changed);
+
 /* Accessors for outputs and analyses. */
 particles_t *sim_particles(sim_t *sim);
 const scene_t *sim_scene(const sim_t *sim);

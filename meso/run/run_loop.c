@@ -14,6 +14,7 @@
 #include "run/progress.h"
 #include "run/run_balance.h"
 #include "run/run_fault.h"
+#include "run/run_flood.h"
 #include "run/run_flux.h"
 #include "run/run_stats.h"
 
@@ -36,6 +37,9 @@ void run_apply_output_dir(scene_t *s, const char *dir) {
   prefix(s->checkpoint.path, dir);
   prefix(s->flux.path, dir);
   prefix(s->summary_path, dir);
+  prefix(s->flood.path, dir);
+  prefix(s->flood.profile_path, dir);
+  prefix(s->flood.map_path, dir);
 }
 
 static int due(const scene_output_t *o, long step) {
@@ -96,9 +100,10 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
   MPI_Comm_size(comm, &size);
   const double t_start = MPI_Wtime();
   if (rank == 0) { /* temporary files of writes a killed run did not finish */
-    const char *const paths[] = {scene->thermo.path,  scene->profile.path,    scene->snapshot.path,
-                                 scene->dump.path,    scene->checkpoint.path, scene->flux.path,
-                                 scene->summary_path, scene->restart_from};
+    const char *const paths[] = {
+        scene->thermo.path,     scene->profile.path,      scene->snapshot.path, scene->dump.path,
+        scene->checkpoint.path, scene->flux.path,         scene->summary_path,  scene->restart_from,
+        scene->flood.path,      scene->flood.profile_path};
     for (size_t k = 0; k < sizeof paths / sizeof *paths; k++) stale_tmp_cleanup(paths[k]);
   }
   sim_t *sim = sim_create(scene, comm);
@@ -174,8 +179,13 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     return 1;
   }
   st.flux = &rf;
+  run_flood_t rfl;
+  memset(&rfl, 0, sizeof rfl);
+  if (!err) err = run_flood_open(&rfl, sim, first, rank) != 0;
+  st.flood = &rfl;
   snapshot_series_init(&snaps, s->snapshot.path);
-  if (restart && rank == 0 && s->snapshot.every > 0) err = snapshot_series_resume(&snaps, s, first);
+  if (!err && restart && rank == 0 && s->snapshot.every > 0)
+    err = snapshot_series_resume(&snaps, s, first);
   MPI_Allreduce(MPI_IN_PLACE, &err, 1, MPI_INT, MPI_MAX, comm);
   progress_start(&pr, s->progress, rank, first, last);
   char gmsg[2048] = "";
@@ -257,6 +267,11 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       err = 1;
       break;
     }
+    if (run_flood_step(&rfl, sim, step)) {
+      if (rank == 0) fprintf(stderr, "mdpore: run stopped at step %ld (flood)\n", step);
+      err = 1;
+      break;
+    }
     if (virial_for_flux && !(s->profile.nbins > 0 && profile_wants(&prof, step + 1)))
       sim_request_virial(sim, 0);
     err = write_outputs(sim, step, !restart, step == last || stop, &snaps, &dump_started);
@@ -289,6 +304,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     MPI_Bcast(&err, 1, MPI_INT, 0, comm);
   }
   run_flux_close(&rf);
+  run_flood_close(&rfl);
   run_stats_free(&st);
   temperature_guard_free(&tguard);
   density_guard_free(&dguard);

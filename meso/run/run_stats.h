@@ -57,6 +57,8 @@ typedef struct {
   long rebalances;
   /* output.flux: its series and final analysis (run/run_flux.h; NULL or off: none). */
   const struct run_flux *flux;
+  /* flood: its census and breakthrough (run/run_flood.h; NULL or off: none). */
+  const struct run_flood *flood;
 } run_stats_t;
 
 void run_stats_init(run_stats_t *st, const scene_t *scene, long first, long last, int nranks);

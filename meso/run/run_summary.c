@@ -5,6 +5,7 @@
 #include "effects/effect.h"
 #include "physics/density_kernels.h"
 #include "physics/pair_random.h"
+#include "run/run_flood.h"
 #include "run/run_flux.h"
 #include "run/run_stats.h"
 
@@ -381,6 +382,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
             "least %g rc from the solid, %.4g rc^3; %ld samples)\n",
             core.mean, core.err, st->core_voxels, st->core_rc, st->core_volume, st->core_density.n);
   if (flux) flux_text(out, flux, s);
+  if (st->flood) run_flood_text(out, st->flood, s);
   if (s->units.on) units_text(out, s);
   if (st->nranks > 1) balance_text(out, st, s);
   fprintf(out, "performance: %.2f M particle-steps/s (%.2f s in the step loop, %.2f s total)\n",
@@ -454,6 +456,7 @@ int run_summary_write(const run_stats_t *st, const scene_t *s, const profile_t *
         st->core_density.n, st->core_voxels, st->core_volume, st->core_rc);
   }
   if (flux) flux_json(fp, flux, s);
+  if (st->flood) run_flood_json(fp, st->flood, s);
   if (s->units.on) units_json(fp, s);
   if (st->nranks > 1) balance_json(fp, st, s);
   json_field(fp, "  \"timing\": {\"loop_seconds\": ", st->loop_seconds);

@@ -153,6 +153,32 @@ typedef struct {
   double density_fraction;      /* stop when a watched bin < fraction x the mean fluid density  */
 } scene_guard_t;
 
+/* Flooding (`flood:`, docs/twophase.md "Flooding"): one liquid displaces another from a sample
+ * along a periodic axis of a pressure- or body-force-driven box (run/run_flood.c). The box along
+ * the axis is the sample, then the production side [sample.hi, sink.lo), the sink, then the
+ * injection side up to sample.lo across the periodic face. Before `start` the defending liquid
+ * fills everything; at `start` the defending particles on the injection side and in the sink
+ * become invading ones, and from then on every defending particle that reaches the sink does, so
+ * that the injection side always holds the invading liquid. Off when on = 0. */
+typedef struct {
+  int on;
+  int axis;                    /* 0, 1, 2 = x, y, z (periodic)                             */
+  double sample_lo, sample_hi; /* the pore block's faces along the axis                   */
+  double sink_lo, sink_hi;     /* where produced liquid becomes injected liquid           */
+  int invading, defending;     /* species indices (mobile, equal mass)                    */
+  long start;                  /* step at which the injection starts                     */
+  long every;                  /* steps between saturation samples                       */
+  int nbins;                   /* saturation profile bins across the sample              */
+  double breakthrough;         /* invading saturation of the sample's last bin at breakthrough */
+  double density;              /* > 0: the fluid number density n of q_i (else the scene's) */
+  double viscosity, tension;   /* > 0: mu of the invading liquid and gamma (capillary number) */
+  char path[SCENE_PATH_LEN];   /* the saturation series (CSV)                             */
+  char profile_path[SCENE_PATH_LEN]; /* the saturation profiles (CSV; "" none)                */
+  long map_every;                    /* saturation maps every N steps (0: none)                */
+  double map_cell;                   /* their cell edge (rc)                                   */
+  char map_path[SCENE_PATH_LEN];     /* PATH.xdmf + PATH_<step>.h5                             */
+} scene_flood_t;
+
 /* Where the cuts between the ranks' subdomains go (`balance:`, docs/scene-format.md "Load
  * balancing"; meso/domain/balance.c). */
 enum scene_cuts { SCENE_CUTS_UNIFORM = 0, SCENE_CUTS_COST = 1 };
@@ -213,6 +239,7 @@ typedef struct {
   double target_error;               /* run.target_error (0: none; needs output.flux)    */
   char restart_from[SCENE_PATH_LEN]; /* continue from this checkpoint ("" = fresh start) */
   scene_guard_t guard;               /* guardrails (scene/scene_guard.h)                 */
+  scene_flood_t flood;               /* flooding (scene/scene_flood.h)                   */
   scene_balance_t balance;           /* cuts between ranks (scene/scene_balance.h)       */
   units_mapping_t units;             /* reduced -> SI, outputs only (scene/scene_units.h) */
   int progress;                      /* progress + ETA on stderr (default 1)             */

@@ -9,6 +9,7 @@
 #include "scene/scene_catalog.h"
 #include "scene/scene_geometry.h"
 #include "scene/scene_balance.h"
+#include "scene/scene_flood.h"
 #include "scene/scene_guard.h"
 #include "scene/scene_units.h"
 
@@ -781,9 +782,10 @@ static void set_defaults(scene_t *s) {
 
 static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   yaml_node_t *root = yt_root(t), *v;
-  static const char *const keys[] = {
-      "name",    "box", "species", "pairs",   "density_kernel", "kT",      "effects", "geometry",
-      "initial", "run", "output",  "restart", "guard",          "balance", "units",   NULL};
+  static const char *const keys[] = {"name",   "box",     "species",  "pairs",   "density_kernel",
+                                     "kT",     "effects", "geometry", "initial", "run",
+                                     "output", "restart", "guard",    "balance", "units",
+                                     "flood",  NULL};
   TRY(yt_check_keys(t, root, "", keys));
   if ((v = yt_get(t, root, "name")))
     TRY(yt_string(t, v, "name", s->name, SCENE_NAME_LEN));
@@ -847,6 +849,10 @@ static int parse_document(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
 
   if ((v = yt_get(t, root, "output"))) TRY(parse_output(t, v, s));
   if ((v = yt_get(t, root, "guard"))) TRY(scene_parse_guard(t, v, s));
+  if ((v = yt_get(t, root, "flood"))) {
+    TRY(yt_expect_map(t, v, "flood"));
+    TRY(scene_parse_flood(t, v, s));
+  }
   if ((v = yt_get(t, root, "balance"))) TRY(scene_parse_balance(t, v, s));
   if ((v = yt_get(t, root, "units"))) TRY(scene_parse_units(t, v, s));
   if (s->target_error > 0 && s->flux.every == 0)
@@ -892,16 +898,19 @@ static int check_sizes(ytree_t *t, const scene_t *s) {
 /* No output names an input (the scene, its image, patch database or initial configuration) or
  * another output. Resuming from the scene's own checkpoint is allowed. */
 static int check_output_paths(ytree_t *t, const scene_t *s) {
-  const char *outs[7] = {s->thermo.every ? s->thermo.path : NULL,
-                         s->profile.every ? s->profile.path : NULL,
-                         s->snapshot.every ? s->snapshot.path : NULL,
-                         s->dump.every ? s->dump.path : NULL,
-                         s->checkpoint.every ? s->checkpoint.path : NULL,
-                         s->flux.every ? s->flux.path : NULL,
-                         s->summary_path};
-  static const char *const out_keys[7] = {"output.thermo", "output.profile",    "output.snapshot",
-                                          "output.dump",   "output.checkpoint", "output.flux",
-                                          "output.summary"};
+  enum { NOUT = 9 };
+  const char *outs[NOUT] = {s->thermo.every ? s->thermo.path : NULL,
+                            s->profile.every ? s->profile.path : NULL,
+                            s->snapshot.every ? s->snapshot.path : NULL,
+                            s->dump.every ? s->dump.path : NULL,
+                            s->checkpoint.every ? s->checkpoint.path : NULL,
+                            s->flux.every ? s->flux.path : NULL,
+                            s->summary_path,
+                            s->flood.on ? s->flood.path : NULL,
+                            s->flood.on && s->flood.profile_path[0] ? s->flood.profile_path : NULL};
+  static const char *const out_keys[NOUT] = {
+      "output.thermo", "output.profile", "output.snapshot", "output.dump",  "output.checkpoint",
+      "output.flux",   "output.summary", "flood.file",      "flood.profile"};
   const int has_init = s->init.kind == INIT_LAMMPS_DATA || s->init.kind == INIT_SNAPSHOT;
   const char *ins[4] = {s->file, has_init ? s->init.path : "",
                         s->geometry.on ? s->geometry.image : "",
@@ -909,7 +918,7 @@ static int check_output_paths(ytree_t *t, const scene_t *s) {
   static const char *const in_keys[4] = {"the scene file", "initial", "geometry.image",
                                          "geometry.patches.file"};
   char why[2600];
-  for (int i = 0; i < 7; i++) {
+  for (int i = 0; i < NOUT; i++) {
     const char *one[1] = {outs[i]}, *one_key[1] = {out_keys[i]};
     if (mdp_check_outputs(one, one_key, 1, ins, in_keys, 4, why, sizeof why) ||
         mdp_check_outputs(outs, out_keys, i + 1, NULL, NULL, 0, why, sizeof why))

@@ -151,6 +151,10 @@ int cuda_sim_flux_sums(cuda_sim_t *g, int axis, double sums[2 * MESO_MAX_SPECIES
  * 0) or velocity (field 1) of the owned particle `id`, on the device (one kernel over the owned
  * particles, then a synchronisation). 0 or -1. */
 int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int axis, double value, int add);
+/* Flooding: species from -> to in the periodic slab [lo, hi) along axis (box_lo, box_len: the box
+ * along it); *changed: how many. 0 or -1 (CUDA error printed). */
+int cuda_sim_recolor(cuda_sim_t *g, int axis, double lo, double hi, double box_lo, double box_len,
+                     int from, int to, long *changed);
 
 /* 1 when the halo steps overlap interior work with the host exchanges. */
 int cuda_sim_overlap(const cuda_sim_t *g);

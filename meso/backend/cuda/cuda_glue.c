@@ -140,6 +140,14 @@ int cuda_glue_fault_write(sim_state_t *st, int64_t id, int field, int axis, doub
   return cuda_sim_fault_write(cuda_glue(st)->g, id, field, axis, value, add);
 }
 
+/* Flooding: the device copy is the particles' home between steps (as for the fault hook). */
+int cuda_glue_recolor(sim_state_t *st, int axis, double lo, double hi, int from, int to,
+                      long *changed) {
+  st->host_stale = 1;
+  const double box_lo = st->scene.box_lo[axis], box_len = st->scene.box_hi[axis] - box_lo;
+  return cuda_sim_recolor(cuda_glue(st)->g, axis, lo, hi, box_lo, box_len, from, to, changed);
+}
+
 void cuda_glue_sync_host(sim_state_t *st) {
   cuda_glue_t *c = cuda_glue(st);
   if (!c || !st->host_stale) return;
@@ -243,4 +251,5 @@ const backend_ops_t cuda_ops_one_rank = {
     .rebuild_lists = cuda_glue_rebuild_lists,
     .flux_sums = cuda_glue_flux_sums,
     .fault_write = cuda_glue_fault_write,
+    .recolor = cuda_glue_recolor,
 };

@@ -40,6 +40,8 @@ void cuda_glue_sync_host(sim_state_t *st);
 void cuda_glue_want_pressure(sim_state_t *st, int on);
 void cuda_glue_rebuild_lists(sim_state_t *st);
 int cuda_glue_fault_write(sim_state_t *st, int64_t id, int field, int axis, double value, int add);
+int cuda_glue_recolor(sim_state_t *st, int axis, double lo, double hi, int from, int to,
+                      long *changed);
 const char *cuda_glue_phase_note(int phase);
 
 extern const backend_ops_t cuda_ops_one_rank, cuda_ops_ranks;

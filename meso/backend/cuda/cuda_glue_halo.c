@@ -294,4 +294,5 @@ const backend_ops_t cuda_ops_ranks = {
     .rebuild_lists = cuda_glue_rebuild_lists,
     .flux_sums = cuda_glue_flux_sums,
     .fault_write = cuda_glue_fault_write,
+    .recolor = cuda_glue_recolor,
 };

@@ -108,6 +108,20 @@ __global__ void k_fault_write(int n, struct dev_fields p, int64_t id, int field,
   a[i] = add ? a[i] + value : value;
 }
 
+/* Flooding (run/run_flood.c): species `from` -> `to` for the particles in the periodic slab
+ * [lo, hi) along `axis`; the count into *changed (device). */
+__global__ void k_recolor(int n, struct dev_fields p, int axis, double lo, double hi, double box_lo,
+                          double box_len, int from, int to, unsigned long long *changed) {
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n || p.species[i] != from) return;
+  double w = p.x[axis][i] - box_lo;
+  w -= box_len * floor(w / box_len);
+  const double c = box_lo + w;
+  if (c < lo || c >= hi) return;
+  p.species[i] = to;
+  atomicAdd(changed, 1ull);
+}
+
 static int blocks_of(int n) {
   return (n + CUDA_BLOCK - 1) / CUDA_BLOCK;
 }
@@ -142,6 +156,24 @@ extern "C" int cuda_sim_fault_write(cuda_sim_t *g, int64_t id, int field, int ax
   g->prm.tail = 0;   /* (and a static particle's: the next sort places the tail again) */
   k_fault_write<<<blocks_of(g->n), CUDA_BLOCK>>>(g->n, g->a, id, field, axis, value, add);
   return cuda_check(cudaDeviceSynchronize(), "test fault");
+}
+
+extern "C" int cuda_sim_recolor(cuda_sim_t *g, int axis, double lo, double hi, double box_lo,
+                                double box_len, int from, int to, long *changed) {
+  *changed = 0;
+  if (!g->n) return 0;
+  unsigned long long *d_count = NULL, h_count = 0;
+  if (cuda_check(cudaMalloc((void **)&d_count, sizeof *d_count), "recolor")) return -1;
+  int rc = cuda_check(cudaMemset(d_count, 0, sizeof *d_count), "recolor");
+  if (!rc)
+    k_recolor<<<blocks_of(g->n), CUDA_BLOCK>>>(g->n, g->a, axis, lo, hi, box_lo, box_len, from, to,
+                                               d_count);
+  if (!rc)
+    rc = cuda_check(cudaMemcpy(&h_count, d_count, sizeof h_count, cudaMemcpyDeviceToHost),
+                    "recolor");
+  cudaFree(d_count);
+  *changed = (long)h_count;
+  return rc;
 }
 
 /* Copy the problem record to the host (this synchronises with the step) and clear it. */
