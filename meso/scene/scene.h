@@ -97,6 +97,10 @@ typedef struct {
   /* geometry.fluid_region: when on, fluid only inside [fluid_lo, fluid_hi] (rc, box frame) */
   int fluid_region;
   double fluid_lo[3], fluid_hi[3];
+  /* geometry.second_fluid: fluid particles built inside [second_lo, second_hi] (rc, box frame)
+   * are of second_species (-1: no second fluid) */
+  int second_species;
+  double second_lo[3], second_hi[3];
 } scene_geometry_t;
 
 typedef struct {

@@ -36,48 +36,96 @@ static int species_of(ytree_t *t, yaml_node_t *m, const char *key, const scene_t
   return 0;
 }
 
-/* geometry.fluid_region: {lo: [x, y, z], hi: [x, y, z]} in rc, the box frame; an axis-aligned box
- * inside the scene's box (parsed before `geometry`) with hi > lo on every axis. */
-static int parse_fluid_region(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"lo", "hi", NULL};
-  scene_geometry_t *g = &s->geometry;
-  TRY(yt_expect_map(t, n, "geometry.fluid_region"));
-  TRY(yt_check_keys(t, n, "geometry.fluid_region", keys));
+/* A region {lo: [x, y, z], hi: [x, y, z]} in rc, the box frame, at key `path` (map n): an
+ * axis-aligned box inside the scene's box (parsed before `geometry`) with hi > lo on every axis. */
+static int parse_region(ytree_t *t, yaml_node_t *n, const scene_t *s, const char *path,
+                        const char *const *keys, double lo_out[3], double hi_out[3]) {
+  char key_lo[96], key_hi[96];
+  snprintf(key_lo, sizeof key_lo, "%s.lo", path);
+  snprintf(key_hi, sizeof key_hi, "%s.hi", path);
+  TRY(yt_expect_map(t, n, path));
+  TRY(yt_check_keys(t, n, path, keys));
   yaml_node_t *lo = yt_get(t, n, "lo"), *hi = yt_get(t, n, "hi");
   if (!lo || !hi)
-    return yt_error(t, n, lo ? "geometry.fluid_region.hi" : "geometry.fluid_region.lo",
+    return yt_error(t, n, lo ? key_hi : key_lo,
                     "expected both corners of the region, {lo: [x, y, z], hi: [x, y, z]} in rc "
                     "(got no '%s')",
                     lo ? "hi" : "lo");
-  TRY(yt_vec3(t, lo, "geometry.fluid_region.lo", g->fluid_lo));
-  TRY(yt_vec3(t, hi, "geometry.fluid_region.hi", g->fluid_hi));
+  TRY(yt_vec3(t, lo, key_lo, lo_out));
+  TRY(yt_vec3(t, hi, key_hi, hi_out));
   for (int d = 0; d < 3; d++) {
     const double tol = 1e-9 * (s->box_hi[d] - s->box_lo[d]);
-    if (!(g->fluid_hi[d] > g->fluid_lo[d]))
-      return yt_error(t, hi, "geometry.fluid_region.hi",
+    if (!(hi_out[d] > lo_out[d]))
+      return yt_error(t, hi, key_hi,
                       "expected hi > lo on every axis (got hi %c = %g <= lo %c = %g)", "xyz"[d],
-                      g -> fluid_hi[d], "xyz"[d], g -> fluid_lo[d]);
-    const int lo_out = !(g->fluid_lo[d] >= s->box_lo[d] - tol);
-    if (lo_out || !(g->fluid_hi[d] <= s->box_hi[d] + tol))
-      return yt_error(t, lo_out ? lo : hi,
-                      lo_out ? "geometry.fluid_region.lo" : "geometry.fluid_region.hi",
+                      hi_out[d], "xyz"[d], lo_out[d]);
+    const int below = !(lo_out[d] >= s->box_lo[d] - tol);
+    if (below || !(hi_out[d] <= s->box_hi[d] + tol))
+      return yt_error(t, below ? lo : hi, below ? key_lo : key_hi,
                       "expected a region inside the box, %g <= %c <= %g (got %s %c = %g)",
-                      s->box_lo[d], "xyz"[d], s -> box_hi[d], lo_out ? "lo" : "hi", "xyz"[d],
-                      lo_out ? g->fluid_lo[d] : g->fluid_hi[d]);
+                      s->box_lo[d], "xyz"[d], s -> box_hi[d], below ? "lo" : "hi", "xyz"[d],
+                      below ? lo_out[d] : hi_out[d]);
   }
+  return 0;
+}
+
+/* geometry.fluid_region: {lo, hi}: fluid only inside this box. */
+static int parse_fluid_region(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"lo", "hi", NULL};
+  scene_geometry_t *g = &s->geometry;
+  TRY(parse_region(t, n, s, "geometry.fluid_region", keys, g->fluid_lo, g->fluid_hi));
   g->fluid_region = 1;
   return 0;
 }
 
+/* geometry.second_fluid: {species, lo, hi}: the fluid particles built inside this box are of
+ * `species` instead of the fluid's (a second liquid, e.g. oil in the chamber before a water-filled
+ * throat). The species must be mobile, other than the fluid, and of the fluid's mass (the
+ * Maxwell-Boltzmann velocities and the removed centre-of-mass velocity are the fluid's). Parsed
+ * after geometry.species. */
+static int parse_second_fluid(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"species", "lo", "hi", NULL};
+  scene_geometry_t *g = &s->geometry;
+  TRY(parse_region(t, n, s, "geometry.second_fluid", keys, g->second_lo, g->second_hi));
+  yaml_node_t *v = yt_get(t, n, "species");
+  if (!v)
+    return yt_error(t, n, "geometry.second_fluid.species",
+                    "expected the species of the fluid built inside the region (got nothing)");
+  char name[SCENE_NAME_LEN];
+  TRY(yt_string(t, v, "geometry.second_fluid.species", name, sizeof name));
+  const int sp = scene_species_index(s, name);
+  if (sp < 0)
+    return yt_error(t, v, "geometry.second_fluid.species",
+                    "expected one of the species listed under 'species' (got '%s')", name);
+  const int f = g->fluid_species;
+  if (sp == f || s->species[sp].frozen || s->species[sp].mass != s->species[f].mass)
+    return yt_error(t, v, "geometry.second_fluid.species",
+                    "expected a species that is not frozen, not the fluid '%s' and of its mass %g "
+                    "(got '%s'%s, mass %g)",
+                    s->species[f].name, s->species[f].mass, name,
+                    s->species[sp].frozen ? ", frozen" : "", s->species[sp].mass);
+  g->second_species = sp;
+  return 0;
+}
+
 int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"image",          "labels",
-                                     "rc_per_voxel",   "voxels_per_rc",
-                                     "axis_map",       "flow_axis",
-                                     "wall_thickness", "wall_density",
-                                     "fluid_density",  "min_wall_distance",
-                                     "isolated_pores", "species",
-                                     "patches",        "strict",
-                                     "fluid_region",   NULL};
+  static const char *const keys[] = {"image",
+                                     "labels",
+                                     "rc_per_voxel",
+                                     "voxels_per_rc",
+                                     "axis_map",
+                                     "flow_axis",
+                                     "wall_thickness",
+                                     "wall_density",
+                                     "fluid_density",
+                                     "min_wall_distance",
+                                     "isolated_pores",
+                                     "species",
+                                     "patches",
+                                     "strict",
+                                     "fluid_region",
+                                     "second_fluid",
+                                     NULL};
   TRY(yt_check_keys(t, n, "geometry", keys));
   scene_geometry_t *g = &s->geometry;
   memset(g, 0, sizeof *g);
@@ -92,6 +140,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   g->min_wall_distance = 0.25;
   g->organic_species = g->inorganic_species = -1;
   g->fluid_species = -1;
+  g->second_species = -1;
   g->patch_seed = 1;
   yaml_node_t *v;
   char text[SCENE_PATH_LEN];
@@ -172,6 +221,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   }
   if ((v = yt_get(t, n, "strict"))) TRY(yt_bool(t, v, "geometry.strict", &g->strict));
   if ((v = yt_get(t, n, "fluid_region"))) TRY(parse_fluid_region(t, v, s));
+  if ((v = yt_get(t, n, "second_fluid"))) TRY(parse_second_fluid(t, v, s));
   if ((v = yt_get(t, n, "patches"))) {
     static const char *const pk[] = {"file", "seed", NULL};
     TRY(yt_check_keys(t, v, "geometry.patches", pk));
