@@ -3,6 +3,7 @@
  * fluid, an exact Euclidean distance transform of the pore space to find the solid voxels within the
  * wall thickness, and per wall voxel a patch of the database in one of the 24 cube orientations. */
 #include "populate/image_walls.h"
+#include "populate/init_config.h"
 #include "scene/scene_geometry.h"
 
 #include <Random123/philox.h>
@@ -110,11 +111,12 @@ static double wall_thickness(const scene_t *s, double h) {
   if (geo->wall_thickness > 0) return geo->wall_thickness;
   const int walls[2] = {geo->organic_species, geo->inorganic_species};
   double t = 0;
-  for (int k = 0; k < 2; k++) {
-    if (walls[k] < 0) continue;
-    const scene_pair_t *p = &s->pair[geo->fluid_species][walls[k]];
-    if (p->rc + p->rd > t) t = p->rc + p->rd;
-  }
+  for (int k = 0; k < 2; k++)
+    for (int f = -1; f < geo->n_species_regions && walls[k] >= 0; f++) {
+      const int fluid = f < 0 ? geo->fluid_species : geo->species_region[f].species;
+      const scene_pair_t *p = &s->pair[fluid][walls[k]];
+      if (p->rc + p->rd > t) t = p->rc + p->rd;
+    }
   return t > h ? t : h;
 }
 
@@ -524,8 +526,17 @@ void image_walls_particle(const image_walls_t *g, long i, int64_t *id, int *spec
   if (i >= nw) {
     const long f = image_walls_find(g->fluid_start, g->n_fluid_vox, i - nw);
     *id = 1 + g->n_wall + g->fluid_id[f] + (i - nw - g->fluid_start[f]);
-    *species = geo->fluid_species;
     image_fluid_particle(g, i - nw, x);
+    *species = geo->fluid_species;
+    for (int k = 0; k < geo->n_species_regions; k++) {
+      const scene_fill_t *r = &geo->species_region[k];
+      int in = init_shape_keeps(r, x);
+      for (int d = 0; d < 3 && in; d++) in = x[d] >= r->lo[d] && x[d] < r->hi[d];
+      if (in) {
+        *species = r->species;
+        break;
+      }
+    }
     return;
   }
   const long w = image_walls_find(g->wall_start, g->n_wall_vox, i);

@@ -98,14 +98,6 @@ static void set_get(const void *vctx, long i, int64_t *id, int *sp, double x[3],
   }
 }
 
-/* Whether a fluid particle at x is built as geometry.second_fluid's species (inside its box). */
-static int in_second_fluid(const scene_geometry_t *geo, const double x[3]) {
-  if (geo->second_species < 0) return 0;
-  for (int d = 0; d < 3; d++)
-    if (!(x[d] >= geo->second_lo[d] && x[d] < geo->second_hi[d])) return 0;
-  return 1;
-}
-
 /* The geometry builder (populate/image_walls.h): each rank builds the particles of the voxels that
  * overlap its subdomain and offers them. The centre-of-mass velocity removed is that of the whole
  * list summed in id order, as offer_source sums it: the walls (ids 1..n_wall) are frozen, the fluid
@@ -131,14 +123,13 @@ static int offer_geometry(sim_t *sim, const scene_t *s) {
   }
   for (int d = 0; d < 3; d++) vcm[d] = mass > 0 ? p[d] / mass : 0;
   const long n = image_walls_local(&g);
-  long stored = 0, second = 0; /* particles stored here; of them, built as geometry.second_fluid */
+  long stored = 0;
   int fail = 0;
   for (long i = 0; i < n && !fail; i++) {
     int64_t id;
     int sp;
     double x[3], v[3] = {0, 0, 0};
     image_walls_particle(&g, i, &id, &sp, x);
-    if (sp == fsp && in_second_fluid(&s->geometry, x)) sp = s->geometry.second_species;
     if (!s->species[sp].frozen) {
       init_mb_velocity(s, id, sp, kT, v);
       for (int d = 0; d < 3; d++) v[d] -= vcm[d];
@@ -146,7 +137,6 @@ static int offer_geometry(sim_t *sim, const scene_t *s) {
     const int r = sim_add_particle(sim, id, sp, x, v);
     if (r < 0) fail = 1;
     stored += r > 0;
-    second += r > 0 && sp == s->geometry.second_species;
   }
   const long total = image_walls_total(&g);
   image_walls_free(&g);
@@ -163,15 +153,6 @@ static int offer_geometry(sim_t *sim, const scene_t *s) {
               "rank or by two: a bug of the rank-local build)\n",
               s->file, total, stored);
     return -1;
-  }
-  if (s->geometry.second_species >= 0) {
-    MPI_Allreduce(MPI_IN_PLACE, &second, 1, MPI_LONG, MPI_SUM, comm);
-    const scene_geometry_t *geo = &s->geometry;
-    if (rank == 0)
-      printf(
-          "  second_fluid: %ld fluid particles in [%g, %g] x [%g, %g] x [%g, %g] rc built as %s\n",
-          second, geo->second_lo[0], geo->second_hi[0], geo->second_lo[1], geo->second_hi[1],
-          geo->second_lo[2], geo->second_hi[2], s->species[geo->second_species].name);
   }
   return 0;
 }

@@ -29,6 +29,10 @@ long *init_fill_kept_list(const scene_t *scene, int k);
 
 /* Maxwell-Boltzmann velocity of particle `id` of a species at temperature kT (0 for frozen
  * species). */
+/* Is x inside the region's cylinder or sphere (outside it, with f->outside; 1 without a shape)?
+ * The plain distance in the box frame, no periodic image (init_shape.c). */
+int init_shape_keeps(const scene_fill_t *f, const double x[3]);
+
 void init_mb_velocity(const scene_t *scene, int64_t id, int species, double kT, double v[3]);
 
 /* Offer every particle of a global set to sim; velocities are generated when the set has none.

@@ -3,13 +3,14 @@
  * the unshaped fill) that lie inside the shape, or outside it with `outside: true`. Two fills of
  * the same region, one inside and one outside, make a drop or a thread of one liquid in another.
  * The distance is the plain one in the box frame (no periodic image): keep the shape inside the
- * region. */
+ * region. The same test assigns a species to the geometry builder's fluid particles
+ * (geometry.fluid_species_regions, image_walls.c). */
 #include "populate/init_config.h"
 
 #include <stdlib.h>
 
-/* Is x inside the region's shape (or outside it, with f->outside)? */
-static int shape_keeps(const scene_fill_t *f, const double x[3]) {
+int init_shape_keeps(const scene_fill_t *f, const double x[3]) {
+  if (f->shape == FILL_SHAPE_NONE) return 1;
   double r2 = 0;
   for (int d = 0; d < 3; d++) {
     if (f->shape == FILL_SHAPE_CYLINDER && d == f->shape_axis) continue;
@@ -25,7 +26,7 @@ long init_fill_kept(const scene_t *s, int k, long *kept) {
   for (long i = 0; i < n; i++) {
     double x[3];
     init_fill_position(s, k, i, x);
-    if (!shape_keeps(&s->init.fill[k], x)) continue;
+    if (!init_shape_keeps(&s->init.fill[k], x)) continue;
     if (kept) kept[m] = i;
     m++;
   }

@@ -97,10 +97,11 @@ typedef struct {
   /* geometry.fluid_region: when on, fluid only inside [fluid_lo, fluid_hi] (rc, box frame) */
   int fluid_region;
   double fluid_lo[3], fluid_hi[3];
-  /* geometry.second_fluid: fluid particles built inside [second_lo, second_hi] (rc, box frame)
-   * are of second_species (-1: no second fluid) */
-  int second_species;
-  double second_lo[3], second_hi[3];
+  /* geometry.fluid_species_regions: a fluid particle the builder places inside region k (its
+   * box and its cylinder or sphere, the first region that holds it) takes the mobile species
+   * species_region[k].species instead of fluid_species (two liquids in one image) */
+  int n_species_regions;
+  scene_fill_t species_region[SCENE_MAX_FILLS];
 } scene_geometry_t;
 
 typedef struct {

@@ -78,33 +78,60 @@ static int parse_fluid_region(ytree_t *t, yaml_node_t *n, scene_t *s) {
   return 0;
 }
 
-/* geometry.second_fluid: {species, lo, hi}: the fluid particles built inside this box are of
- * `species` instead of the fluid's (a second liquid, e.g. oil in the chamber before a water-filled
- * throat). The species must be mobile, other than the fluid, and of the fluid's mass (the
- * Maxwell-Boltzmann velocities and the removed centre-of-mass velocity are the fluid's). Parsed
- * after geometry.species. */
-static int parse_second_fluid(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"species", "lo", "hi", NULL};
+/* geometry.fluid_species_regions: a list of {species, lo, hi, cylinder | sphere, outside}; the
+ * builder's fluid particles inside a region (the first that holds one) take its species. Each
+ * species is mobile and as heavy as geometry.species.fluid: the builder removes the centre-of-mass
+ * velocity summed over the fluid's ids with one mass (populate/init_config.c). lo and hi default
+ * to the box. */
+static int parse_species_regions(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  static const char *const keys[] = {"species", "lo", "hi", "cylinder", "sphere", "outside", NULL};
   scene_geometry_t *g = &s->geometry;
-  TRY(parse_region(t, n, s, "geometry.second_fluid", keys, g->second_lo, g->second_hi));
-  yaml_node_t *v = yt_get(t, n, "species");
-  if (!v)
-    return yt_error(t, n, "geometry.second_fluid.species",
-                    "expected the species of the fluid built inside the region (got nothing)");
-  char name[SCENE_NAME_LEN];
-  TRY(yt_string(t, v, "geometry.second_fluid.species", name, sizeof name));
-  const int sp = scene_species_index(s, name);
-  if (sp < 0)
-    return yt_error(t, v, "geometry.second_fluid.species",
-                    "expected one of the species listed under 'species' (got '%s')", name);
-  const int f = g->fluid_species;
-  if (sp == f || s->species[sp].frozen || s->species[sp].mass != s->species[f].mass)
-    return yt_error(t, v, "geometry.second_fluid.species",
-                    "expected a species that is not frozen, not the fluid '%s' and of its mass %g "
-                    "(got '%s'%s, mass %g)",
-                    s->species[f].name, s->species[f].mass, name,
-                    s->species[sp].frozen ? ", frozen" : "", s->species[sp].mass);
-  g->second_species = sp;
+  TRY(yt_expect_seq(t, n, "geometry.fluid_species_regions"));
+  const int count = yt_seq_size(n);
+  if (count < 1 || count > SCENE_MAX_FILLS)
+    return yt_error(t, n, "geometry.fluid_species_regions",
+                    "expected a list of 1 to %d regions (got %d)", SCENE_MAX_FILLS, count);
+  for (int i = 0; i < count; i++) {
+    char path[64], sub[96], name[SCENE_NAME_LEN];
+    snprintf(path, sizeof path, "geometry.fluid_species_regions[%d]", i);
+    yaml_node_t *item = yt_seq_item(t, n, i), *v;
+    TRY(yt_expect_map(t, item, path));
+    TRY(yt_check_keys(t, item, path, keys));
+    scene_fill_t *f = &g->species_region[i];
+    memset(f, 0, sizeof *f);
+    memcpy(f->lo, s->box_lo, sizeof f->lo);
+    memcpy(f->hi, s->box_hi, sizeof f->hi);
+    snprintf(sub, sizeof sub, "%s.species", path);
+    if (!(v = yt_get(t, item, "species")))
+      return yt_error(t, item, sub, "expected a species name (got nothing)");
+    TRY(yt_string(t, v, sub, name, sizeof name));
+    if ((f->species = scene_species_index(s, name)) < 0)
+      return yt_error(t, v, sub, "expected one of the species listed under 'species' (got '%s')",
+                      name);
+    const scene_species_t *sp = &s->species[f->species], *fl = &s->species[g->fluid_species];
+    if (sp->frozen)
+      return yt_error(t, v, sub, "expected a species that is not frozen (got '%s', frozen)", name);
+    if (sp->mass != fl->mass)
+      return yt_error(t, v, sub,
+                      "expected a species as heavy as the fluid '%s' (mass %g) (got '%s', mass %g)",
+                      fl->name, fl->mass, name, sp->mass);
+    for (int c = 0; c < 2; c++) {
+      const char *k = c ? "hi" : "lo";
+      double *x = c ? f->hi : f->lo;
+      if (!(v = yt_get(t, item, k))) continue;
+      snprintf(sub, sizeof sub, "%s.%s", path, k);
+      TRY(yt_vec3(t, v, sub, x));
+    }
+    for (int d = 0; d < 3; d++)
+      if (!(f->hi[d] > f->lo[d])) {
+        snprintf(sub, sizeof sub, "%s.hi", path);
+        return yt_error(t, item, sub,
+                        "expected hi > lo on every axis (got hi %c = %g <= lo %c = %g)", "xyz"[d],
+                        f -> hi[d], "xyz"[d], f -> lo[d]);
+      }
+    TRY(scene_parse_fill_shape(t, item, path, s, f));
+  }
+  g->n_species_regions = count;
   return 0;
 }
 
@@ -124,7 +151,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
                                      "patches",
                                      "strict",
                                      "fluid_region",
-                                     "second_fluid",
+                                     "fluid_species_regions",
                                      NULL};
   TRY(yt_check_keys(t, n, "geometry", keys));
   scene_geometry_t *g = &s->geometry;
@@ -140,7 +167,6 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   g->min_wall_distance = 0.25;
   g->organic_species = g->inorganic_species = -1;
   g->fluid_species = -1;
-  g->second_species = -1;
   g->patch_seed = 1;
   yaml_node_t *v;
   char text[SCENE_PATH_LEN];
@@ -221,7 +247,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   }
   if ((v = yt_get(t, n, "strict"))) TRY(yt_bool(t, v, "geometry.strict", &g->strict));
   if ((v = yt_get(t, n, "fluid_region"))) TRY(parse_fluid_region(t, v, s));
-  if ((v = yt_get(t, n, "second_fluid"))) TRY(parse_second_fluid(t, v, s));
+  if ((v = yt_get(t, n, "fluid_species_regions"))) TRY(parse_species_regions(t, v, s));
   if ((v = yt_get(t, n, "patches"))) {
     static const char *const pk[] = {"file", "seed", NULL};
     TRY(yt_check_keys(t, v, "geometry.patches", pk));

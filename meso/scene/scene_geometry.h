@@ -14,6 +14,12 @@
  * "FILE:LINE:COL: key 'geometry.K': expected ...". */
 int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s);
 
+/* The cylinder / sphere / outside keys of a region item at `path` (initial.fill[i] or
+ * geometry.fluid_species_regions[i]) into f; defined in scene_parse.c. 0, or -1 after an error
+ * naming the key. */
+int scene_parse_fill_shape(ytree_t *t, yaml_node_t *item, const char *path, const scene_t *s,
+                           scene_fill_t *f);
+
 /* The geometry's image as the box sees it: read with the scene's label map, axes permuted by
  * geometry.axis_map, and checked against the box (box length = voxels x rc_per_voxel on every
  * axis). 0, or -1 with a message naming the scene file, the key and what was expected in err. */

@@ -361,9 +361,10 @@ static int check_effects(ytree_t *t, const scene_catalog_t *cat, scene_t *s) {
   return 0;
 }
 
-/* initial.fill[i].cylinder / .sphere / .outside: the shape cut out of a fill region. */
-static int parse_fill_shape(ytree_t *t, yaml_node_t *item, const char *path, const scene_t *s,
-                            scene_fill_t *f) {
+/* initial.fill[i].cylinder / .sphere / .outside: the shape cut out of a fill region (also read
+ * for geometry.fluid_species_regions[i], scene_geometry.h). */
+int scene_parse_fill_shape(ytree_t *t, yaml_node_t *item, const char *path, const scene_t *s,
+                           scene_fill_t *f) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
   yaml_node_t *cyl = yt_get(t, item, "cylinder"), *sph = yt_get(t, item, "sphere"), *v, *w;
   char sub[128], key[160];
@@ -464,7 +465,7 @@ static int parse_fill(ytree_t *t, yaml_node_t *n, scene_t *s) {
                         "expected hi > lo on every axis (got hi[%d] = %g <= lo[%d] = %g)", d,
                         f->hi[d], d, f->lo[d]);
       }
-    TRY(parse_fill_shape(t, item, path, s, f));
+    TRY(scene_parse_fill_shape(t, item, path, s, f));
   }
   s->init.n_fill = count;
   return 0;

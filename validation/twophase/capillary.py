@@ -29,7 +29,7 @@ inertial regime lasts about that long).
 Entry (--parts entry): a chamber x in [0, Lc) over the whole y and a throat x in [Lc, Lx) of width H
 (solid y in [0, ws) there). Water (water-wall A = -35) fills the throat and the chamber's downstream
 part, oil (oil-wall A = -20, water-oil A = -20) the chamber's upstream part x in [Lc - Lo, Lc)
-(geometry.second_fluid). The same body force f along x on both liquids: at rest the pressure rises by
+(geometry.fluid_species_regions). The same body force f along x on both liquids: at rest the pressure rises by
 n f per unit length along the loop, and the only jump is the meniscus at the throat's mouth, so
 dp = f * int n dx over one period (the chamber's profile, the throat at its liquid density).
 Young-Laplace entry pressure of a slit dp_c = 2 gamma_wo cos(theta_wo) / H with gamma_wo cos(theta_wo)
@@ -91,8 +91,8 @@ def scene(name, box, image, patches, species, pairs, steps, seed, fluid_region=N
     if fluid_region:
         geo["fluid_region"] = {"lo": [float(v) for v in fluid_region[0]], "hi": [float(v) for v in fluid_region[1]]}
     if second:
-        geo["second_fluid"] = {"species": second[0], "lo": [float(v) for v in second[1]],
-                               "hi": [float(v) for v in second[2]]}
+        geo["fluid_species_regions"] = [{"species": second[0], "lo": [float(v) for v in second[1]],
+                                          "hi": [float(v) for v in second[2]]}]
     eff = {"mdpd_attraction": {}, "mdpd_repulsion": {}, "dpd_thermostat": {}, "bounce_back": {}}
     if force:
         eff["body_force"] = {sp: [float(force), 0.0, 0.0] for sp in species}
