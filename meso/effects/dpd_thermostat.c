@@ -2,7 +2,9 @@
  *   -gamma w_R^2 (e . v_ij) e + sigma w_R xi_ij / sqrt(dt) e,  w_R = (1 - r/rc)^s,
  *   sigma^2 = 2 gamma kT.
  * xi_ij = xi_ji comes from the counter-based generator of meso/physics/pair_random.h. v_ij uses the
- * Groot-Warren predicted velocities, so ghosts must carry velocities. Options: exponent s (1);
+ * Groot-Warren predicted velocities, so ghosts must carry velocities. Options: exponent s (1), the
+ * s of every pair that does not set its own pairs.X.s (a pair's s < 1 raises its viscosity: Fan et
+ * al., Phys. Fluids 18, 063102, 2006; docs/twophase.md section 4);
  * rng, the generator of xi: philox (Philox4x32-10, the default), philox2x32 (Philox2x32-10) or fast
  * (Philox2x32-7 with a hashed key; pair_random.h says why it is sound). */
 #include "effects/dpd_thermostat.h"
@@ -52,6 +54,12 @@ static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   return 0;
 }
 
+/* The exponent s of w_R for pair (a, b): its own pairs.X.s, else the effect's exponent. */
+static double pair_exponent(const scene_t *s, int a, int b) {
+  const double own = s->pair[a][b].s, e = options_of(s)->exponent;
+  return own > 0 ? own : e > 0 ? e : 1.0;
+}
+
 static int check(const scene_t *s, scene_report_t *r) {
   const int rng = options_of(s)->rng;
   if (rng < 0 || rng >= PAIR_RNG_COUNT) /* scenes built in code */
@@ -66,6 +74,16 @@ static int check(const scene_t *s, scene_report_t *r) {
         snprintf(key, sizeof key, "pairs.%s-%s.gamma", s->species[a].name, s->species[b].name);
         return r->error(r, key, "expected gamma >= 0 (got %g)", s->pair[a][b].gamma);
       }
+  for (int a = 0; a < s->n_species; a++) /* scenes built in code; the parser checks the file's */
+    for (int b = a; b < s->n_species; b++)
+      if (!(s->pair[a][b].s >= 0 && s->pair[a][b].s <= SCENE_PAIR_S_MAX)) {
+        char key[160];
+        snprintf(key, sizeof key, "pairs.%s-%s.s", s->species[a].name, s->species[b].name);
+        return r->error(r, key,
+                        "expected an exponent 0 < s <= %g of w_R = (1 - r/rc)^s, or 0 for the "
+                        "thermostat's exponent (got %g)",
+                        SCENE_PAIR_S_MAX, s->pair[a][b].s);
+      }
   return 0;
 }
 
@@ -76,6 +94,8 @@ static double cutoff(const scene_t *s, int a, int b) {
 static void pair_coef(const scene_t *s, int a, int b, pair_coef_t *c) {
   c->gamma = s->pair[a][b].gamma;
   c->sigma = sqrt(2.0 * c->gamma * s->kT); /* fluctuation-dissipation */
+  c->s_exp = pair_exponent(s, a, b);
+  c->s_one = c->s_exp == 1.0; /* the standard weight: no pow, bitwise as without the key */
 }
 
 static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
@@ -87,11 +107,22 @@ static int configure(const scene_t *s, plan_t *plan, char *err, size_t errlen) {
 }
 
 static void describe(const scene_t *s, FILE *out) {
-  const double e = options_of(s)->exponent;
+  int common = 1;
+  for (int a = 0; a < s->n_species; a++)
+    for (int b = a; b < s->n_species; b++)
+      common &= pair_exponent(s, a, b) == pair_exponent(s, 0, 0);
   fprintf(out,
-          "dpd_thermostat: -gamma w_R^2 (e.v~) e + sigma w_R xi/sqrt(dt) e, w_R = (1 - r/rc)^%g; "
-          "gamma = ",
-          e > 0 ? e : 1.0);
+          "dpd_thermostat: -gamma w_R^2 (e.v~) e + sigma w_R xi/sqrt(dt) e, w_R = (1 - r/rc)^");
+  if (common) {
+    fprintf(out, "%g", s->n_species > 0 ? pair_exponent(s, 0, 0) : 1.0);
+  } else { /* per pair, as the other pair parameters are printed */
+    fprintf(out, "s, s = ");
+    for (int a = 0; a < s->n_species; a++)
+      for (int b = a; b < s->n_species; b++)
+        fprintf(out, "%s%s-%s %g", a || b ? ", " : "", s->species[a].name, s->species[b].name,
+                pair_exponent(s, a, b));
+  }
+  fprintf(out, "; gamma = ");
   effect_print_pair_param(s, out, offsetof(scene_pair_t, gamma));
   const int rng = options_of(s)->rng;
   fprintf(out, "; kT = %g; xi from %s (rng %s; seed %llu, step, ids)", s->kT,

@@ -225,6 +225,8 @@ static int build(plan_t *plan, const scene_t *s, char *err, size_t errlen) {
       c->rd2 = plan->density ? sp->rd * sp->rd : 0.0;
       c->wnorm = sp->rd > 0 ? w_rho_norm(s->density_kernel, sp->rd) : 0.0;
       c->cut2 = c->rc2 > c->rd2 ? c->rc2 : c->rd2;
+      c->s_exp = 1.0; /* the thermostat's pair_coef sets the pair's exponent */
+      c->s_one = 1;
       for (int e = 0; e < EFFECT_COUNT; e++) {
         const effect_t *eff = effect_get(e);
         if (plan->named[e] && eff->pair_coef) eff->pair_coef(s, a, b, c);

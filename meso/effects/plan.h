@@ -31,6 +31,8 @@ typedef struct {
   double wnorm;     /* density-kernel normalisation for this rd (w_rho_norm) */
   double cut2;      /* square of the largest cutoff any named pair term uses for this pair */
   double wall_phi2; /* wall_boundary: r_phi^2 for a mobile-frozen pair (its wall field), else 0 */
+  double s_exp;     /* exponent s of the thermostat weight w_R = (1 - r/rc)^s of this pair */
+  int s_one;        /* s_exp == 1: w_R = 1 - r/rc without pow (the standard weight)      */
 } pair_coef_t;
 
 /* The phases of a step, in the order they run (a plan lists those its effects need). */
@@ -68,7 +70,8 @@ typedef struct {
   int wall_field;      /* the wall-field pass (wall_boundary) */
   double rcut;         /* ghost-layer width = largest cutoff of the named effects */
   double max_disp;     /* largest safe displacement per step (0.5 rcut) */
-  double weight_exp;   /* s of w_R = (1 - r/rc)^s (dpd_thermostat's exponent; 1 otherwise) */
+  double weight_exp;   /* dpd_thermostat's exponent: the s of w_R = (1 - r/rc)^s of every pair
+                          that does not set its own (pair_coef_t.s_exp is what the loops use) */
   int weight_exp_is_one;
   /* The time step and the constants derived from it, computed once. */
   double dt, half_dt; /* dt / 2: the half kicks */

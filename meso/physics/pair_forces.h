@@ -21,10 +21,12 @@ MESO_HD meso_real pair_manybody(meso_real B, meso_real rho_i, meso_real rho_j, m
 }
 
 /* Thermostat weight w_R = (1 - r/rc)^s; w_D = w_R^2 (fluctuation-dissipation, Espanol & Warren
- * 1995). */
+ * 1995). s < 1 widens the weight and raises the viscosity (Fan et al., Phys. Fluids 18, 063102,
+ * 2006). For s != 1, q = 1 - r/rc may round to just below 0 at r ~ rc (pow would give NaN): 0 then. */
 MESO_HD meso_real pair_weight_random(meso_real r, meso_real rc, meso_real s) {
   const meso_real q = MESO_R(1.0) - r / rc;
-  return s == MESO_R(1.0) ? q : (meso_real)pow(q, s);
+  if (s == MESO_R(1.0)) return q;
+  return q > MESO_R(0.0) ? (meso_real)pow(q, s) : MESO_R(0.0);
 }
 
 /* Dissipative + random term: -gamma w_R^2 (e . v_ij) + sigma w_R xi / sqrt(dt), sigma^2 = 2 gamma
@@ -44,10 +46,12 @@ MESO_HD meso_real pair_manybody_inv(meso_real B, meso_real rho_sum, meso_real r,
   return B * rho_sum * (MESO_R(1.0) - r * inv_rd);
 }
 
-/* w_R = (1 - r/rc)^s; s_is_one skips pow for the standard s = 1. */
+/* w_R = (1 - r/rc)^s of the pair (pair_coef_t.s_exp); s_is_one skips pow for the standard s = 1
+ * (bitwise the s = 1 weight); q rounded below 0 gives 0 as above. */
 MESO_HD meso_real pair_weight_random_inv(meso_real r, meso_real inv_rc, meso_real s, int s_is_one) {
   const meso_real q = MESO_R(1.0) - r * inv_rc;
-  return s_is_one ? q : (meso_real)pow(q, s);
+  if (s_is_one) return q;
+  return q > MESO_R(0.0) ? (meso_real)pow(q, s) : MESO_R(0.0);
 }
 
 #endif

@@ -38,6 +38,9 @@ typedef struct {
   int moving, move_axis;
 } scene_species_t;
 
+/* Largest exponent s of a pair's thermostat weight (pairs.X.s, 0 < s <= this). */
+#define SCENE_PAIR_S_MAX 2.0
+
 /* Pair parameters of one species pair (symmetric: pair[a][b] == pair[b][a]). */
 typedef struct {
   double A;     /* mDPD attraction amplitude (mdpd_attraction) or DPD a (dpd_conservative) */
@@ -45,6 +48,8 @@ typedef struct {
   double gamma; /* dissipation (dpd_thermostat)                                             */
   double rc;    /* cutoff of the attraction / conservative force and of the thermostat    */
   double rd;    /* cutoff of the many-body repulsion and of the density kernel (rd <= rc) */
+  double s;     /* exponent of the thermostat weight w_R = (1 - r/rc)^s of this pair (pairs.X.s);
+                   0 = not set: dpd_thermostat's exponent (1 unless effects.dpd_thermostat.exponent) */
 } scene_pair_t;
 
 enum scene_fill_mode { FILL_LATTICE = 0, FILL_RANDOM = 1 };

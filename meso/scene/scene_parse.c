@@ -31,8 +31,8 @@
 static const char *const axis_words[] = {"x", "y", "z", NULL};
 
 /* Parameters given for one pair, with which ones were set (defaults and overrides are merged). */
-enum { P_A, P_B, P_GAMMA, P_RC, P_RD, P_COUNT };
-static const char *const pair_keys[] = {"A", "B", "gamma", "rc", "rd", NULL};
+enum { P_A, P_B, P_GAMMA, P_RC, P_RD, P_S, P_COUNT };
+static const char *const pair_keys[] = {"A", "B", "gamma", "rc", "rd", "s", NULL};
 typedef struct {
   double v[P_COUNT];
   int set[P_COUNT];
@@ -260,8 +260,8 @@ static int parse_effects(ytree_t *t, yaml_node_t *n, const scene_catalog_t *cat,
 static int finish_pairs(ytree_t *t, yaml_node_t *pairs_node, const scene_catalog_t *cat, scene_t *s,
                         pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES]) {
   /* The parameters the named effects need, and which effects need each (for the message). */
-  static const unsigned param_bit[P_COUNT] = {SCENE_PAIR_A, SCENE_PAIR_B, SCENE_PAIR_GAMMA, 0,
-                                              SCENE_PAIR_RD};
+  static const unsigned param_bit[P_COUNT] = {
+      SCENE_PAIR_A, SCENE_PAIR_B, SCENE_PAIR_GAMMA, 0, SCENE_PAIR_RD, 0};
   int need[P_COUNT] = {0};
   char why[P_COUNT][256] = {{0}};
   for (int e = 0; e < cat->count; e++)
@@ -293,7 +293,17 @@ static int finish_pairs(ytree_t *t, yaml_node_t *pairs_node, const scene_catalog
         join(sub, sizeof sub, path, "rc");
         return yt_error(t, p->where[P_RC], sub, "expected rc > 0 (got %g)", p->v[P_RC]);
       }
-      scene_pair_t q = {p->v[P_A], p->v[P_B], p->v[P_GAMMA], p->v[P_RC], p->v[P_RD]};
+      /* s: the thermostat weight's exponent; 0 (not set) = the thermostat's own exponent */
+      if (p->set[P_S] && !(p->v[P_S] > 0 && p->v[P_S] <= SCENE_PAIR_S_MAX)) {
+        char sub[192];
+        join(sub, sizeof sub, path, "s");
+        return yt_error(t, p->where[P_S], sub,
+                        "expected an exponent 0 < s <= %g of the thermostat weight w_R = (1 - "
+                        "r/rc)^s (got %g)",
+                        SCENE_PAIR_S_MAX, p->v[P_S]);
+      }
+      scene_pair_t q = {p->v[P_A],  p->v[P_B],  p->v[P_GAMMA],
+                        p->v[P_RC], p->v[P_RD], p->set[P_S] ? p->v[P_S] : 0.0};
       s->pair[a][b] = s->pair[b][a] = q;
     }
   return 0;

@@ -2,6 +2,7 @@
 #include "scene/scene.h"
 
 #include <libgen.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -39,7 +40,11 @@ uint64_t scene_physics_hash(const scene_t *s) {
     h = fnv(h, &s->species[a].mass, sizeof(double));
     h = fnv(h, &s->species[a].frozen, sizeof(int));
     if (s->species[a].moving) h = fnv(h, s->species[a].velocity, sizeof s->species[a].velocity);
-    for (int b = 0; b < s->n_species; b++) h = fnv(h, &s->pair[a][b], sizeof(scene_pair_t));
+    for (int b = 0; b < s->n_species; b++) {
+      /* s only when set, so scenes without it keep the hash (and checkpoints) they had */
+      h = fnv(h, &s->pair[a][b], offsetof(scene_pair_t, s));
+      if (s->pair[a][b].s != 0) h = fnv(h, &s->pair[a][b].s, sizeof(double));
+    }
   }
   h = fnv(h, &s->density_kernel, sizeof s->density_kernel);
   h = fnv(h, &s->kT, sizeof s->kT);

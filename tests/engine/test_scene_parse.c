@@ -75,6 +75,9 @@ int main(int argc, char **argv) {
   char err[512];
   CHECK(plan_build(&plan, &s, err, sizeof err) == 0);
   CHECK(plan.weight_exp == 0.5 && !plan.weight_exp_is_one);
+  /* no pair sets s: every pair takes the thermostat's exponent */
+  CHECK(s.pair[0][0].s == 0 && s.pair[0][1].s == 0);
+  CHECK(plan.coef[0][0].s_exp == 0.5 && !plan.coef[0][0].s_one && plan.coef[1][0].s_exp == 0.5);
   CHECK(plan.pair_rng == PAIR_RNG_FAST); /* dpd_thermostat's rng */
   CHECK(fabs(plan.rcut - 1.0) < 1e-15);
   CHECK(plan.particle.on[EFFECT_BODY_FORCE] && plan.particle.body_force.centre == 5.0);
@@ -102,6 +105,25 @@ int main(int argc, char **argv) {
   int zeros = 1;
   for (size_t k = sizeof e; k < SCENE_EFFECT_OPTION_BYTES; k++) zeros &= bytes[k] == 0;
   CHECK(e == 0.5 && zeros);
+  /* A pair's own s (pairs.X.s) overrides the thermostat's exponent for that pair only, both ways;
+   * s = 1 is the standard weight (no pow) */
+  f = fopen(path, "w");
+  const char *pairs_at = strstr(text, "pairs:"), *kernel_at = strstr(text, "density_kernel:");
+  fwrite(text, 1, (size_t)(pairs_at - text), f);
+  fputs("pairs:\n  default: {A: -40, B: 25, gamma: 4.5, rc: 1.0, rd: 0.75, s: 1}\n"
+        "  wall-liquid: {A: -30, gamma: 13.5, s: 0.25}\n",
+        f);
+  fputs(kernel_at, f);
+  fclose(f);
+  CHECK(scene_load(path, &s) == 0);
+  CHECK(s.pair[0][1].s == 0.25 && s.pair[1][0].s == 0.25 && s.pair[0][0].s == 1);
+  CHECK(plan_build(&plan, &s, err, sizeof err) == 0);
+  CHECK(plan.coef[0][1].s_exp == 0.25 && !plan.coef[0][1].s_one && plan.coef[1][0].s_exp == 0.25);
+  CHECK(plan.coef[0][0].s_exp == 1.0 && plan.coef[0][0].s_one && plan.coef[1][1].s_one);
+  t = s; /* s is physics: hashed when set */
+  t.pair[0][1].s = t.pair[1][0].s = 0.5;
+  CHECK(scene_physics_hash(&t) != scene_physics_hash(&s));
+  plan_release(&plan);
   remove(path);
   /* The cost cuts' frozen weight: the backend's default when the scene names none (CPU 0.4, GPU
    * 1.0: bench/RESULTS.md), the scene's when it does, on either backend. */

@@ -3,7 +3,8 @@
 flow in a slit against the exact relative permeabilities (docs/twophase.md).
 
 Liquids: water (w) and oil (o), A_ww = A_oo = -40, A_wo = -20, B = 25, rd = 0.75 for every pair
-(Warren 2013: B and rd common), gamma = 4.5 (water; oil --gamma-oil in the viscosity-ratio runs),
+(Warren 2013: B and rd common), gamma = 4.5 (water; oil --gamma-oil and --s-oil, the exponent of its
+thermostat weight pairs.oil-oil.s, in the viscosity-ratio runs; validation/twophase/viscosity_ratio.py),
 kT = 1, dt = 0.01, total number density --rho (6.05) everywhere, periodic boxes, 1 rank.
 
 Parts (--parts, default all):
@@ -233,25 +234,38 @@ def cylinder(args, out, R):
 
 
 # ---------------------------------------------------------------- viscosities (reverse Poiseuille)
-def viscosity(args, out, name, gamma):
-    Lx, Ly, Lz, g = 8.0, 16.0, 6.0, 0.05
+def viscosity(args, out, name, gamma, s_exp=1.0, seed=1):
+    """Reverse Poiseuille of one liquid (thermostat gamma, weight exponent s = pairs.X.s). T_flow is
+    the run's mean kinetic temperature after the equilibration (it counts the flow); T is T_flow less
+    the streaming part <n u^2> / (3 <n>) from the profile: the thermal temperature to compare with kT.
+    Box args.visc_box when given (8 x 16 x 6)."""
+    Lx, Ly, Lz = getattr(args, "visc_box", None) or (8.0, 16.0, 6.0)
+    g = 0.05
+    pair = dict(PAIRS, gamma=float(gamma))
+    if s_exp != 1.0:
+        pair["s"] = float(s_exp)
     s = scene(f"twophase_visc_{name}", (Lx, Ly, Lz), [fill(name, args.rho)], steps=args.visc_steps,
               start=args.visc_equil, profile={"axis": "y", "bins": 32},
               effects={"body_force": {name: [g, 0.0, 0.0], "reverse_along": "y"}},
-              species=[{"name": name}], pairs={"default": dict(PAIRS, gamma=float(gamma))})
+              species=[{"name": name}], pairs={"default": pair}, seed=seed)
     del s["pairs"]["water-oil"]
-    wd = os.path.join(out, f"visc_{name}_g{gamma:g}")
+    wd = os.path.join(out, f"visc_{name}_g{gamma:g}" + (f"_s{s_exp:g}" if s_exp != 1.0 else ""))
     wall = run(s, wd)
     prof = mdval.read_table(os.path.join(wd, "profile.csv"))
     y, u, du = prof["y"], prof["vx"], prof["vx_err"]
     n = float(np.mean(prof["density"]))
     mu, mu_err, chi2, _ = fit_viscosity(y, u, du, n, g, Ly)
-    return dict(liquid=name, gamma=gamma, n=n, mu=float(mu), mu_err=float(mu_err),
-                chi2=chi2, steps=args.visc_steps, wall_s=wall)
+    T_flow = json.load(open(os.path.join(wd, "summary.json")))["thermo"]["T"]  # block-averaged, same window
+    T_stream = float(np.sum(prof["density"] * u ** 2) / (3 * np.sum(prof["density"])))
+    return dict(liquid=name, gamma=gamma, s=s_exp, box=[Lx, Ly, Lz], n=n, mu=float(mu), mu_err=float(mu_err),
+                chi2=chi2, T_flow=T_flow["mean"], T=T_flow["mean"] - T_stream, T_err=T_flow["err"],
+                steps=args.visc_steps, wall_s=wall)
 
 
 # ---------------------------------------------------------------- layered co-flow in a slit
-def slit(args, out, tag, sw, gamma_oil):
+def slit(args, out, tag, sw, gamma_oil, s_oil=1.0):
+    """One slit run; the oil's like pair and the oil-wall pair take gamma_oil and s_oil, the water-oil
+    pair the mean of the two liquids' gamma and s (a free choice)."""
     h, wt, Lx, Lz = args.h, 2.0, args.slit_x, args.slit_z
     Ly = h + 2 * wt
     y0, y1 = wt, wt + h
@@ -267,6 +281,9 @@ def slit(args, out, tag, sw, gamma_oil):
     eff = {"box_walls": {}, "body_force": {"water": [g, 0.0, 0.0], "oil": [g, 0.0, 0.0]}}
     pairs = {"water-wall": {"A": -40.0}, "oil-wall": {"A": -20.0, "gamma": float(gamma_oil)},
              "oil-oil": {"gamma": float(gamma_oil)}, "water-oil": {"A": A_WO, "gamma": 0.5 * (4.5 + gamma_oil)}}
+    if s_oil != 1.0:
+        pairs["oil-wall"]["s"] = pairs["oil-oil"]["s"] = float(s_oil)
+        pairs["water-oil"]["s"] = 0.5 * (1.0 + s_oil)
     s = scene(f"twophase_slit_{tag}", (Lx, Ly, Lz), fills, steps=args.slit_steps, start=args.slit_equil,
               profile={"axis": "y", "bins": int(round(Ly / 0.25))}, effects=eff, pairs=pairs,
               species=[{"name": "water"}, {"name": "oil"}, {"name": "wall", "frozen": True}],
@@ -277,7 +294,7 @@ def slit(args, out, tag, sw, gamma_oil):
     y = prof["y"]
     dy = y[1] - y[0]
     u, du = prof["vx"], prof["vx_err"]
-    res = {"Sw_nominal": sw, "gamma_oil": gamma_oil, "wall_s": wall, "y": y.tolist(), "u": u.tolist()}
+    res = {"Sw_nominal": sw, "gamma_oil": gamma_oil, "s_oil": s_oil, "wall_s": wall, "y": y.tolist(), "u": u.tolist()}
     nw = prof["density_water"]
     no = prof["density_oil"]
     Nw, No = float(np.sum(nw)), float(np.sum(no))
@@ -288,6 +305,55 @@ def slit(args, out, tag, sw, gamma_oil):
         res[f"Q_{sp}_err"] = combine(dy * np.sqrt((n * du) ** 2 + (u * dn) ** 2))
     res["n_w"], res["n_o"] = nw.tolist(), no.tolist()
     return res
+
+
+def coflow_analysis(runs, h, quick, visc_w, visc_o, fails):
+    """kr of each layered run against the exact formulas at the hydraulic Sw (adds the fields to each
+    run, appends failed checks to fails). runs["single"] is the water-only reference; a tag starting
+    with "M1" has M = 1, any other M = visc_o["mu"] / visc_w["mu"]. Returns the hydraulic zeros."""
+    Q1, Q1e = runs["single"]["Q_w"], runs["single"]["Q_w_err"]
+    # The slit the flow sees: the zeros of a parabola fitted to the water-only profile over the pore
+    # (bins more than 0.5 rc inside the wall faces). Water inside the walls and in the stagnant
+    # layer next to them does not flow; Sw_hyd counts the liquids between the zeros only.
+    sy, su = np.array(runs["single"]["y"]), np.array(runs["single"]["u"])
+    wt = 2.0
+    core = (sy > wt + 0.5) & (sy < wt + h - 0.5)
+    k2, k1, k0 = np.polyfit(sy[core], su[core], 2)
+    disc = math.sqrt(max(k1 * k1 - 4 * k2 * k0, 0.0))
+    z0, z1 = sorted([(-k1 - disc) / (2 * k2), (-k1 + disc) / (2 * k2)])
+    for rr in runs.values():
+        y = np.array(rr["y"])
+        nw, no = np.array(rr["n_w"]), np.array(rr["n_o"])
+        pore = (y > wt) & (y < wt + h)
+        hyd = (y > z0) & (y < z1)
+        rr["Sw_pore"] = float(nw[pore].sum() / (nw[pore].sum() + no[pore].sum()))
+        rr["Sw_hyd"] = float(nw[hyd].sum() / (nw[hyd].sum() + no[hyd].sum()))
+    for tag, rr in runs.items():
+        if tag == "single":
+            continue
+        if tag.startswith("M1"):
+            M, Me = 1.0, 0.0
+        else:
+            M = visc_o["mu"] / visc_w["mu"]
+            Me = M * math.hypot(visc_o["mu_err"] / visc_o["mu"], visc_w["mu_err"] / visc_w["mu"])
+        sw = rr["Sw"]
+        ew, en = kr_exact(sw, M)
+        krw = rr["Q_w"] / Q1
+        krw_e = krw * math.hypot(rr["Q_w_err"] / rr["Q_w"], Q1e / Q1)
+        krn = M * rr["Q_o"] / Q1
+        krn_e = krn * math.sqrt((rr["Q_o_err"] / rr["Q_o"]) ** 2 + (Q1e / Q1) ** 2 + (Me / M if M else 0) ** 2)
+        hw, hn = kr_exact(rr["Sw_hyd"], M)
+        _, hn_hi = kr_exact(rr["Sw_hyd"], M + Me)
+        rr.update(M=M, M_err=Me, krw=krw, krw_err=krw_e, krn=krn, krn_err=krn_e, krw_exact=ew, krn_exact=en,
+                  krw_exact_hyd=hw, krn_exact_hyd=hn)
+        tol = 0.15 if quick else 0.1
+        # checked at the hydraulic saturation (the exact solution's Sw is that of the flowing slit)
+        good = abs(krw - hw) <= tol + 2 * krw_e and abs(krn - hn) <= tol + 2 * krn_e + abs(hn_hi - hn)
+        rr["pass"] = bool(good)
+        if not good:
+            fails.append(f"coflow {tag}: krw {krw:.3f} (exact {hw:.3f} at Sw_hyd {rr['Sw_hyd']:.3f}), krn "
+                         f"{krn:.3f} (exact {hn:.3f})")
+    return {"zeros": [z0, z1], "h_hyd": z1 - z0}
 
 
 def kr_exact(sw, M):
@@ -304,6 +370,8 @@ def main():
     ap.add_argument("--lz", type=float, default=4.0)
     ap.add_argument("--sw", type=float, nargs="+")
     ap.add_argument("--gamma-oil", type=float, default=13.5)
+    ap.add_argument("--s-oil", type=float, default=1.0,
+                    help="exponent s of the oil's thermostat weight w_R = (1 - r/rc)^s (pairs.oil-oil.s; 1)")
     ap.add_argument("--h", type=float)
     ap.add_argument("--g", type=float)
     ap.add_argument("--out", default=None)
@@ -342,63 +410,18 @@ def main():
     if "visc" in args.parts:
         res["visc"] = [viscosity(args, out, "water", 4.5)]
         if not q:
-            res["visc"].append(viscosity(args, out, "oil", args.gamma_oil))
+            res["visc"].append(viscosity(args, out, "oil", args.gamma_oil, args.s_oil))
         mdval.write_json(jpath, res)
     if "coflow" in args.parts:
-        mu_w = res.get("visc", [{}])[0].get("mu")
         runs = {"single": slit(args, out, "single", 1.0, 4.5)}
         for sw in args.sw:
             runs[f"M1_sw{sw:g}"] = slit(args, out, f"M1_sw{sw:g}", sw, 4.5)
         visc_o = [v for v in res.get("visc", []) if v["liquid"] == "oil"]
         if visc_o and not q:
             for sw in args.sw:
-                runs[f"M_sw{sw:g}"] = slit(args, out, f"M_sw{sw:g}", sw, args.gamma_oil)
+                runs[f"M_sw{sw:g}"] = slit(args, out, f"M_sw{sw:g}", sw, args.gamma_oil, args.s_oil)
         Q1, Q1e = runs["single"]["Q_w"], runs["single"]["Q_w_err"]
-        # The slit the flow sees: the zeros of a parabola fitted to the water-only profile over the pore
-        # (bins more than 0.5 rc inside the wall faces). Water inside the walls and in the stagnant
-        # layer next to them does not flow; Sw_hyd counts the liquids between the zeros only.
-        sy, su = np.array(runs["single"]["y"]), np.array(runs["single"]["u"])
-        wt = 2.0
-        core = (sy > wt + 0.5) & (sy < wt + args.h - 0.5)
-        k2, k1, k0 = np.polyfit(sy[core], su[core], 2)
-        disc = math.sqrt(max(k1 * k1 - 4 * k2 * k0, 0.0))
-        z0, z1 = sorted([(-k1 - disc) / (2 * k2), (-k1 + disc) / (2 * k2)])
-        res_h = {"zeros": [z0, z1], "h_hyd": z1 - z0}
-        for rr in runs.values():
-            y = np.array(rr["y"])
-            nw, no = np.array(rr["n_w"]), np.array(rr["n_o"])
-            pore = (y > wt) & (y < wt + args.h)
-            hyd = (y > z0) & (y < z1)
-            rr["Sw_pore"] = float(nw[pore].sum() / (nw[pore].sum() + no[pore].sum()))
-            rr["Sw_hyd"] = float(nw[hyd].sum() / (nw[hyd].sum() + no[hyd].sum()))
-        rows = []
-        for tag, rr in runs.items():
-            if tag == "single":
-                continue
-            if tag.startswith("M1"):
-                M, Me = 1.0, 0.0
-            else:
-                M = visc_o[0]["mu"] / mu_w
-                Me = M * math.hypot(visc_o[0]["mu_err"] / visc_o[0]["mu"], res["visc"][0]["mu_err"] / mu_w)
-            sw = rr["Sw"]
-            ew, en = kr_exact(sw, M)
-            krw = rr["Q_w"] / Q1
-            krw_e = krw * math.hypot(rr["Q_w_err"] / rr["Q_w"], Q1e / Q1)
-            krn = M * rr["Q_o"] / Q1
-            krn_e = krn * math.sqrt((rr["Q_o_err"] / rr["Q_o"]) ** 2 + (Q1e / Q1) ** 2 + (Me / M if M else 0) ** 2)
-            _, en_hi = kr_exact(sw, M + Me)
-            hw, hn = kr_exact(rr["Sw_hyd"], M)
-            _, hn_hi = kr_exact(rr["Sw_hyd"], M + Me)
-            rr.update(M=M, M_err=Me, krw=krw, krw_err=krw_e, krn=krn, krn_err=krn_e, krw_exact=ew, krn_exact=en,
-                      krw_exact_hyd=hw, krn_exact_hyd=hn)
-            tol = 0.15 if q else 0.1
-            # checked at the hydraulic saturation (the exact solution's Sw is that of the flowing slit)
-            good = abs(krw - hw) <= tol + 2 * krw_e and abs(krn - hn) <= tol + 2 * krn_e + abs(hn_hi - hn)
-            rr["pass"] = bool(good)
-            if not good:
-                fails.append(f"coflow {tag}: krw {krw:.3f} (exact {hw:.3f} at Sw_hyd {rr['Sw_hyd']:.3f}), krn "
-                             f"{krn:.3f} (exact {hn:.3f})")
-            rows.append(rr)
+        res_h = coflow_analysis(runs, args.h, q, res.get("visc", [{}])[0], visc_o[0] if visc_o else None, fails)
         res["coflow"] = {"runs": runs, "Q1": Q1, "Q1_err": Q1e, "a_wo": A_WO, **res_h}
         mdval.write_json(jpath, res)
     # checks on what is present
@@ -465,10 +488,10 @@ def report(res, out, args):
         L.append("")
     vi = res.get("visc")
     if vi:
-        L += ["## Viscosities (reverse Poiseuille, box 8 x 16 x 6, g = 0.05)\n", "| liquid | gamma | n | mu | chi2/dof |",
-              "|---|---|---|---|---|"]
+        L += ["## Viscosities (reverse Poiseuille, box 8 x 16 x 6, g = 0.05)\n", "| liquid | gamma | s | n | mu | chi2/dof |",
+              "|---|---|---|---|---|---|"]
         for v in vi:
-            L.append(f"| {v['liquid']} | {v['gamma']:g} | {v['n']:.3f} | {v['mu']:.3f} +- {v['mu_err']:.3f} | {v['chi2']:.2f} |")
+            L.append(f"| {v['liquid']} | {v['gamma']:g} | {v.get('s', 1.0):g} | {v['n']:.3f} | {v['mu']:.3f} +- {v['mu_err']:.3f} | {v['chi2']:.2f} |")
         if len(vi) > 1:
             M = vi[1]["mu"] / vi[0]["mu"]
             L.append(f"\nM = mu_o / mu_w = {M:.3f}\n")

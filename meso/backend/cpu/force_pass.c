@@ -17,8 +17,7 @@
 
 typedef struct {
   const double *vx, *vy, *vz; /* velocities the thermostat sees (predicted when allocated) */
-  double inv_sqrt_dt, s_exp;
-  int s_one;
+  double inv_sqrt_dt;
 } force_consts_t;
 
 /* Force (and virial) on owned particle i at bin slot q. terms, per_virial and rng (enum pair_rng)
@@ -67,7 +66,7 @@ force_on(const plan_t *plan, particles_t *p, const cell_list_t *cl, const force_
       fp += pair_conservative_inv(c->A, dist, c->inv_rc);
     if (near && r2 < c->rd2) fp += pair_manybody_inv(c->B, rho_i + p->rho[j], dist, c->inv_rd);
     if ((terms & PAIR_TERM_THERMOSTAT) && r2 < c->rc2) {
-      const double wR = pair_weight_random_inv(dist, c->inv_rc, k->s_exp, k->s_one);
+      const double wR = pair_weight_random_inv(dist, c->inv_rc, c->s_exp, c->s_one);
       const double e_dot_v =
           (dx * (vxi - k->vx[j]) + dy * (vyi - k->vy[j]) + dz * (vzi - k->vz[j])) * inv_r;
       const double xi_ij = pair_random_xi_rng(rng, seed, step, id_i, p->id[j]);
@@ -140,8 +139,7 @@ void cpu_force_pass(const plan_t *plan, particles_t *p, const cell_list_t *cl, c
                     force_pass_args_t *a) {
   const int per_virial = a->per_particle_virial && p->virial != NULL;
   const int rng = plan->pair_rng;
-  force_consts_t k = {
-      .inv_sqrt_dt = a->inv_sqrt_dt, .s_exp = plan->weight_exp, .s_one = plan->weight_exp_is_one};
+  force_consts_t k = {.inv_sqrt_dt = a->inv_sqrt_dt};
   k.vx = p->vpred[0] ? p->vpred[0] : p->v[0];
   k.vy = p->vpred[1] ? p->vpred[1] : p->v[1];
   k.vz = p->vpred[2] ? p->vpred[2] : p->v[2];

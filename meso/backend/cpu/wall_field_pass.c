@@ -35,8 +35,7 @@ void cpu_wall_field_pass(const plan_t *plan, const particles_t *p, const cell_li
           if (w->moving) wall_field_add_velocity(w, p->species[cl->idx[t]], weight, acc);
         }
         if (r2 < c->rc2) { /* S_i of the stability cap: gamma w_D = gamma w_R^2 */
-          const double wR = pair_weight_random_inv(sqrt(r2), c->inv_rc, plan->weight_exp,
-                                                   plan->weight_exp_is_one);
+          const double wR = pair_weight_random_inv(sqrt(r2), c->inv_rc, c->s_exp, c->s_one);
           acc[4] += c->gamma * wR * wR;
         }
       }

@@ -21,6 +21,8 @@ static void fill_coef(struct dev_coef *d, const pair_coef_t *c) {
   d->wnorm = (meso_real)c->wnorm;
   d->cut2 = (meso_real)c->cut2;
   d->wall_phi2 = (meso_real)c->wall_phi2;
+  d->s_exp = (meso_real)c->s_exp;
+  d->s_one = c->s_one;
 }
 
 static int fill_cells(struct dev_params *q, const plan_t *plan, const scene_t *s,
@@ -158,12 +160,10 @@ extern "C" cuda_sim_t *cuda_sim_create(const plan_t *plan, const scene_t *s, con
   q->terms = plan->pair_terms;
   q->density = plan->density;
   q->kernel = plan->density_kernel;
-  q->s_one = plan->weight_exp_is_one;
   q->walls = plan->walls;
   q->particle_forces = plan->particle_forces;
   q->pe = plan->particle;
   q->use_vpred = plan->use_vpred;
-  q->s_exp = (meso_real)plan->weight_exp;
   q->inv_sqrt_dt = (meso_real)plan->inv_sqrt_dt;
   q->seed = plan->seed;
   q->rng = plan->pair_rng;

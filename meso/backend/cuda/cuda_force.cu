@@ -118,7 +118,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
         fp += pair_manybody_inv(c.B, rho_i + ((TERMS & PAIR_TERM_THERMOSTAT) ? vj.pad : a.rho[t]),
                                 dist, c.inv_rd);
       if ((TERMS & PAIR_TERM_THERMOSTAT) && r2 < c.rc2) {
-        const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, q.s_exp, q.s_one);
+        const meso_real wR = pair_weight_random_inv(dist, c.inv_rc, c.s_exp, c.s_one);
         const meso_real e_dot_v =
             (dx * (vi.x - vj.x) + dy * (vi.y - vj.y) + dz * (vi.z - vj.z)) * inv_r;
         const meso_real xi_ij =

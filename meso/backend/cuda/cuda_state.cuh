@@ -30,12 +30,14 @@ struct dev_coef {
   meso_real A, B, gamma, sigma;
   meso_real inv_rc, rc2, inv_rd, rd2, wnorm, cut2;
   meso_real wall_phi2; /* wall_boundary: r_phi^2 of a mobile-frozen pair, else 0 */
+  meso_real s_exp;     /* exponent s of the thermostat weight w_R = (1 - r/rc)^s */
+  int s_one;           /* s_exp == 1: the standard weight, no pow */
 };
 
 /* Everything the kernels need besides the particle arrays; passed by value to each launch. */
 struct dev_params {
-  int n_species, terms, density, kernel, s_one, walls, particle_forces, use_vpred;
-  meso_real s_exp, inv_sqrt_dt;
+  int n_species, terms, density, kernel, walls, particle_forces, use_vpred;
+  meso_real inv_sqrt_dt;
   uint64_t seed;
   int rng; /* generator of the pair random numbers (enum pair_rng): the force kernel's template
               parameter, chosen at launch */

@@ -31,7 +31,7 @@ __global__ void __launch_bounds__(CUDA_BLOCK)
       if (w->moving) wall_field_add_velocity(w, pj.species, weight, acc);
     }
     if (r2 < c.rc2) { /* S_i of the stability cap */
-      const meso_real wR = pair_weight_random_inv(meso_sqrt(r2), c.inv_rc, q.s_exp, q.s_one);
+      const meso_real wR = pair_weight_random_inv(meso_sqrt(r2), c.inv_rc, c.s_exp, c.s_one);
       acc[4] += c.gamma * wR * wR;
     }
   };
