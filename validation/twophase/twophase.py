@@ -399,6 +399,9 @@ def main():
     os.makedirs(out, exist_ok=True)
     jpath = os.path.join(out, "twophase.json")
     res = json.load(open(jpath)) if os.path.exists(jpath) else {}
+    # results of an older layout (one flat run, threads without a shape) are dropped, not mixed in
+    if isinstance(res.get("flat"), dict) or any("shape" not in c for c in res.get("cyl", [])):
+        res = {k: v for k, v in res.items() if k not in ("flat", "cyl")}
     ok = True
     fails = []
     if "flat" in args.parts:
