@@ -8,19 +8,30 @@ thermostat weight pairs.oil-oil.s, in the viscosity-ratio runs; validation/twoph
 kT = 1, dt = 0.01, total number density --rho (6.05) everywhere, periodic boxes, 1 rank.
 
 Parts (--parts, default all):
-  flat     two slabs along x (water x < L/2), box --flat-box. gamma_PT from the pressure tensor:
+  flat     two slabs along x (water x < L/2), box --flat-box (20 x 8 x 8), random fills at each --flat-rho
+           (5.98 6.12 6.33; --quick: one lattice fill at --rho), so at several bulk states: the tension
+           depends on the bulk pressure (about +0.14 per unit pressure here), and the curved runs below are
+           compared with the flat tension at their own state. gamma_PT from the pressure tensor:
            gamma = (1/2) int (P_N - P_T) dx = (L_x / 2) <P_xx - (P_yy + P_zz)/2>, both from the profile
            (integral over the bins, bin errors combined as independent) and from the summary (the box
            tensor, block-averaged error). Interface width: 10-90 distance of the order parameter
            phi = (n_w - n_o) / (n_w + n_o) (phi from -0.8 to 0.8) and the tanh fit phi = tanh(2 (x - x0) / w)
            (least squares over a grid of w and x0), each interface, averaged. Mutual solubility: mole
            fraction of each species in the other's bulk (bins farther than 4 rc from both interfaces).
-  cyl      an oil cylinder along z in water, radii --radii (5 7.5 10), box (2R + 12) x (2R + 12) x --lz.
-           A radial profile about the oil's periodic centre of mass (output.profile.radial): R = radius where
-           phi = 0; p_in = mean of trace(P)/3 over the shells r < R - 3, p_out over r > R + 3 (to half the
-           box); Young-Laplace gamma_YL = R (p_in - p_out). Also gamma from the box pressure tensor (the
-           force balance of a periodic cylinder: <P_xx> = <P_yy> = p_out, <P_zz> = p_out - gamma pi R / A, so
-           gamma_PT,cyl = A (<P_xx + P_yy>/2 - <P_zz>) / (pi R), A = box cross-section; it assumes Laplace).
+           Bulk state: total density and trace(P)/3 over those bins.
+  cyl      an oil thread along z in water, radii --radii (5 7.5 10), box (2R + 12) x (2R + 12) x --lz, lattice
+           fill at --rho. A radial profile about the oil's periodic centre of mass (output.profile.radial):
+           R = radius where phi = 0; p_in = mean of trace(P)/3 over the shells r < R - 3, p_out over r > R + 3
+           (to half the box); Young-Laplace gamma_YL = R (p_in - p_out). Also gamma from the box pressure
+           tensor (the force balance of a periodic thread: <P_xx> = <P_yy> = p_out, <P_zz> = p_out -
+           gamma pi R / A, so gamma_PT,cyl = A (<P_xx + P_yy>/2 - <P_zz>) / (pi R), A = box cross-section;
+           it assumes Laplace).
+  drop     an oil drop in water, radii --drop-radii (4 5), box (2R + 8)^3 (--quick: (2R + 6)^3), lattice fill
+           at --rho, spherical radial profile, margins
+           2 (r < R - 2, r > R + 2): gamma_YL = R (p_in - p_out) / 2.
+           For threads and drops: the reference is the flat tension at the run's (p_in + p_out) / 2 (a
+           straight line through the flat runs' gamma against their bulk pressure), and the EOS route
+           dp_EOS = p(n_in) - p(n_out), p(n) through the flat runs' bulk (density, pressure).
   visc     each liquid's viscosity by reverse Poiseuille (box 8 x 16 x 6, g = 0.05 flipped along y):
            water (gamma 4.5) and the oil of --gamma-oil; M = mu_o / mu_w.
   coflow   layered flow in a slit: walls of frozen particles (random, density --rho, 2 rc thick) on both y
@@ -34,7 +45,8 @@ Parts (--parts, default all):
            independent (an estimate).
 
 Checks (exit 1 when one fails): flat gamma_PT > 0 and the two slabs separated (solubility < 5%);
-each cylinder's gamma_YL within 5% of the flat gamma_PT (the target; 2 sigma added);
+each thread's and drop's gamma_YL within 5% of the flat gamma_PT at its bulk pressure (2 sigma added;
+--quick: 25%); R (phi = 0) within 0.5 of the fill's and the oil in the shells within 5% of the fill's;
 |kr - exact| <= 0.1 + 2 sigma for each kr (M = 1 and M > 1).
 --quick: the ctest-sized variant (smaller boxes, shorter runs, looser bounds; see tests/twophase).
 
@@ -132,13 +144,15 @@ def crossing(x, y, level):
     return float("nan")
 
 
-def flat(args, out):
+def flat(args, out, rho, mode):
+    """Two slabs along x filled at rho (mode random: exactly round(rho V) particles; lattice: the rounded
+    lattice's density). The bulk state (density, pressure) is measured, since the tension depends on it."""
     L, Ly, Lz = args.flat_box
     s = scene("twophase_flat", (L, Ly, Lz),
-              [fill("water", args.rho, hi=(L / 2, Ly, Lz), mode="lattice"),
-               fill("oil", args.rho, lo=(L / 2, 0, 0), mode="lattice")],
+              [fill("water", rho, hi=(L / 2, Ly, Lz), mode=mode),
+               fill("oil", rho, lo=(L / 2, 0, 0), mode=mode)],
               steps=args.flat_steps, start=args.equil, profile={"axis": "x", "bins": int(round(L / 0.1))})
-    wd = os.path.join(out, "flat")
+    wd = os.path.join(out, f"flat_{mode}{rho:g}")
     wall = run(s, wd)
     prof = mdval.read_table(os.path.join(wd, "profile.csv"))
     summ = json.load(open(os.path.join(wd, "summary.json")))
@@ -171,30 +185,47 @@ def flat(args, out):
     oil = bulk & (phi < 0)
     x_o_in_w = float(np.mean(no[wat] / (nw[wat] + no[wat])))
     x_w_in_o = float(np.mean(nw[oil] / (nw[oil] + no[oil])))
-    p_bulk = float(np.mean(((prof["Pxx"] + prof["Pyy"] + prof["Pzz"]) / 3)[bulk]))
-    r = dict(L=L, Ly=Ly, Lz=Lz, N=summ["particles"], steps=args.flat_steps, gamma_profile=g_prof,
+    ptr = (prof["Pxx"] + prof["Pyy"] + prof["Pzz"]) / 3
+    p_bulk = float(np.mean(ptr[bulk]))
+    p_bulk_err = float(math.sqrt(np.sum(((prof["Pxx_err"] ** 2 + prof["Pyy_err"] ** 2 + prof["Pzz_err"] ** 2) / 9)[bulk]))
+                       / np.count_nonzero(bulk))
+    n_bulk = float(np.mean((nw + no)[bulk]))
+    r = dict(rho_fill=rho, mode=mode, L=L, Ly=Ly, Lz=Lz, N=summ["particles"], steps=args.flat_steps, gamma_profile=g_prof,
              gamma_profile_err=g_prof_err, gamma_box=g_sum, gamma_box_err=g_sum_err,
              width_1090=0.5 * (w1090_a + w1090_b), width_1090_each=[w1090_a, w1090_b],
              width_tanh=0.5 * (wa + wb), width_tanh_each=[wa, wb], x_oil_in_water=x_o_in_w,
              x_water_in_oil=x_w_in_o, n_water_bulk=float(np.mean(nw[wat])), n_oil_bulk=float(np.mean(no[oil])),
-             p_bulk=p_bulk, wall_s=wall)
+             p_bulk=p_bulk, p_bulk_err=p_bulk_err, n_bulk=n_bulk, wall_s=wall)
     r["curves"] = dict(x=x.tolist(), phi=phi.tolist(), pn_pt=(pn - pt).tolist())
     return r
 
 
-# ---------------------------------------------------------------- cylinders (Young-Laplace)
-def cylinder(args, out, R):
-    L = 2 * R + 12
-    Lz = args.lz
+# ---------------------------------------------------------------- threads and drops (Young-Laplace)
+def curved(args, out, shape, R):
+    """An oil thread (shape cylinder, along z, box (2R + 12)^2 x --lz) or drop (sphere, box (2R + 8)^3) in
+    water, lattice fill at --rho. Radial profile about the oil's periodic centre of mass: R where phi = 0,
+    p_in = mean trace(P)/3 over r < R - m, p_out over r > R + m (to half the box; m = 3 for threads, 2 for
+    drops, whose box is smaller: the interface disturbs trace(P)/3 within about 1 rc of a drop's R,
+    2 rc of a thread's, whose radial profile is broadened by its shape fluctuations), and Young-Laplace
+    gamma_YL = R (p_in - p_out) / k with k = 1 (thread) or 2 (drop). The bulk densities inside and outside
+    give the state at which the flat tension is compared (gamma_flat_at)."""
+    cyl = shape == "cylinder"
+    L = 2 * R + (12 if cyl else (6 if args.quick else 8))
+    Lz = args.lz if cyl else L
+    m = 3.0 if cyl else 2.0
     c = (L / 2, L / 2, Lz / 2)
-    cyl = {"axis": "z", "centre": [c[0], c[1], 0.0], "radius": float(R)}
-    s = scene(f"twophase_cyl_R{R:g}", (L, L, Lz),
-              [fill("oil", args.rho, mode="lattice", cylinder=cyl),
-               fill("water", args.rho, mode="lattice", cylinder=cyl, outside=True)],
-              steps=args.cyl_steps, start=args.equil,
+    if cyl:
+        geo = {"cylinder": {"axis": "z", "centre": [c[0], c[1], 0.0], "radius": float(R)}}
+    else:
+        geo = {"sphere": {"centre": list(c), "radius": float(R)}}
+    tag = f"{'cyl' if cyl else 'drop'}_R{R:g}"
+    s = scene(f"twophase_{tag}", (L, L, Lz),
+              [fill("oil", args.rho, mode="lattice", **geo),
+               fill("water", args.rho, mode="lattice", outside=True, **geo)],
+              steps=args.cyl_steps if cyl else args.drop_steps, start=args.equil,
               profile={"axis": "z", "bins": int(round((L / 2) / 0.125)),
-                       "radial": {"shape": "cylinder", "centre": list(c), "rmax": L / 2, "centre_species": "oil"}})
-    wd = os.path.join(out, f"cyl_R{R:g}")
+                       "radial": {"shape": shape, "centre": list(c), "rmax": L / 2, "centre_species": "oil"}})
+    wd = os.path.join(out, tag)
     wall = run(s, wd)
     prof = mdval.read_table(os.path.join(wd, "profile.csv"))
     summ = json.load(open(os.path.join(wd, "summary.json")))
@@ -203,34 +234,61 @@ def cylinder(args, out, R):
     Rm = crossing(r, phi, 0.0)  # phi < 0 inside (oil), > 0 outside
     p = (prof["Pxx"] + prof["Pyy"] + prof["Pzz"]) / 3
     pe = np.sqrt(prof["Pxx_err"] ** 2 + prof["Pyy_err"] ** 2 + prof["Pzz_err"] ** 2) / 3
+    n = prof["density"]
     dr = r[1] - r[0]
-    vol = np.pi * ((r + dr / 2) ** 2 - (r - dr / 2) ** 2)
-    inn = r < Rm - 3
-    outr = r > Rm + 3
+    if cyl:
+        vol = np.pi * ((r + dr / 2) ** 2 - (r - dr / 2) ** 2) * Lz
+    else:
+        vol = 4.0 / 3.0 * np.pi * ((r + dr / 2) ** 3 - (r - dr / 2) ** 3)
+    inn = r < Rm - m
+    outr = r > Rm + m
 
-    def wmean(mask):
+    def wmean(y, ye, mask):
         w = vol[mask] / vol[mask].sum()
-        return float(np.sum(w * p[mask])), float(math.sqrt(np.sum((w * pe[mask]) ** 2)))
+        return float(np.sum(w * y[mask])), float(math.sqrt(np.sum((w * ye[mask]) ** 2)))
 
-    p_in, p_in_err = wmean(inn)
-    p_out, p_out_err = wmean(outr)
+    p_in, p_in_err = wmean(p, pe, inn)
+    p_out, p_out_err = wmean(p, pe, outr)
+    n_in, n_in_err = wmean(n, prof["density_err"], inn)
+    n_out, n_out_err = wmean(n, prof["density_err"], outr)
+    k = 1.0 if cyl else 2.0
     dp, dp_err = p_in - p_out, math.hypot(p_in_err, p_out_err)
-    th = summ["thermo"]
-    A = L * L
-    pt = 0.5 * (th["Pxx"]["mean"] + th["Pyy"]["mean"])
-    pzz = th["Pzz"]["mean"]
-    d_err = math.hypot(0.5 * math.hypot(th["Pxx"]["err"], th["Pyy"]["err"]), th["Pzz"]["err"])
-    g_box = A * (pt - pzz) / (math.pi * Rm)
-    g_box_err = A * d_err / (math.pi * Rm)
-    # width: 10-90 of phi across the interface
-    w1090 = abs(crossing(r, phi, 0.8) - crossing(r, phi, -0.8))
-    # the shaped fill and the radial profile: oil count in the shells against the fill's n pi R0^2 Lz
-    n_oil = float(np.sum(prof["density_oil"] * vol * Lz))
-    # (the lattice realises N / V, not --rho exactly: the fill's expectation uses the realised density)
-    return dict(R0=R, R=Rm, n_oil=n_oil, n_oil_fill=summ["particles"] / (L * L * Lz) * math.pi * R * R * Lz, L=L, Lz=Lz, N=summ["particles"], steps=args.cyl_steps, p_in=p_in, p_in_err=p_in_err,
-                p_out=p_out, p_out_err=p_out_err, dp=dp, dp_err=dp_err, gamma_YL=Rm * dp, gamma_YL_err=Rm * dp_err,
-                gamma_box=g_box, gamma_box_err=g_box_err, width_1090=w1090, wall_s=wall,
-                curves=dict(r=r.tolist(), phi=phi.tolist(), p=p.tolist()))
+    res = dict(shape=shape, R0=R, R=Rm, L=L, Lz=Lz, N=summ["particles"], steps=s["run"]["steps"], margin=m,
+               p_in=p_in, p_in_err=p_in_err, p_out=p_out, p_out_err=p_out_err, dp=dp, dp_err=dp_err,
+               n_in=n_in, n_in_err=n_in_err, n_out=n_out, n_out_err=n_out_err, p_mid=0.5 * (p_in + p_out),
+               gamma_YL=Rm * dp / k, gamma_YL_err=Rm * dp_err / k, wall_s=wall)
+    if cyl:
+        # the force balance of a periodic thread: <P_xx> = <P_yy> = p_out, <P_zz> = p_out - gamma pi R / A
+        # (A = box cross-section), so gamma = A (<P_xx + P_yy>/2 - <P_zz>) / (pi R); it assumes Laplace
+        th = summ["thermo"]
+        A = L * L
+        pt = 0.5 * (th["Pxx"]["mean"] + th["Pyy"]["mean"])
+        d_err = math.hypot(0.5 * math.hypot(th["Pxx"]["err"], th["Pyy"]["err"]), th["Pzz"]["err"])
+        res["gamma_box"] = A * (pt - th["Pzz"]["mean"]) / (math.pi * Rm)
+        res["gamma_box_err"] = A * d_err / (math.pi * Rm)
+    res["width_1090"] = abs(crossing(r, phi, 0.8) - crossing(r, phi, -0.8))
+    # the shaped fill and the radial profile: oil counted in the shells against the fill's share
+    # (the lattice realises N / V, not --rho exactly: the expectation uses the realised density)
+    res["n_oil"] = float(np.sum(prof["density_oil"] * vol))
+    v_shape = math.pi * R * R * Lz if cyl else 4.0 / 3.0 * math.pi * R ** 3
+    res["n_oil_fill"] = summ["particles"] / (L * L * Lz) * v_shape
+    res["curves"] = dict(r=r.tolist(), phi=phi.tolist(), p=p.tolist())
+    return res
+
+
+def flat_tension_at(flats, p):
+    """The flat tension at bulk pressure p: a weighted straight line gamma(p_bulk) through the flat runs
+    (one run: its value). Returns (gamma, err, slope)."""
+    if len(flats) == 1:
+        return flats[0]["gamma_box"], flats[0]["gamma_box_err"], float("nan")
+    x = np.array([f["p_bulk"] for f in flats])
+    y = np.array([f["gamma_box"] for f in flats])
+    w = 1.0 / np.array([f["gamma_box_err"] for f in flats]) ** 2
+    X = np.vstack([np.ones_like(x), x]).T
+    cov = np.linalg.inv(X.T @ (X * w[:, None]))
+    beta = cov @ (X.T @ (w * y))
+    v = np.array([1.0, p])
+    return float(v @ beta), float(math.sqrt(v @ cov @ v)), float(beta[1])
 
 
 # ---------------------------------------------------------------- viscosities (reverse Poiseuille)
@@ -362,12 +420,18 @@ def kr_exact(sw, M):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--parts", nargs="+", default=["flat", "cyl", "visc", "coflow"],
-                    choices=["flat", "cyl", "visc", "coflow"])
+    ap.add_argument("--parts", nargs="+", default=["flat", "cyl", "drop", "visc", "coflow"],
+                    choices=["flat", "cyl", "drop", "visc", "coflow"])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--rho", type=float, default=6.05)
-    ap.add_argument("--radii", type=float, nargs="+")
-    ap.add_argument("--lz", type=float, default=4.0)
+    ap.add_argument("--flat-rho", type=float, nargs="+",
+                    help="flat part: random fills at these densities (5.98 6.12 6.33; --quick: one lattice fill "
+                         "at --rho); the tension is compared with threads and drops at their bulk pressure")
+    ap.add_argument("--radii", type=float, nargs="+", help="thread radii (5 7.5 10; --quick 4)")
+    ap.add_argument("--drop-radii", type=float, nargs="+", help="drop radii (4 5; --quick 3)")
+    ap.add_argument("--lz", type=float, default=4.0, help="thread box length along the thread (4)")
+    ap.add_argument("--flat-box", type=float, nargs=3, metavar=("LX", "LY", "LZ"),
+                    help="flat part: the box (20 8 8; --quick 12 6 6)")
     ap.add_argument("--sw", type=float, nargs="+")
     ap.add_argument("--gamma-oil", type=float, default=13.5)
     ap.add_argument("--s-oil", type=float, default=1.0,
@@ -384,11 +448,15 @@ def main():
     REUSE = args.reuse
     A_WO = args.a_wo
     q = args.quick
-    args.flat_box = (12.0, 6.0, 6.0) if q else (20.0, 8.0, 8.0)
+    args.flat_box = args.flat_box or ((12.0, 6.0, 6.0) if q else (20.0, 8.0, 8.0))
     args.equil = 1000
-    args.flat_steps = 4000 if q else 12000
+    args.flat_steps = 4000 if q else 6000
     args.cyl_steps = 2000 if q else 6000
+    args.drop_steps = 2000 if q else 4000
     args.radii = args.radii or ([4.0] if q else [5.0, 7.5, 10.0])
+    args.drop_radii = args.drop_radii or ([3.0] if q else [4.0, 5.0])
+    flat_fills = [(args.rho, "lattice")] if q and not args.flat_rho else \
+        [(r, "random") for r in (args.flat_rho or [5.98, 6.12, 6.33])]
     args.visc_steps, args.visc_equil = (6000, 2000) if q else (16000, 3000)
     args.h = args.h or (6.0 if q else 10.0)
     args.g = args.g or (0.05 if q else 0.03)
@@ -399,13 +467,19 @@ def main():
     os.makedirs(out, exist_ok=True)
     jpath = os.path.join(out, "twophase.json")
     res = json.load(open(jpath)) if os.path.exists(jpath) else {}
+    # results of an older layout (one flat run, threads without a shape) are dropped, not mixed in
+    if isinstance(res.get("flat"), dict) or any("shape" not in c for c in res.get("cyl", [])):
+        res = {k: v for k, v in res.items() if k not in ("flat", "cyl")}
     ok = True
     fails = []
     if "flat" in args.parts:
-        res["flat"] = flat(args, out)
+        res["flat"] = [flat(args, out, rho, mode) for rho, mode in flat_fills]
         mdval.write_json(jpath, res)
     if "cyl" in args.parts:
-        res["cyl"] = [cylinder(args, out, R) for R in args.radii]
+        res["cyl"] = [curved(args, out, "cylinder", R) for R in args.radii]
+        mdval.write_json(jpath, res)
+    if "drop" in args.parts:
+        res["drop"] = [curved(args, out, "sphere", R) for R in args.drop_radii]
         mdval.write_json(jpath, res)
     if "visc" in args.parts:
         res["visc"] = [viscosity(args, out, "water", 4.5)]
@@ -425,28 +499,44 @@ def main():
         res["coflow"] = {"runs": runs, "Q1": Q1, "Q1_err": Q1e, "a_wo": A_WO, **res_h}
         mdval.write_json(jpath, res)
     # checks on what is present
-    fl = res.get("flat")
-    if fl:
+    fls = res.get("flat") or []
+    for fl in fls:
         if not (fl["gamma_box"] > 0) or fl["x_oil_in_water"] > 0.05 or fl["x_water_in_oil"] > 0.05:
-            fails.append(f"flat: gamma {fl['gamma_box']:.3f}, solubilities {fl['x_oil_in_water']:.3g}, "
-                         f"{fl['x_water_in_oil']:.3g}")
+            fails.append(f"flat {fl['mode']} {fl['rho_fill']:g}: gamma {fl['gamma_box']:.3f}, solubilities "
+                         f"{fl['x_oil_in_water']:.3g}, {fl['x_water_in_oil']:.3g}")
         if args.gamma_bounds and not (args.gamma_bounds[0] <= fl["gamma_box"] <= args.gamma_bounds[1]):
             fails.append(f"flat: gamma {fl['gamma_box']:.3f} outside [{args.gamma_bounds[0]:g}, "
                          f"{args.gamma_bounds[1]:g}]")
-        g_ref, g_ref_e = fl["gamma_box"], fl["gamma_box_err"]
-    for c in res.get("cyl", []):
+    curved_runs = res.get("cyl", []) + res.get("drop", [])
+    for c in curved_runs:
         if abs(c["R"] - c["R0"]) > 0.5 or abs(c["n_oil"] / c["n_oil_fill"] - 1) > 0.05:
-            fails.append(f"cylinder R0 {c['R0']:g}: R {c['R']:.3f} (phi = 0), oil in the shells {c['n_oil']:.0f} "
-                         f"vs the fill's {c['n_oil_fill']:.0f}")
-    if fl:
-        for c in res.get("cyl", []):
+            fails.append(f"{c['shape']} R0 {c['R0']:g}: R {c['R']:.3f} (phi = 0), oil in the shells "
+                         f"{c['n_oil']:.0f} vs the fill's {c['n_oil_fill']:.0f}")
+    # The EOS route: p(n) through the flat runs' bulk states (density, pressure); a quadratic through
+    # three, a line through two. dp_EOS = p(n_in) - p(n_out) from the bulk densities alone.
+    if len(fls) >= 2:
+        eos = np.polyfit([f["n_bulk"] for f in fls], [f["p_bulk"] for f in fls], min(2, len(fls) - 1))
+        slope = np.polyder(eos)
+        for c in curved_runs:
+            c["dp_eos"] = float(np.polyval(eos, c["n_in"]) - np.polyval(eos, c["n_out"]))
+            c["dp_eos_err"] = float(math.hypot(np.polyval(slope, c["n_in"]) * c["n_in_err"],
+                                               np.polyval(slope, c["n_out"]) * c["n_out_err"]))
+    if fls:
+        # The tension depends on the bulk state (docs/twophase.md section 4): each thread or drop is compared
+        # with the flat tension at its own bulk pressure, the mean of p_in and p_out (the two liquids have
+        # the same like-pair parameters, so to first order the tension sees the mean of their pressures).
+        res["flat_fit"] = {"slope": flat_tension_at(fls, 0.0)[2]}
+        for c in curved_runs:
+            g_ref, g_ref_e, _ = flat_tension_at(fls, c["p_mid"])
+            c["gamma_flat_at"], c["gamma_flat_at_err"] = g_ref, g_ref_e
             e = math.hypot(c["gamma_YL_err"], g_ref_e)
             c["dev_YL"] = c["gamma_YL"] / g_ref - 1
-            c["dev_box"] = c["gamma_box"] / g_ref - 1
+            if "gamma_box" in c:
+                c["dev_box"] = c["gamma_box"] / g_ref - 1
             c["pass"] = bool(abs(c["gamma_YL"] - g_ref) <= (0.25 if q else 0.05) * g_ref + 2 * e)
             if not c["pass"]:
-                fails.append(f"cylinder R {c['R']:.2f}: gamma_YL {c['gamma_YL']:.3f} +- {c['gamma_YL_err']:.3f} "
-                             f"vs flat {g_ref:.3f} +- {g_ref_e:.3f}")
+                fails.append(f"{c['shape']} R {c['R']:.2f}: gamma_YL {c['gamma_YL']:.3f} +- {c['gamma_YL_err']:.3f} "
+                             f"vs flat {g_ref:.3f} +- {g_ref_e:.3f} at p = {c['p_mid']:.2f}")
     mdval.write_json(jpath, res)
     report(res, out, args)
     for f in fails:
@@ -460,30 +550,41 @@ def report(res, out, args):
     L = ["# Two immiscible mDPD liquids: measured interface and layered flow\n",
          f"Water and oil: A_ww = A_oo = -40, A_wo = {A_WO:g}, B = 25, rd = 0.75, gamma 4.5, kT = 1, dt = 0.01, "
          f"density {args.rho:g}, 1 rank; first {args.equil} steps discarded (profiles).\n"]
-    fl = res.get("flat")
-    if fl:
-        L += ["## Flat interface (two slabs, periodic)\n",
-              f"Box {fl['L']:g} x {fl['Ly']:g} x {fl['Lz']:g}, {fl['N']} particles, {fl['steps']} steps.\n",
-              "| quantity | value |", "|---|---|",
-              f"| gamma, box tensor (L/2)<P_N - P_T> | {fl['gamma_box']:.4f} +- {fl['gamma_box_err']:.4f} |",
-              f"| gamma, profile integral (1/2) int (P_N - P_T) dx | {fl['gamma_profile']:.4f} +- {fl['gamma_profile_err']:.4f} |",
-              f"| width 10-90 of phi (each interface) | {fl['width_1090']:.3f} ({fl['width_1090_each'][0]:.3f}, {fl['width_1090_each'][1]:.3f}) |",
-              f"| width, tanh fit phi = tanh(2 (x - x0) / w) | {fl['width_tanh']:.3f} ({fl['width_tanh_each'][0]:.3f}, {fl['width_tanh_each'][1]:.3f}) |",
-              f"| oil mole fraction in the water bulk | {fl['x_oil_in_water']:.2e} |",
-              f"| water mole fraction in the oil bulk | {fl['x_water_in_oil']:.2e} |",
-              f"| bulk densities water, oil | {fl['n_water_bulk']:.3f}, {fl['n_oil_bulk']:.3f} |",
-              f"| bulk pressure | {fl['p_bulk']:.3f} |", ""]
-    cy = res.get("cyl")
-    if cy:
-        L += ["## Cylinders (oil thread along z in water): Young-Laplace\n",
-              "| R0 | R (phi = 0) | box | N | steps | p_in | p_out | dp | gamma_YL = R dp | vs flat | gamma box tensor | vs flat | width 10-90 | check |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-        for c in cy:
-            L.append(f"| {c['R0']:g} | {c['R']:.3f} | {c['L']:g}x{c['L']:g}x{c['Lz']:g} | {c['N']} | {c['steps']} | "
-                     f"{c['p_in']:.4f} +- {c['p_in_err']:.4f} | {c['p_out']:.4f} +- {c['p_out_err']:.4f} | "
-                     f"{c['dp']:.4f} +- {c['dp_err']:.4f} | {c['gamma_YL']:.3f} +- {c['gamma_YL_err']:.3f} | "
-                     f"{100 * c.get('dev_YL', float('nan')):+.1f}% | {c['gamma_box']:.3f} +- {c['gamma_box_err']:.3f} | "
-                     f"{100 * c.get('dev_box', float('nan')):+.1f}% | {c['width_1090']:.3f} | "
+    fls = res.get("flat") or []
+    if fls:
+        f0 = fls[0]
+        L += ["## Flat interface (two slabs, periodic) at several bulk states\n",
+              f"Box {f0['L']:g} x {f0['Ly']:g} x {f0['Lz']:g}, {f0['steps']} steps. gamma from the box tensor "
+              "(L/2)<P_N - P_T> (block error) and from the profile integral (1/2) int (P_N - P_T) dx; bulk: bins "
+              "more than 4 rc from both interfaces.\n",
+              "| fill | N | bulk n (water, oil) | bulk p | gamma box tensor | gamma profile | width 10-90 | width tanh | "
+              "x_o in w, x_w in o |", "|---|---|---|---|---|---|---|---|---|"]
+        for fl in fls:
+            L.append(f"| {fl['mode']} {fl['rho_fill']:g} | {fl['N']} | {fl['n_water_bulk']:.3f}, {fl['n_oil_bulk']:.3f} | "
+                     f"{fl['p_bulk']:.2f} +- {fl['p_bulk_err']:.2f} | {fl['gamma_box']:.3f} +- {fl['gamma_box_err']:.3f} | "
+                     f"{fl['gamma_profile']:.3f} +- {fl['gamma_profile_err']:.3f} | {fl['width_1090']:.3f} | "
+                     f"{fl['width_tanh']:.3f} | {fl['x_oil_in_water']:.1e}, {fl['x_water_in_oil']:.1e} |")
+        if "flat_fit" in res and len(fls) > 1:
+            L.append(f"\nStraight line through them: d gamma / d p_bulk = {res['flat_fit']['slope']:.4f}; "
+                     "gamma_flat(p) below is this line at the curved run's (p_in + p_out) / 2.")
+        L.append("")
+    cv = res.get("cyl", []) + res.get("drop", [])
+    if cv:
+        L += ["## Young-Laplace: oil threads (dp = gamma / R) and drops (dp = 2 gamma / R) in water\n",
+              "p_in, p_out: trace(P)/3 over r < R - m and r > R + m (m = 3 threads, 2 drops); n_in, n_out the "
+              "total densities there; dp_EOS = p(n_in) - p(n_out) with p(n) through the flat runs' bulk states.\n",
+              "| shape | R0 | R (phi = 0) | box | N | steps | n_in, n_out | p_in | p_out | dp | dp_EOS | gamma_YL | "
+              "gamma_flat(p) | YL vs flat | gamma box tensor | width 10-90 | check |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+        for c in cv:
+            gb = f"{c['gamma_box']:.2f} +- {c['gamma_box_err']:.2f}" if "gamma_box" in c else "-"
+            ge = f"{c['dp_eos']:.2f} +- {c['dp_eos_err']:.2f}" if "dp_eos" in c else "-"
+            gf = (f"{c['gamma_flat_at']:.3f} +- {c['gamma_flat_at_err']:.3f}" if "gamma_flat_at" in c else "-")
+            L.append(f"| {'thread' if c['shape'] == 'cylinder' else 'drop'} | {c['R0']:g} | {c['R']:.3f} | "
+                     f"{c['L']:g}x{c['L']:g}x{c['Lz']:g} | {c['N']} | {c['steps']} | {c['n_in']:.3f}, {c['n_out']:.3f} | "
+                     f"{c['p_in']:.3f} +- {c['p_in_err']:.3f} | {c['p_out']:.3f} +- {c['p_out_err']:.3f} | "
+                     f"{c['dp']:.3f} +- {c['dp_err']:.3f} | {ge} | {c['gamma_YL']:.3f} +- {c['gamma_YL_err']:.3f} | "
+                     f"{gf} | {100 * c.get('dev_YL', float('nan')):+.1f}% | {gb} | {c['width_1090']:.3f} | "
                      f"{'pass' if c.get('pass') else 'FAIL'} |")
         L.append("")
     vi = res.get("visc")
@@ -512,8 +613,7 @@ def report(res, out, args):
                      f"{r['krn']:.3f} +- {r['krn_err']:.3f} | {r['krn_exact']:.3f}, {r['krn_exact_hyd']:.3f} | "
                      f"{'pass' if r['pass'] else 'FAIL'} |")
         L.append("")
-    L.append(f"Command: `/usr/bin/python3 validation/twophase/twophase.py{' --quick' if args.quick else ''} "
-             f"--parts {' '.join(args.parts)}`\n")
+    L.append(f"Command: `/usr/bin/python3 validation/twophase/twophase.py {' '.join(sys.argv[1:])}`\n")
     open(os.path.join(out, "twophase.md"), "w").write("\n".join(L))
     print("\n".join(L))
     plot(res, out)
@@ -522,24 +622,43 @@ def report(res, out, args):
 def plot(res, out):
     plt = mdval.pyplot()
     fig, axs = plt.subplots(1, 3, figsize=(15, 4))
-    fl = res.get("flat")
-    if fl:
-        c = fl["curves"]
-        axs[0].plot(c["x"], c["phi"], label="phi = (n_w - n_o)/(n_w + n_o)")
-        axs[0].plot(c["x"], np.array(c["pn_pt"]) / 10, label="(P_N - P_T) / 10")
-        axs[0].set_xlabel("x")
-        axs[0].set_title(f"flat: gamma = {fl['gamma_box']:.3f} +- {fl['gamma_box_err']:.3f}")
+    fls = res.get("flat") or []
+    cv = res.get("cyl", []) + res.get("drop", [])
+    if fls:
+        # the tension against the bulk pressure: flat runs, and the curved runs' R dp / k at (p_in + p_out) / 2
+        axs[0].errorbar([f["p_bulk"] for f in fls], [f["gamma_box"] for f in fls],
+                        yerr=[f["gamma_box_err"] for f in fls], fmt="ks", label="flat, pressure tensor")
+        if len(fls) > 1:
+            pp = np.linspace(min([f["p_bulk"] for f in fls] + [c["p_mid"] for c in cv]) - 1,
+                             max(f["p_bulk"] for f in fls) + 1, 20)
+            axs[0].plot(pp, [flat_tension_at(fls, v)[0] for v in pp], "k-", lw=0.8)
+        for shape, fmt in (("cylinder", "bo"), ("sphere", "r^")):
+            sel = [c for c in cv if c["shape"] == shape]
+            if sel:
+                axs[0].errorbar([c["p_mid"] for c in sel], [c["gamma_YL"] for c in sel],
+                                yerr=[c["gamma_YL_err"] for c in sel], fmt=fmt,
+                                label=("threads" if shape == "cylinder" else "drops") + ", Young-Laplace")
+        axs[0].set_xlabel("bulk pressure (curved: (p_in + p_out) / 2)")
+        axs[0].set_ylabel("gamma")
+        axs[0].set_title("interface tension against the bulk state")
         axs[0].legend(fontsize=8)
-    cy = res.get("cyl")
-    if cy and fl:
-        R = np.array([c["R"] for c in cy])
-        axs[1].errorbar(1 / R, [c["dp"] for c in cy], yerr=[c["dp_err"] for c in cy], fmt="o", label="p_in - p_out")
-        xx = np.linspace(0, 1.1 / R.min(), 10)
-        axs[1].plot(xx, fl["gamma_box"] * xx, "-", label="gamma_flat / R")
+    if cv and fls:
+        p_ref = float(np.mean([c["p_mid"] for c in cv]))
+        g_ref = flat_tension_at(fls, p_ref)[0]
+        inv = np.array([1 / c["R"] for c in cv])
+        xx = np.linspace(0, 1.1 * inv.max(), 10)
+        for shape, fmt, k in (("cylinder", "bo", 1), ("sphere", "r^", 2)):
+            sel = [c for c in cv if c["shape"] == shape]
+            if sel:
+                axs[1].errorbar([1 / c["R"] for c in sel], [c["dp"] for c in sel], yerr=[c["dp_err"] for c in sel],
+                                fmt=fmt, label=("threads" if k == 1 else "drops") + " p_in - p_out")
+                axs[1].plot([1 / c["R"] for c in sel], [k * c["gamma_flat_at"] / c["R"] for c in sel], fmt[0] + "x",
+                            ms=9, label=f"{k} gamma_flat(p) / R at each run's p")
+            axs[1].plot(xx, k * g_ref * xx, fmt[0] + "-", lw=0.8, label=f"{k} gamma_flat / R (p = {p_ref:.1f})")
         axs[1].set_xlabel("1 / R")
         axs[1].set_ylabel("dp")
-        axs[1].set_title("Young-Laplace, cylinders")
-        axs[1].legend(fontsize=8)
+        axs[1].set_title("Young-Laplace, threads and drops")
+        axs[1].legend(fontsize=7)
     co = res.get("coflow")
     if co:
         s = np.linspace(0, 1, 101)
