@@ -12,7 +12,10 @@
  * the default generator's. Once more with every pair's coefficients the same (A of the wall pairs
  * as the fluid's): the force kernel then reads them at fixed offsets (dev_params.coef_uniform), and
  * the densities and forces equal, bit for bit, those of the table read by species
- * (MDPORE_CUDA_UNIFORM=0). Skipped (exit 77) without a GPU. */
+ * (MDPORE_CUDA_UNIFORM=0). Once with two liquids (water and oil: their own cross attraction,
+ * thermostat gamma and weight exponent s) and a flooding recolour of the oil in a slab before the
+ * steps: the same bounds, and the same number recoloured on both. Skipped (exit 77) without a
+ * GPU. */
 #include "test_cuda_common.h"
 
 #include "backend/cuda/cuda_backend.h"
@@ -45,16 +48,26 @@ static int state_with_table(scene_t *s, int n, test_state_t *t) {
   return 0;
 }
 
-static int run_case(int wall_boundary, int rng, int uniform, double *f0) {
+/* liquids2: species 1 is a second mobile liquid instead of the wall (water and oil: A_wo = -20,
+ * the oil's thermostat gamma 13.5 and weight exponent s 0.25, the cross pair's the means), and
+ * before the steps the oil in x < 2 becomes water on both backends (sim_recolor, flooding). */
+static int run_case(int wall_boundary, int rng, int uniform, int liquids2, double *f0) {
   scene_t s;
   test_scene_mdpd(&s, 8.0, 6.0, 7.0);
   s.n_species = 2;
-  snprintf(s.species[1].name, SCENE_NAME_LEN, "wall");
+  snprintf(s.species[1].name, SCENE_NAME_LEN, liquids2 ? "oil" : "wall");
   s.species[1].mass = 1.0;
-  s.species[1].frozen = 1;
+  s.species[1].frozen = !liquids2;
   if (!uniform) s.pair[0][1].A = s.pair[1][0].A = -30; /* wetting through A only (Warren 2013) */
-  s.periodic[2] = 0;                                   /* reflecting walls along z */
-  s.vv_lambda = 0.65;                                  /* exercises the predicted-velocity array */
+  if (liquids2) {
+    s.pair[0][1].A = s.pair[1][0].A = -20;
+    s.pair[1][1].gamma = 13.5;
+    s.pair[1][1].s = 0.25;
+    s.pair[0][1].gamma = s.pair[1][0].gamma = 9.0;
+    s.pair[0][1].s = s.pair[1][0].s = 0.625;
+  }
+  s.periodic[2] = 0;  /* reflecting walls along z */
+  s.vv_lambda = 0.65; /* exercises the predicted-velocity array */
   effect_name_in_scene(&s, EFFECT_MDPD_ATTRACTION);
   effect_name_in_scene(&s, EFFECT_MDPD_REPULSION);
   effect_name_in_scene(&s, EFFECT_DPD_THERMOSTAT);
@@ -66,7 +79,11 @@ static int run_case(int wall_boundary, int rng, int uniform, double *f0) {
   if (wall_boundary) effect_name_in_scene(&s, EFFECT_WALL_BOUNDARY);
   SCENE_EFFECT_OPTIONS(&s, EFFECT_DPD_THERMOSTAT, dpd_thermostat_options_t)->rng = rng;
   printf("--- %s, rng %s, %s ---\n", wall_boundary ? "with wall_boundary" : "without wall_boundary",
-         pair_rng_word(rng), uniform ? "every pair alike" : "wall pairs' own A");
+         pair_rng_word(rng),
+         liquids2  ? "two liquids (water, oil: A_wo -20, oil gamma 13.5 s 0.25)"
+         : uniform ? "every pair alike"
+                   : "wall pairs' own A");
+  long recolored_cpu = 0;
   const int n = 2016; /* density 6 */
   sim_t *cpu = build(&s, SCENE_BACKEND_CPU, n);
   CHECK(cpu, "building the CPU simulation");
@@ -75,6 +92,7 @@ static int run_case(int wall_boundary, int rng, int uniform, double *f0) {
   CHECK(!test_state_get(cpu, n, &a0), "reading the CPU state");
   *f0 = a0.f[0];
   sim_thermo(cpu, &ta);
+  if (liquids2) CHECK(!sim_recolor(cpu, 0, 0.0, 2.0, 1, 0, &recolored_cpu), "CPU recolour");
   for (int k = 0; k < 5; k++) CHECK(!sim_step(cpu), "CPU step %d", k);
   CHECK(!test_state_get(cpu, n, &a5), "reading the CPU state");
   /* The GPU with lists rebuilt every step (skin 0), with a skin that keeps them a few steps, and
@@ -112,7 +130,7 @@ static int run_case(int wall_boundary, int rng, int uniform, double *f0) {
     const char *tail_env = getenv("MDPORE_CUDA_TAIL"), *scan_env = getenv("MDPORE_CUDA_SCAN");
     const long tail = cuda_sim_static_tail(dev);
     printf("static tail: %ld particles\n", tail);
-    if (variant == 0 && !(tail_env && !strcmp(tail_env, "0")) &&
+    if (variant == 0 && !liquids2 && !(tail_env && !strcmp(tail_env, "0")) &&
         !(scan_env && !strcmp(scan_env, "nested"))) /* (the nested scan has no tail) */
       CHECK(tail > 0 && tail < n, "static tail of %ld particles (of %d)", tail, n);
     else
@@ -161,6 +179,14 @@ static int run_case(int wall_boundary, int rng, int uniform, double *f0) {
     CHECK(fabs(ta.pressure[0] - tb.pressure[0]) < 1e-4 * fabs(ta.pressure[0]) + 1e-3,
           "pressure Pxx differs");
     test_state_free(&b);
+    if (liquids2) {
+      long recolored_gpu = 0;
+      CHECK(!sim_recolor(gpu, 0, 0.0, 2.0, 1, 0, &recolored_gpu), "GPU recolour");
+      printf("recoloured oil -> water in x < 2: %ld on the GPU, %ld on the CPU\n", recolored_gpu,
+             recolored_cpu);
+      CHECK(recolored_gpu == recolored_cpu && recolored_cpu > 0, "recolouring differs: %ld / %ld",
+            recolored_gpu, recolored_cpu);
+    }
     for (int k = 0; k < 5; k++) CHECK(!sim_step(gpu), "GPU step %d", k);
     CHECK(!test_state_get(gpu, n, &b), "reading the GPU state");
     double dx = 0, dv = 0;
@@ -200,13 +226,14 @@ int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
   test_cuda_require_gpu();
   static double f_default[2]; /* a force component of the philox runs, by wall_boundary */
-  const int cases[6][3] = {{0, PAIR_RNG_PHILOX, 0},     {1, PAIR_RNG_PHILOX, 0},
-                           {0, PAIR_RNG_FAST, 0},       {1, PAIR_RNG_FAST, 0},
-                           {0, PAIR_RNG_PHILOX2X32, 0}, {0, PAIR_RNG_PHILOX, 1}};
-  for (int c = 0; c < 6; c++) {
+  const int cases[7][4] = {{0, PAIR_RNG_PHILOX, 0, 0},     {1, PAIR_RNG_PHILOX, 0, 0},
+                           {0, PAIR_RNG_FAST, 0, 0},       {1, PAIR_RNG_FAST, 0, 0},
+                           {0, PAIR_RNG_PHILOX2X32, 0, 0}, {0, PAIR_RNG_PHILOX, 1, 0},
+                           {0, PAIR_RNG_PHILOX, 0, 1}};
+  for (int c = 0; c < 7; c++) {
     double f0 = 0;
-    if (run_case(cases[c][0], cases[c][1], cases[c][2], &f0)) return 1;
-    if (cases[c][2]) continue; /* (other coefficients: other forces) */
+    if (run_case(cases[c][0], cases[c][1], cases[c][2], cases[c][3], &f0)) return 1;
+    if (cases[c][2] || cases[c][3]) continue; /* (other coefficients: other forces) */
     if (cases[c][1] == PAIR_RNG_PHILOX)
       f_default[cases[c][0]] = f0;
     else
