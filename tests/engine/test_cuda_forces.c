@@ -14,7 +14,8 @@
  * the densities and forces equal, bit for bit, those of the table read by species
  * (MDPORE_CUDA_UNIFORM=0). Once with two liquids (water and oil: their own cross attraction,
  * thermostat gamma and weight exponent s) and a flooding recolour of the oil in a slab before the
- * steps: the same bounds, and the same number recoloured on both. Skipped (exit 77) without a
+ * steps: the same force bounds, dx <= 2e-5 after 5 steps (s < 1: see the check), and the same
+ * number recoloured on both. Skipped (exit 77) without a
  * GPU. */
 #include "test_cuda_common.h"
 
@@ -204,7 +205,12 @@ static int run_case(int wall_boundary, int rng, int uniform, int liquids2, doubl
     printf("skin %.2f: after 5 steps (%ld list builds): max |x_gpu - x_cpu| = %.3e, max |v_gpu - "
            "v_cpu| = %.3e\n",
            skin, builds, dx, dv);
-    CHECK(dx <= 1e-6 && dv <= 1e-4, "trajectories differ: dx %.3e dv %.3e", dx, dv);
+    /* With s < 1 the random force's weight w_R = (1 - r/rc)^s rises as (rc - r)^s from the cutoff:
+     * a pair within float rounding (1e-7) of rc draws a random force of relative size
+     * (1e-7)^0.25 = 0.02 on one path and none on the other, so the two-liquid case (s 0.25) is
+     * held to dx <= 2e-5 (its measured 5e-6 on an H200) and the same dv bound. */
+    const double dx_bound = liquids2 ? 2e-5 : 1e-6;
+    CHECK(dx <= dx_bound && dv <= 1e-4, "trajectories differ: dx %.3e dv %.3e", dx, dv);
     /* The test must exercise what it names: every step, some steps, one build. */
     if (variant == 0 || variant == 3)
       CHECK(builds == 6, "skin 0: %ld list builds in setup + 5 steps", builds);

@@ -220,7 +220,7 @@ def rock_collect(args, root, out, failures):
         row["backend"] = summary["backend"]
         rows.append(row)
     if rows:
-        report(out, "flood_rock", rows, f"Flooding {args.image} ({args.crop or 'whole'}), water displacing "
+        report(out, "flood_rock", rows, f"Flooding {os.path.basename(args.image)} ({args.crop or 'the whole image'}), water displacing "
                f"oil, A_oil-wall {args.a_oil_wall:g}, body force {args.g}")
         plot(out, "flood_rock", rows)
 
