@@ -29,6 +29,9 @@ static const char *usage_text =
     "boundary conditions (OPM upscale_perm's families; the config's `upscale:` key may pick "
     "some),\n"
     "in the config's permeability unit and, under SI, in mD.\n"
+    "A `twophase:` block in the config: water displacing oil over time instead (IMPES; CSV "
+    "saturation\n"
+    "profiles, water cut and recovery; docs/twophase-darcy.md).\n"
     "More: docs/darcy-config.md (mdpore --help lists every command)\n";
 
 /* One family's tensor, rows i (flow) by columns j (driving gradient), in m^2 (or rc^2) and mD. */
