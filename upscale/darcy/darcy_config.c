@@ -2,6 +2,7 @@
  * mistake stops with "FILE:LINE:COL: key 'a.b': expected ... (got ...)" (common/yaml_tree.h). */
 #include "common/memory_limit.h"
 #include "darcy_config.h"
+#include "darcy_config_keys.h"
 
 #include <libgen.h>
 #include <math.h>
@@ -10,6 +11,7 @@
 #include <string.h>
 
 #include "common/yaml_tree.h"
+#include "twophase_config_read.h"
 #include "darcy_k_dataset.h"
 #include "darcy_units.h"
 #include "darcy_upscale.h"
@@ -32,7 +34,7 @@ static void join(char *out, size_t len, const char *path, const char *key) {
 }
 
 /* A file name at node n (key path `path`), relative to the config file's folder unless absolute. */
-static int file_name(ytree_t *t, yaml_node_t *n, const char *path, char *out, size_t len) {
+int darcy_key_file_name(ytree_t *t, yaml_node_t *n, const char *path, char *out, size_t len) {
   char rel[FILE_LEN], tmp[FILE_LEN];
   TRY(yt_string(t, n, path, rel, sizeof rel));
   snprintf(tmp, sizeof tmp, "%s", t->file);
@@ -60,8 +62,8 @@ static int need_number(ytree_t *t, yaml_node_t *map, const char *path, const cha
 /* A number with an optional unit at node n: "1e-15" (base unit of the system) or "10 mD". Under SI
  * a plain permeability above 1e-7 m^2 (100 kD, beyond any rock) gets a warning: it was probably
  * meant in another unit. */
-static int quantity(ytree_t *t, yaml_node_t *n, const char *path, darcy_quantity q, int si,
-                    double *v) {
+int darcy_key_quantity(ytree_t *t, yaml_node_t *n, const char *path, darcy_quantity q, int si,
+                       double *v) {
   char b[64], why[128] = "not a number", list[96];
   int had = 0;
   if (n && n->type == YAML_SCALAR_NODE && !yt_is_null(n) &&
@@ -85,7 +87,7 @@ static int need_quantity(ytree_t *t, yaml_node_t *map, const char *path, const c
   char sub[PATH_LEN];
   join(sub, sizeof sub, path, key);
   yaml_node_t *n = yt_need(t, map, key, sub, "a number (with an optional unit)");
-  return n ? quantity(t, n, sub, q, si, v) : -1;
+  return n ? darcy_key_quantity(t, n, sub, q, si, v) : -1;
 }
 
 /* A required text value map.key into out. */
@@ -104,7 +106,7 @@ static int parse_fit_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_con
   join(fpath, sizeof fpath, path, "fit");
   join(mpath, sizeof mpath, path, "model");
   yaml_node_t *fn = yt_get(t, n, "fit"), *mn = yt_get(t, n, "model");
-  TRY(file_name(t, fn, fpath, full, sizeof full));
+  TRY(darcy_key_file_name(t, fn, fpath, full, sizeof full));
   int m = mn ? yt_enum(t, mn, mpath, model_words) : 0;
   if (m < 0) return -1;
   int si;
@@ -188,7 +190,7 @@ static int need_number_list(ytree_t *t, yaml_node_t *map, const char *path, cons
     snprintf(item, sizeof item, "%s[%d]", sub, i);
     at[i] = yt_seq_item(t, s, i);
     if (qty >= 0)
-      TRY(quantity(t, at[i], item, (darcy_quantity)qty, si, &v[i]));
+      TRY(darcy_key_quantity(t, at[i], item, (darcy_quantity)qty, si, &v[i]));
     else
       TRY(yt_double(t, at[i], item, &v[i]));
   }
@@ -311,7 +313,7 @@ static int read_k_dataset(ytree_t *t, yaml_node_t *n, darcy_config *c) {
   char dset[PATH_LEN], full[FILE_LEN], unit[32] = "", msg[1024];
   TRY(yt_check_keys(t, n, "laws.hdf5", keys));
   yaml_node_t *fn = yt_need(t, n, "file", "laws.hdf5.file", "an HDF5 file name");
-  if (!fn || file_name(t, fn, "laws.hdf5.file", full, sizeof full)) return -1;
+  if (!fn || darcy_key_file_name(t, fn, "laws.hdf5.file", full, sizeof full)) return -1;
   TRY(need_string(t, n, "laws.hdf5", "dataset", "a dataset name", dset, sizeof dset));
   yaml_node_t *un = yt_get(t, n, "unit");
   if (un) TRY(yt_string(t, un, "laws.hdf5.unit", unit, sizeof unit));
@@ -427,9 +429,9 @@ static int parse_output(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   if (!o) return -1;
   TRY(yt_check_keys(t, o, "output", keys));
   if ((n = yt_get(t, o, "hdf5")))
-    TRY(file_name(t, n, "output.hdf5", c->hdf5_path, sizeof c->hdf5_path));
+    TRY(darcy_key_file_name(t, n, "output.hdf5", c->hdf5_path, sizeof c->hdf5_path));
   if ((n = yt_get(t, o, "json")))
-    TRY(file_name(t, n, "output.json", c->json_path, sizeof c->json_path));
+    TRY(darcy_key_file_name(t, n, "output.json", c->json_path, sizeof c->json_path));
   if (!c->hdf5_path[0] && !c->json_path[0])
     return yt_error(t, o, "output", "expected an 'hdf5' and/or a 'json' file name (got neither)");
   c->json_blocks = darcy_nblocks(&c->problem) <= 10000;
@@ -481,7 +483,7 @@ static int parse_fluid(ytree_t *t, yaml_node_t *root, darcy_config *c) {
                     "expected a viscosity > 0 (got %g)", fl->mu);
   fl->rho = 0.0;
   yaml_node_t *d = yt_get(t, f, "density");
-  return d ? quantity(t, d, "fluid.density", QTY_DENSITY, c->si, &fl->rho) : 0;
+  return d ? darcy_key_quantity(t, d, "fluid.density", QTY_DENSITY, c->si, &fl->rho) : 0;
 }
 
 /* upscale: {conditions: [fixed, linear, periodic]} (default: all three). */
@@ -527,9 +529,30 @@ static int check_upscale(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   return 0;
 }
 
+/* A two-phase config takes its viscosities and outputs from `twophase`; one with --upscale has no
+ * displacement to compute. */
+static int check_twophase_keys(ytree_t *t, yaml_node_t *root, yaml_node_t *twophase,
+                               const darcy_config *c) {
+  yaml_node_t *n;
+  if (!twophase) return 0;
+  if (c->upscale)
+    return yt_error(t, twophase, "twophase",
+                    "expected no two-phase block when upscaling (got one: --upscale or `upscale` "
+                    "computes a single-phase permeability tensor)");
+  if ((n = yt_get(t, root, "fluid")))
+    return yt_error(t, n, "fluid",
+                    "expected no `fluid` block with `twophase` (got one: the viscosities are "
+                    "twophase.mu_w and twophase.mu_o)");
+  if ((n = yt_get(t, root, "output")))
+    return yt_error(t, n, "output",
+                    "expected no top-level `output` with `twophase` (got one: the two-phase files "
+                    "are named under twophase.output)");
+  return 0;
+}
+
 static int parse_document(ytree_t *t, darcy_config *c, int upscale_cli) {
-  static const char *const keys[] = {"units", "grid",   "fluid",  "boundary", "sources",
-                                     "laws",  "solver", "output", "upscale",  NULL};
+  static const char *const keys[] = {"units",  "grid",   "fluid",   "boundary", "sources", "laws",
+                                     "solver", "output", "upscale", "twophase", NULL};
   darcy_problem *p = &c->problem;
   yaml_node_t *root = yt_root(t), *n;
   TRY(yt_check_keys(t, root, "", keys));
@@ -537,7 +560,9 @@ static int parse_document(ytree_t *t, darcy_config *c, int upscale_cli) {
   if ((c->si = yt_enum(t, n, "units", unit_words)) < 0) return -1;
   TRY(parse_upscale(t, yt_get(t, root, "upscale"), c));
   if (upscale_cli && !c->upscale) c->upscale = (1 << UPSCALE_COUNT) - 1;
-  TRY(parse_fluid(t, root, c));
+  yaml_node_t *twophase = yt_get(t, root, "twophase");
+  TRY(check_twophase_keys(t, root, twophase, c));
+  if (!twophase) TRY(parse_fluid(t, root, c));
   TRY(parse_grid(t, root, c));
   if (!c->upscale) {
     TRY(parse_boundary(t, root, c));
@@ -546,7 +571,14 @@ static int parse_document(ytree_t *t, darcy_config *c, int upscale_cli) {
   TRY(parse_laws(t, root, c));
   if (c->upscale) TRY(check_upscale(t, root, c));
   TRY(parse_solver(t, yt_get(t, root, "solver"), c));
-  TRY(parse_output(t, root, c));
+  if (twophase) {
+    TRY(twophase_config_read(t, twophase, c));
+    /* the pressure equation's viscosity: mobilities are scaled relative to mu_w
+     * (twophase_impes.c) */
+    p->fluid.mu = c->twophase.kr.mu_w;
+  } else {
+    TRY(parse_output(t, root, c));
+  }
   for (long b = 0; b < darcy_nblocks(p); b++)
     if (p->laws[b].kind == LAW_FORCHHEIMER && p->laws[b].beta > 0 && !(p->fluid.rho > 0)) {
       yaml_node_t *f = yt_get(t, root, "fluid"), *d = yt_get(t, f, "density");
@@ -562,7 +594,10 @@ static int read_config(const char *path, darcy_config *c, int quiet, int upscale
   ytree_t t;
   if (yt_load(&t, path, quiet)) return -1;
   const int rc = parse_document(&t, c, upscale_cli);
-  if (rc) darcy_problem_free(&c->problem);
+  if (rc) {
+    darcy_problem_free(&c->problem);
+    twophase_config_free(&c->twophase);
+  }
   yt_free(&t);
   return rc;
 }

@@ -3,6 +3,7 @@
 #define MDPORE_UPSCALE_DARCY_CONFIG_H
 
 #include "darcy_problem.h"
+#include "twophase_config.h"
 
 typedef struct {
   darcy_problem problem;
@@ -12,6 +13,7 @@ typedef struct {
   char json_path[4096];
   int json_blocks; /* write per-block results into the JSON (default: when <= 10000 blocks) */
   int upscale;     /* permeability tensor: bit f for family f of darcy_upscale.h; 0: one solve */
+  twophase_config twophase; /* water/oil displacement instead of one steady solve (enabled) */
 } darcy_config;
 
 /* Reads and validates the file; laws that reference fit JSON or HDF5 files are resolved relative to
