@@ -1,5 +1,6 @@
 /* The flood's census and what follows from it (flood.h). */
 #include "analysis/flood.h"
+#include "physics/periodic_slab.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -95,9 +96,7 @@ int flood_census(flood_t *f, sim_t *sim) {
     if (sp != f->inv && sp != f->def) continue;
     const int k = sp == f->inv ? 0 : 1;
     tail[4 + k] += 1.0; /* whole box */
-    double w = p->x[a][i] - box_lo;
-    w -= box_len * floor(w / box_len);
-    const double c = box_lo + w;
+    const double c = periodic_image(p->x[a][i], box_lo, box_len);
     if (c < f->lo || c >= f->hi) continue;
     int b = (int)((c - f->lo) / f->bin_w);
     if (b >= nb) b = nb - 1;

@@ -86,16 +86,6 @@ static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   return 0;
 }
 
-/* Length of the overlap of [a0, a1) and [b0, b1) on a circle of length L (intervals shorter than L). */
-static double circle_overlap(double a0, double a1, double b0, double b1, double L) {
-  double total = 0;
-  for (int k = -1; k <= 1; k++) {
-    const double lo = fmax(a0, b0 + k * L), hi = fmin(a1, b1 + k * L);
-    if (hi > lo) total += hi - lo;
-  }
-  return total;
-}
-
 static int check(const scene_t *s, scene_report_t *r) {
   const inlet_force_options_t *o = options_of(s);
   const int a = o->force.axis;
@@ -119,15 +109,15 @@ static int check(const scene_t *s, scene_report_t *r) {
     return r->error(r, "effects.inlet_force.sample",
                     "expected the sample inside the box along %c, [%g, %g] (got [%g, %g])", 'x' + a,
                     blo, bhi, o->sample_lo, o->sample_hi);
-  if (circle_overlap(o->force.lo, o->force.hi, o->sample_lo, o->sample_hi, L) > 0)
+  if (scene_circle_overlap(o->force.lo, o->force.hi, o->sample_lo, o->sample_hi, L) > 0)
     return r->error(r, "effects.inlet_force.slab",
                     "expected the forced slab outside the sample [%g, %g] (got [%g, %g])",
                     o->sample_lo, o->sample_hi, o->force.lo, o->force.hi);
   const double gw = o->probe_gap + o->probe_width;
   const double in0 = o->sample_lo - gw, out0 = o->sample_hi + o->probe_gap;
   if (2 * gw + (o->sample_hi - o->sample_lo) > L ||
-      circle_overlap(in0, in0 + o->probe_width, o->force.lo, o->force.hi, L) > 1e-12 ||
-      circle_overlap(out0, out0 + o->probe_width, o->force.lo, o->force.hi, L) > 1e-12)
+      scene_circle_overlap(in0, in0 + o->probe_width, o->force.lo, o->force.hi, L) > 1e-12 ||
+      scene_circle_overlap(out0, out0 + o->probe_width, o->force.lo, o->force.hi, L) > 1e-12)
     return r->error(r, "effects.inlet_force.probe_width",
                     "expected the probe slabs (width %g, %g from the sample faces) to fit "
                     "between the sample and the forced slab (they overlap one of them)",

@@ -1,5 +1,6 @@
 /* sim_recolor (sim.h): flooding's change of species in a slab, on the backend's particles. */
 #include "engine/sim_internal.h"
+#include "physics/periodic_slab.h"
 
 #include <math.h>
 
@@ -13,11 +14,8 @@ int sim_recolor(sim_t *sim, int axis, double lo, double hi, int from, int to, lo
     particles_t *p = &st->p;
     const double box_lo = st->scene.box_lo[axis], box_len = st->scene.box_hi[axis] - box_lo;
     for (int i = 0; i < p->n_local; i++) {
-      if (p->species[i] != from) continue;
-      double w = p->x[axis][i] - box_lo;
-      w -= box_len * floor(w / box_len); /* the periodic image in [0, L) */
-      const double c = box_lo + w;
-      if (c < lo || c >= hi) continue;
+      if (p->species[i] != from || !periodic_in_slab(p->x[axis][i], lo, hi, box_lo, box_len))
+        continue;
       p->species[i] = to;
       local++;
     }

@@ -2,6 +2,7 @@
 #include "io/flood_log.h"
 #include "common/atomic_file.h"
 #include "io/h5_util.h"
+#include "physics/periodic_slab.h"
 
 #include <errno.h>
 #include <hdf5.h>
@@ -9,6 +10,16 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The maps' grid: cells per axis (at least one) of edge about flood.maps.cell, exactly tiling the box. */
+static void map_grid(const scene_t *s, int cells[3], double cell[3]) {
+  for (int d = 0; d < 3; d++) {
+    const double len = s->box_hi[d] - s->box_lo[d];
+    cells[d] = (int)ceil(len / s->flood.map_cell - 1e-9);
+    if (cells[d] < 1) cells[d] = 1;
+    cell[d] = len / cells[d];
+  }
+}
 
 static FILE *open_text(const char *path, const char *what) {
   FILE *fp = fopen(path, "w");
@@ -53,13 +64,7 @@ int flood_log_open(flood_log_t *log, const scene_t *s, const flood_t *f, int ran
     fprintf(log->profile, "\n");
     fflush(log->profile);
   }
-  if (o->map_every > 0)
-    for (int d = 0; d < 3; d++) {
-      const double len = s->box_hi[d] - s->box_lo[d];
-      log->cells[d] = (int)ceil(len / o->map_cell - 1e-9);
-      if (log->cells[d] < 1) log->cells[d] = 1;
-      log->cell[d] = len / log->cells[d];
-    }
+  if (o->map_every > 0) map_grid(s, log->cells, log->cell);
   return 0;
 }
 
@@ -160,12 +165,7 @@ int flood_log_map(flood_log_t *log, const scene_t *s, const flood_t *f, sim_t *s
   MPI_Comm comm = sim_comm(sim);
   int cells[3];
   double cell[3];
-  for (int d = 0; d < 3; d++) { /* (every rank: only rank 0 opened the log) */
-    const double len = s->box_hi[d] - s->box_lo[d];
-    cells[d] = (int)ceil(len / s->flood.map_cell - 1e-9);
-    if (cells[d] < 1) cells[d] = 1;
-    cell[d] = len / cells[d];
-  }
+  map_grid(s, cells, cell); /* (every rank: only rank 0 opened the log) */
   const size_t nc = (size_t)cells[0] * cells[1] * cells[2];
   float *cnt = calloc(2 * nc, sizeof *cnt), *sat = rank == 0 ? malloc(nc * sizeof *sat) : NULL;
   int bad = !cnt || (rank == 0 && !sat);
@@ -183,9 +183,7 @@ int flood_log_map(flood_log_t *log, const scene_t *s, const flood_t *f, sim_t *s
     int ix[3];
     for (int d = 0; d < 3; d++) {
       const double len = s->box_hi[d] - s->box_lo[d];
-      double w = p->x[d][i] - s->box_lo[d];
-      w -= len * floor(w / len);
-      ix[d] = (int)(w / cell[d]);
+      ix[d] = (int)((periodic_image(p->x[d][i], s->box_lo[d], len) - s->box_lo[d]) / cell[d]);
       if (ix[d] >= cells[d]) ix[d] = cells[d] - 1;
     }
     const size_t c = ((size_t)ix[2] * cells[1] + ix[1]) * cells[0] + ix[0];

@@ -7,6 +7,7 @@
 #define MESO_PHYSICS_INLET_FORCE_H
 
 #include "hd.h"
+#include "periodic_slab.h"
 
 #include <math.h>
 
@@ -19,10 +20,7 @@ typedef struct {
 
 /* 1 when coordinate u along the axis (any periodic image) lies in [lo, hi). */
 MESO_HD int inlet_force_in_slab(const inlet_force_params_t *b, double u) {
-  double w = u - b->box_lo;
-  w -= b->box_len * floor(w / b->box_len); /* into [0, L) */
-  const double c = b->box_lo + w;
-  return c >= b->lo && c < b->hi;
+  return periodic_in_slab(u, b->lo, b->hi, b->box_lo, b->box_len);
 }
 
 MESO_HD void inlet_force_particle_force(const inlet_force_params_t *b, int species,

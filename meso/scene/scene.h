@@ -282,6 +282,10 @@ int scene_relative_path(const char *scene_file, const char *path, char *out, siz
 /* Species index of a name, or -1. */
 int scene_species_index(const scene_t *scene, const char *name);
 
+/* Length of the overlap of [a0, a1) and [b0, b1) on a circle of length L (a periodic axis; each
+ * interval shorter than L): slabs of the inlet force and of a flood checked against the sample. */
+double scene_circle_overlap(double a0, double a1, double b0, double b1, double L);
+
 /* A 64-bit hash of everything that determines the trajectory (box, species, pairs, effects, kernel,
  * kT, dt, seed, ...), not outputs, step counts or paths: a checkpoint only restarts the same
  * physics. */

@@ -15,15 +15,6 @@
 /* the profile's arrays per bin: two counts on every rank */
 #define FLOOD_BYTES_PER_BIN 16.0
 
-double scene_circle_overlap(double a0, double a1, double b0, double b1, double L) {
-  double total = 0;
-  for (int k = -1; k <= 1; k++) {
-    const double lo = fmax(a0, b0 + k * L), hi = fmin(a1, b1 + k * L);
-    if (hi > lo) total += hi - lo;
-  }
-  return total;
-}
-
 /* [lo, hi] inside the box along `axis`, lo < hi. */
 static int slab(ytree_t *t, yaml_node_t *v, const char *path, const scene_t *s, int axis,
                 double *lo, double *hi) {

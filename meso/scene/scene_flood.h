@@ -10,7 +10,4 @@
  * "FILE:LINE:COL: key 'flood.K': expected ...". */
 int scene_parse_flood(ytree_t *t, yaml_node_t *n, scene_t *s);
 
-/* Length of the overlap of [a0, a1) and [b0, b1) on a circle of length L (each shorter than L). */
-double scene_circle_overlap(double a0, double a1, double b0, double b1, double L);
-
 #endif

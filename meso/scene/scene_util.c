@@ -1,5 +1,6 @@
 /* Small queries on a parsed scene: species lookup, paths relative to the scene file, physics hash. */
 #include "scene/scene.h"
+#include <math.h>
 
 #include <libgen.h>
 #include <stddef.h>
@@ -56,4 +57,13 @@ uint64_t scene_physics_hash(const scene_t *s) {
   h = fnv(h, &s->dt, sizeof s->dt);
   h = fnv(h, &s->seed, sizeof s->seed);
   return h;
+}
+
+double scene_circle_overlap(double a0, double a1, double b0, double b1, double L) {
+  double total = 0;
+  for (int k = -1; k <= 1; k++) {
+    const double lo = fmax(a0, b0 + k * L), hi = fmin(a1, b1 + k * L);
+    if (hi > lo) total += hi - lo;
+  }
+  return total;
 }

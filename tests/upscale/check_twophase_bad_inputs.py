@@ -57,6 +57,9 @@ CONFIGS = [  # (name, content, expected fragments)
      ["bad_fluid.yaml:6", "'fluid'", "mu_w"]),
     ("bad_mu.yaml", CFG.replace("RELPERM", COREY).replace("mu_o: 2.0e-3", "mu_o: 0"),
      ["bad_mu.yaml:10", "'twophase.mu_o'", "> 0"]),
+    # an end time far beyond the work it can take: refused after the first pressure solve
+    ("bad_end_time.yaml", CFG.replace("RELPERM", COREY).replace("end_time: 20", "end_time: 1.0e12"),
+     ["bad_end_time.yaml", "'twophase.end_time'", "CFL steps"]),
 ]
 
 

@@ -20,7 +20,11 @@ typedef struct {
   double *t_out;
   char profiles_csv[4096]; /* saturation of every block at each output time */
   char history_csv[4096];  /* water cut and recovery against pore volumes injected, every step */
+  char config_path[4096];  /* the config file (messages) */
 } twophase_config;
+
+/* The most CFL steps an end time may ask for (twophase.end_time is refused beyond it). */
+#define TWOPHASE_MAX_STEPS 1e7
 
 void twophase_config_free(twophase_config *tp);
 

@@ -188,6 +188,7 @@ int twophase_config_read(ytree_t *t, yaml_node_t *n, darcy_config *c) {
     return yt_error(t, n, "twophase", "expected a mapping (got %s)", yt_describe(n, b, sizeof b));
   TRY(yt_check_keys(t, n, "twophase", keys));
   tp->enabled = 1;
+  snprintf(tp->config_path, sizeof tp->config_path, "%s", t->file ? t->file : "config");
   for (long i = 0; i < darcy_nblocks(p); i++)
     if (p->laws[i].kind != LAW_DARCY)
       return yt_error(t, n, "twophase",

@@ -172,6 +172,15 @@ int twophase_run(MPI_Comm comm, darcy_config *c, twophase_summary *sum) {
     if (rank == 0 && !rc) {
       step_rates r;
       saturation_rates(c, pressure, flux_scale, sw, sum->max_dfw, dsw, &r);
+      /* the work the end time asks for, from the first CFL step (the velocities change little
+       * in an incompressible displacement at a set drive): refused before it runs away */
+      if (sum->steps == 0 && !(tp->t_end / r.dt_max <= TWOPHASE_MAX_STEPS)) {
+        fprintf(stderr,
+                "%s: key 'twophase.end_time': expected an end time reachable in at most %.0e "
+                "CFL steps (got %g, about %.3g steps of %g)\n",
+                tp->config_path, TWOPHASE_MAX_STEPS, tp->t_end, tp->t_end / r.dt_max, r.dt_max);
+        rc = 1;
+      }
       double t_next = next_out < tp->n_out ? tp->t_out[next_out] : tp->t_end;
       double dt = fmin(r.dt_max, t_next - t);
       /* land exactly on an output time instead of leaving a sliver step before it */

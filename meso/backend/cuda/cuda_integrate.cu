@@ -5,6 +5,7 @@
  * device and fetched once per step. */
 #include "cuda_finish.cuh"
 #include "cuda_neighbours.cuh"
+#include "physics/periodic_slab.h"
 #include "physics/verlet.h"
 
 #include <string.h>
@@ -113,11 +114,8 @@ __global__ void k_fault_write(int n, struct dev_fields p, int64_t id, int field,
 __global__ void k_recolor(int n, struct dev_fields p, int axis, double lo, double hi, double box_lo,
                           double box_len, int from, int to, unsigned long long *changed) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= n || p.species[i] != from) return;
-  double w = p.x[axis][i] - box_lo;
-  w -= box_len * floor(w / box_len);
-  const double c = box_lo + w;
-  if (c < lo || c >= hi) return;
+  if (i >= n || p.species[i] != from || !periodic_in_slab(p.x[axis][i], lo, hi, box_lo, box_len))
+    return;
   p.species[i] = to;
   atomicAdd(changed, 1ull);
 }
