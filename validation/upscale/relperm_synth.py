@@ -32,7 +32,7 @@ def main():
     ew, eo = a.rel_err * krw + a.abs_err, a.rel_err * kro + a.abs_err
     krw_m, kro_m = krw + ew * rng.standard_normal(a.rows), kro + eo * rng.standard_normal(a.rows)
     with open(a.out, "w") as f:
-        f.write("# synthetic relperm.csv (tests/upscale/relperm_synth.py): Corey swc sor krw_max nw "
+        f.write("# synthetic relperm.csv (validation/upscale/relperm_synth.py): Corey swc sor krw_max nw "
                 "kro_max no = " + " ".join(f"{v:g}" for v in a.corey) + "\n")
         f.write(f"# noise: err = {a.rel_err:g} kr + {a.abs_err:g}, seed {a.seed}\n")
         f.write("# rc_m: 8.2e-10\n# temperature_K: 298\n")
