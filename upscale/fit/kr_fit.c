@@ -245,7 +245,7 @@ int kr_fit_law(const kr_table *t, kr_law_kind kind, const kr_fit_opts *o, kr_fit
     lo[k] = is_log_param(kind, p) ? log(r->lower[p]) : r->lower[p];
     hi[k] = is_log_param(kind, p) ? log(r->upper[p]) : r->upper[p];
   }
-  double best_chi2 = INFINITY;
+  double best_chi2 = INFINITY, best_converged = INFINITY;
   int best_reason = 0;
   for (int a = 0; a < ns; a++) {
     double x0[KR_MAX_PARAMS], x[KR_MAX_PARAMS];
@@ -259,12 +259,15 @@ int kr_fit_law(const kr_table *t, kr_law_kind kind, const kr_fit_opts *o, kr_fit
     if (lsq_tao_solve(&lp, x, &reason, &its)) continue;
     const double c2 = lsq_chi2(&lp, x, NULL);
     r->starts++;
-    if (isfinite(c2) &&
-        (c2 < best_chi2 || (reason > 0 && best_reason <= 0 && c2 <= best_chi2 * (1 + 1e-9)))) {
+    if (!isfinite(c2)) continue;
+    if (reason > 0) best_converged = fmin(best_converged, c2);
+    if (c2 < best_chi2) {
       best_chi2 = c2, best_reason = reason, r->iterations = its;
       memcpy(best_x, x, sizeof x);
     }
   }
+  /* a start that stopped short of TAO's tolerance at the optimum another start converged to */
+  if (best_reason <= 0 && best_converged <= best_chi2 * (1 + 1e-6) + 1e-9) best_reason = 1;
   if (!isfinite(best_chi2)) {
     snprintf(r->why, sizeof r->why, "TAO failed from every start");
     problem_free(&pb);

@@ -17,7 +17,8 @@ drawn from (how far fit + export move the shock).
 
 Usage: relperm_swof_bl.py --mdpore build/bin/mdpore [--outdir DIR] [--plot]
 Checks: front within 2 % of the table's x_f at both grid sizes; corey2: |S_f - 1/sqrt(1+M)| < 0.01.
-Writes DIR/relperm_swof_bl.{md,csv} (and .png with --plot); exits 1 when a check fails."""
+Writes DIR/relperm_swof_bl.{md,csv} (and .png with --plot), the tables, SWOF files, configs and
+profiles under DIR/runs/; exits 1 when a check fails."""
 import argparse
 import csv
 import math
@@ -124,26 +125,27 @@ def main():
     ap.add_argument("--outdir", default=os.path.join(HERE, "..", "results", "relperm_swof"))
     ap.add_argument("--plot", action="store_true")
     a = ap.parse_args()
-    os.makedirs(a.outdir, exist_ok=True)
-    results, fails, profiles = [], [], {}
+    runs = os.path.join(a.outdir, "runs")  # tables, SWOF files, configs and profiles of each run
+    os.makedirs(runs, exist_ok=True)
+    results, fails, profiles, exact = [], [], {}, {}
     for name, truth, sw_range, m in CASES:
-        table = os.path.join(a.outdir, f"{name}_relperm.csv")
-        swof = os.path.join(a.outdir, f"{name}.swof")
+        table = os.path.join(runs, f"{name}_relperm.csv")
+        swof = os.path.join(runs, f"{name}.swof")
         run([sys.executable, os.path.join(HERE, "relperm_synth.py"), table, "--rows", "16",
              "--sw-range", *map(str, sw_range), "--corey", *map(str, truth)])
         run([a.mdpore, "fit", "relperm", table, "--swof", swof, "--json",
-             os.path.join(a.outdir, f"{name}.fit.json"), "--quiet"])
+             os.path.join(runs, f"{name}.fit.json"), "--quiet"])
         tab = read_swof(swof)
         s_i = tab[0, 0]
         s_f, slope = welge(fw_table(tab, m), s_i, tab[-1, 0])
+        exact[name] = (fw_table(tab, m), tab[-1, 0])
         s_f_true, slope_true = welge(fw_corey(truth, m), truth[0], 1.0 - truth[1])
         if name == "corey2":
             closed = 1.0 / math.sqrt(1.0 + m)
             if abs(s_f - closed) > 0.01:
                 fails.append(f"{name}: table tangent S_f = {s_f:.4f}, closed form {closed:.4f}")
         for n in BLOCKS:
-            x_f, x_num, t_end, x, s = darcy_front(a.mdpore, a.outdir, name, swof, m, n, s_i, s_f,
-                                                  slope)
+            x_f, x_num, t_end, x, s = darcy_front(a.mdpore, runs, name, swof, m, n, s_i, s_f, slope)
             err = (x_num - x_f) / x_f
             results.append(dict(case=name, M=m, n=n, rows=len(tab), S_i=s_i, S_f=s_f, dfw=slope,
                                 S_f_truth=s_f_true, dfw_truth=slope_true, x_f=x_f, x_num=x_num,
@@ -178,7 +180,13 @@ def main():
                 x, s, t_end = profiles[(name, n)]
                 ax.plot(x, s, "-", label=f"IMPES, {n} blocks")
             sub = [r for r in results if r["case"] == name]
-            ax.axvline(sub[0]["x_f"], color="k", ls="--", label="Buckley-Leverett front (table)")
+            f, s_f, t_end = exact[name][0], sub[0]["S_f"], profiles[(name, BLOCKS[0])][2]
+            s_grid = np.linspace(s_f, exact[name][1], 4001)
+            x_bl = np.gradient(f(s_grid), s_grid) * RATE * t_end / (PHI * A_DEPTH)
+            # the rarefaction from the inlet (S_max, x = 0) to the shock, then the initial state
+            ax.plot(np.append(x_bl[::-1], [sub[0]["x_f"], sub[0]["x_f"], L]),
+                    np.append(s_grid[::-1], [s_f, sub[0]["S_i"], sub[0]["S_i"]]), "k--", lw=1.2,
+                    label="Buckley-Leverett of the table")
             ax.set(title=f"{name}: M = {m:g}", xlabel="x (m)", ylabel="water saturation")
             ax.legend(fontsize=8)
         fig.tight_layout()
