@@ -44,7 +44,7 @@ void kr_choose(const kr_fit_result fits[KR_LAW_COUNT], int forced, kr_choice *c)
     const int better = c->D >= c->D_crit && let->bic < co->bic;
     snprintf(c->text, sizeof c->text,
              "D = (chi2_corey - chi2_let) / max(1, chi2_let/dof) = (%.4g - %.4g) / %.3g = %.3g %s "
-             "%.3g (chi2 quantile, %d dof, level %g); BIC corey %.4g, let %.4g: %s",
+             "%.3g (chi2 quantile, %d dof, level %.2g); BIC corey %.4g, let %.4g: %s",
              co->chi2, let->chi2, let->chi2_dof > 1.0 ? let->chi2_dof : 1.0, c->D,
              c->D >= c->D_crit ? ">=" : "<", c->D_crit, c->dp, KR_SELECT_ALPHA, co->bic, let->bic,
              better ? "LET is significantly better" : "LET is not significantly better: Corey");

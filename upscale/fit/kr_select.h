@@ -11,9 +11,14 @@
 #ifndef MDPORE_UPSCALE_KR_SELECT_H
 #define MDPORE_UPSCALE_KR_SELECT_H
 
+#include <math.h>
+
+#include "fit_select.h"
 #include "kr_fit.h"
 
-#define KR_SELECT_ALPHA 0.0027
+/* The test's level: the two-sided Gaussian tail beyond FIT_SUPPORT_SIGMA (3), 0.27 %, the level at
+ * which `mdpore fit` accepts a flow law beyond Darcy (fit_select.h). */
+#define KR_SELECT_ALPHA erfc(FIT_SUPPORT_SIGMA / M_SQRT2)
 
 typedef struct {
   int chosen;       /* KR_COREY, KR_LET, or -1 if no fit */
