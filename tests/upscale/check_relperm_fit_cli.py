@@ -227,19 +227,31 @@ def main():
     print(f"kro_max = 1.25: {over} rows clipped and listed (peak "
           f"{fit_l['swof']['kr_peak_unclipped']:.3f}), Pcow in bar from pc_Pa, read by darcy")
 
-    # reduced Pc (no pc_Pa column): x kT/rc^3, rc = 8.2e-10 m, T = 298 K
+    # reduced Pc (pc_Pa empty, as mdpore image drainage writes it without a voxel size):
+    # x kT/rc^3, rc = 8.2e-10 m, T = 298 K; the Sw = 1 rows below the entry pressure merge into one
     pc_red = os.path.join(work, "pc_morph_reduced.csv")
     with open(pc_red, "w") as f:
-        f.write("Sw,pc\n0.2,0.5\n0.8,0.1\n")
+        f.write("# pc_Pa: empty\nstep,radius_vox,radius_rc,Sw,Snw,trapped,nw_spans,pc,pc_depleted,"
+                "pc_Pa,pc_depleted_Pa,J\n")
+        for k, (sw, pc) in enumerate([(1.0, 0.05), (1.0, 0.08), (0.8, 0.1), (0.2, 0.5)]):
+            f.write(f"{k},{4 - k},{2 - k / 2},{sw},{1 - sw},0,0,{pc},,,,\n")
+    # rc stated in words, as mdpore relperm's definitions line does, instead of "# rc_m: ..."
+    synth_words = os.path.join(work, "synthetic_rc_words.csv")
+    with open(synth_words, "w") as f:
+        f.write(open(synth).read().replace(
+            "# rc_m: 8.2e-10", "# G = n g = 0.06 (body force g = 0.01); rc = 8.2e-10 m; "
+            "rc_per_voxel 0.5"))
     swof_r = os.path.join(work, "reduced.swof")
-    run([mdpore, "fit", "relperm", synth, "--swof", swof_r, "--pc-morph", pc_red,
+    run([mdpore, "fit", "relperm", synth_words, "--swof", swof_r, "--pc-morph", pc_red,
          "--swof-points", "measured", "--quiet"], 0, "measured + reduced pc")
     text, rows = read_swof(swof_r)
     check_swof_shape(swof_r, rows)
     scale = 1.380649e-23 * 298 / (8.2e-10) ** 3 / 1e5  # bar per reduced pressure unit
     first = min(max(rows[0][0], 0.2), 0.8)
     want = (0.5 + (0.1 - 0.5) * (first - 0.2) / 0.6) * scale
-    if not math.isclose(rows[0][3], want, rel_tol=1e-6) or "rows: the 16 measured points" not in text:
+    if (not math.isclose(rows[0][3], want, rel_tol=1e-6) or "rows: the 16 measured points" not in text
+            or not math.isclose(rows[-1][3], 0.08 * scale, rel_tol=1e-6)
+            or "1 row(s) of equal Sw merged" not in text):
         sys.exit(f"FAIL: {swof_r}: first Pcow {rows[0][3]}, expected {want} bar\n{text}")
     darcy_reads(mdpore, work, swof_r)
     print(f"measured points: {len(rows)} monotone rows; reduced Pc x {scale:.4g} bar; read by darcy")

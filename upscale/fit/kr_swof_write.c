@@ -28,9 +28,10 @@ static void pc_header(FILE *f, const kr_swof *s, const pc_curve *pc) {
     return;
   }
   snprintf(buf, sizeof buf,
-           "Pcow = p_o - p_w from the morphological drainage curve %.300s (%d points, linear "
-           "interpolation, constant beyond Sw = %.4g .. %.4g)",
-           pc->path, pc->n, pc->sw[0], pc->sw[pc->n - 1]);
+           "Pcow = p_o - p_w from the morphological drainage curve %.300s (%d points of different "
+           "Sw, %d row(s) of equal Sw merged keeping the largest Pc; linear interpolation, "
+           "constant beyond Sw = %.4g .. %.4g)",
+           pc->path, pc->n, pc->merged, pc->sw[0], pc->sw[pc->n - 1]);
   comment(f, buf);
   if (pc->in_pa)
     comment(f, "Pcow in bar (the curve's pc_Pa column / 1e5)");

@@ -40,8 +40,17 @@ static int split_fields(char *s, char **f) {
   return n;
 }
 
-/* "# key: value" metadata. */
+/* "# key: value" metadata, and rc written in words ("... rc = 8.2e-10 m; ...", as `mdpore relperm`
+ * states it) when no rc_m line gave it. */
 static void read_metadata(kr_table *t, const char *text) {
+  const char *w = strstr(text, "rc = ");
+  if (w && !isfinite(t->rc_m)) {
+    char *end;
+    const double v = strtod(w + 5, &end);
+    if (end != w + 5 && isfinite(v) && v > 0 && !strncmp(end, " m", 2) &&
+        (end[2] == 0 || end[2] == ';' || end[2] == ',' || end[2] == ' ' || end[2] == ')'))
+      t->rc_m = v;
+  }
   static const char *const keys[] = {"rc_m", "length_unit_m", "temperature_K", "M"};
   for (int k = 0; k < 4; k++) {
     size_t len = strlen(keys[k]);

@@ -1,6 +1,7 @@
 /* The relative-permeability table that `mdpore fit relperm` reads (docs/relperm.md section 3, the
  * relperm.csv of `mdpore relperm`): '#' comment lines (those of the form "# key: value" with key
- * rc_m, length_unit_m, temperature_K or M are read as metadata), a header naming the columns (order
+ * rc_m, length_unit_m, temperature_K or M are read as metadata, and "rc = VALUE m" inside a comment
+ * gives rc_m too), a header naming the columns (order
  * free: Sw, krw, kro required; Sw_err, krw_err, kro_err optional; others ignored), then one
  * comma-separated row per saturation, sorted by Sw. */
 #ifndef MDPORE_UPSCALE_KR_TABLE_H
