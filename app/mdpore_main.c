@@ -17,7 +17,7 @@ static const command_t commands[] = {
     {"image", cmd_image, "segmented 3D images: info (porosity, connectivity), convert to HDF5"},
     {"build", cmd_build, "build inputs: the wall patch database (build patches)"},
     {"foam", cmd_foam, "OpenFOAM Stokes-flow permeability of an image (continuum cross-check)"},
-    {"fit", cmd_fit, "fit Darcy and non-Darcy laws to a flow-data table"},
+    {"fit", cmd_fit, "fit Darcy and non-Darcy laws to a flow-data table (also: fit relperm)"},
     {"darcy", cmd_darcy, "continuum Darcy/non-Darcy solve on a grid of rock blocks"},
     {"permeability", cmd_permeability,
      "permeability campaign: forcing ladder of mdpore runs, flow table, fit, k in nD"},

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cmd_fit_relperm.h"
 #include "commands.h"
 #include "common/same_file.h"
 #include "fit_check.h"
@@ -25,6 +26,8 @@ static const char *usage_text =
     "  --models LIST     comma-separated subset of darcy,threshold,forchheimer,power\n"
     "  --criterion C     model selection by bic (default) or aic\n"
     "  --plot PNG        plot data, fits and residuals (python3 + matplotlib)\n"
+    "mdpore fit relperm TABLE ...: Corey/LET fits of a relative-permeability table and the SWOF\n"
+    "export (mdpore fit relperm --help; docs/relperm.md section 5)\n"
     "More: docs/flow-table.md (mdpore --help lists every command)\n";
 
 #ifndef MDPORE_PYTHON_EXE
@@ -164,6 +167,7 @@ static int run_fit(const fit_args *a) {
 }
 
 int cmd_fit(int argc, char **argv) {
+  if (argc > 1 && !strcmp(argv[1], "relperm")) return cmd_fit_relperm(argc - 1, argv + 1);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   fit_args a;

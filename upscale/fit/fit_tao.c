@@ -1,100 +1,26 @@
-/* TAO least-squares driver (see fit_tao.h). Residuals r_i = (f(G_i; x) - q_i) / sigma_i. */
+/* Flow-law fits on the TAO least-squares driver of lsq_tao.h (see fit_tao.h). Residuals
+ * r_i = (f(G_i; x) - q_i) / sigma_i. */
 #include "fit_tao.h"
 
+#include "lsq_tao.h"
+
 #include <math.h>
-#include <petsctao.h>
 #include <stdio.h>
 #include <string.h>
 
-typedef struct {
-  const fit_data *d;
-  const fit_model *m;
-} lsq_ctx;
-
-static PetscErrorCode residual(Tao tao, Vec X, Vec R, void *ctx) {
-  (void)tao;
-  const lsq_ctx *c = ctx;
-  const PetscScalar *x;
-  PetscScalar *r;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(X, &x));
-  PetscCall(VecGetArray(R, &r));
-  for (int i = 0; i < c->d->n; i++)
-    r[i] = (fit_model_eval(c->m, x, c->d->G[i], NULL) - c->d->q[i]) / c->d->sigma[i];
-  PetscCall(VecRestoreArray(R, &r));
-  PetscCall(VecRestoreArrayRead(X, &x));
-  PetscFunctionReturn(0);
+/* The flow law as an lsq_tao.h model: q(G_i; x). */
+static double flow_model(const double *x, int i, double *grad, void *ctx) {
+  const fit_data *d = ((const void **)ctx)[0];
+  const fit_model *m = ((const void **)ctx)[1];
+  return fit_model_eval(m, x, d->G[i], grad);
 }
 
-static PetscErrorCode jacobian(Tao tao, Vec X, Mat J, Mat Jpre, void *ctx) {
-  (void)tao;
-  (void)Jpre;
-  const lsq_ctx *c = ctx;
-  const PetscScalar *x;
-  double g[2];
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(X, &x));
-  for (int i = 0; i < c->d->n; i++) {
-    fit_model_eval(c->m, x, c->d->G[i], g);
-    for (int j = 0; j < c->m->np; j++)
-      PetscCall(MatSetValue(J, i, j, g[j] / c->d->sigma[i], INSERT_VALUES));
-  }
-  PetscCall(VecRestoreArrayRead(X, &x));
-  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
-
-/* Runs TAOBRGN from the model's initial guess; writes the optimum into x. */
-static PetscErrorCode solve(const fit_data *d, const fit_model *m, double *x, int *reason,
-                            int *its) {
-  lsq_ctx ctx = {d, m};
-  Tao tao;
-  Vec X, R, lo, hi;
-  Mat J;
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, m->np, &X));
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, d->n, &R));
-  PetscCall(VecDuplicate(X, &lo));
-  PetscCall(VecDuplicate(X, &hi));
-  for (int j = 0; j < m->np; j++) {
-    PetscCall(VecSetValue(X, j, m->x0[j], INSERT_VALUES));
-    PetscCall(
-        VecSetValue(lo, j, isfinite(m->lower[j]) ? m->lower[j] : PETSC_NINFINITY, INSERT_VALUES));
-    PetscCall(
-        VecSetValue(hi, j, isfinite(m->upper[j]) ? m->upper[j] : PETSC_INFINITY, INSERT_VALUES));
-  }
-  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, d->n, m->np, NULL, &J));
-  PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
-  PetscCall(TaoSetType(tao, TAOBRGN));
-  PetscCall(TaoSetSolution(tao, X));
-  PetscCall(TaoSetVariableBounds(tao, lo, hi));
-  PetscCall(TaoSetResidualRoutine(tao, R, residual, &ctx));
-  PetscCall(TaoSetJacobianResidualRoutine(tao, J, J, jacobian, &ctx));
-  /* A vanishing proximal term keeps Gauss-Newton steps well posed without biasing the optimum. */
-  PetscCall(TaoBRGNSetRegularizerWeight(tao, 1e-12));
-  PetscCall(TaoSetTolerances(tao, 1e-8, 1e-12, 0.0)); /* floor of |J^T r| is ~1e-12 */
-  PetscCall(TaoSetMaximumIterations(tao, 200));
-  PetscCall(TaoSetOptionsPrefix(tao, "fit_"));
-  PetscCall(TaoSetFromOptions(tao));
-  PetscCall(TaoSolve(tao));
-  TaoConvergedReason why;
-  PetscInt n_it;
-  PetscCall(TaoGetConvergedReason(tao, &why));
-  PetscCall(TaoGetIterationNumber(tao, &n_it));
-  *reason = (int)why;
-  *its = (int)n_it;
-  const PetscScalar *xa;
-  PetscCall(VecGetArrayRead(X, &xa));
-  for (int j = 0; j < m->np; j++) x[j] = xa[j];
-  PetscCall(VecRestoreArrayRead(X, &xa));
-  PetscCall(TaoDestroy(&tao));
-  PetscCall(MatDestroy(&J));
-  PetscCall(VecDestroy(&X));
-  PetscCall(VecDestroy(&R));
-  PetscCall(VecDestroy(&lo));
-  PetscCall(VecDestroy(&hi));
-  PetscFunctionReturn(0);
+/* Runs TAOBRGN (lsq_tao.h) from the model's initial guess; writes the optimum into x. */
+static int solve(const fit_data *d, const fit_model *m, double *x, int *reason, int *its) {
+  const void *ctx[2] = {d, m};
+  const lsq_problem p = {d->n,        m->np, d->q,     d->sigma, flow_model,
+                         (void *)ctx, m->x0, m->lower, m->upper, 200};
+  return lsq_tao_solve(&p, x, reason, its);
 }
 
 /* chi^2 and the Gauss-Newton normal matrix A = J^T J (weighted) at x. */

@@ -1,0 +1,251 @@
+/* `mdpore fit relperm TABLE` (see cmd_fit_relperm.h). */
+#include "cmd_fit_relperm.h"
+
+#include <math.h>
+#include <mpi.h>
+#include <petscsys.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/same_file.h"
+#include "kr_report.h"
+#include "kr_select.h"
+#include "kr_swof.h"
+#include "pc_curve.h"
+
+const char *const fit_relperm_usage =
+    "usage: mdpore fit relperm TABLE [--law auto|corey|let] [--swc V] [--sor V]\n"
+    "                                [--swof FILE] [--swof-rows N] [--swof-points law|measured]\n"
+    "                                [--pc-morph pc_morph.csv] [--json FILE] [--png FILE] "
+    "[--quiet]\n"
+    "Fits Corey and LET relative-permeability laws to TABLE (the relperm.csv of mdpore relperm:\n"
+    "Sw,Sw_err,krw,krw_err,kro,kro_err,...) by weighted least squares (TAO), chooses LET only "
+    "when\n"
+    "it is significantly better (chi2-drop test at 0.27 %% and a lower BIC), writes JSON (default\n"
+    "TABLE.fit.json) and optionally an Eclipse/OPM SWOF table (Sw krw krow Pcow, METRIC).\n"
+    "  --law L           auto (default: the test decides), corey (Corey only), let (LET, forced)\n"
+    "  --swc V, --sor V  fix the end-point saturations (default: fitted within the data's bounds)\n"
+    "  --swof FILE       write the SWOF table of the chosen law (kr > 1 clipped to 1, listed)\n"
+    "  --swof-rows N     law grid points from swc to 1 - sor (default %d)\n"
+    "  --swof-points P   law (default) or measured (the points, made monotone)\n"
+    "  --pc-morph FILE   Pcow from the morphological Pc(Sw) curve (else Pcow = 0)\n"
+    "  --png FILE        plot data, fits and residuals (python3 + matplotlib); --plot is the same\n"
+    "More: docs/relperm.md section 5\n";
+
+#ifndef MDPORE_PYTHON_EXE
+#define MDPORE_PYTHON_EXE "/usr/bin/python3"
+#endif
+#ifndef MDPORE_RELPERM_PLOT_SCRIPT
+#define MDPORE_RELPERM_PLOT_SCRIPT "plot_relperm.py"
+#endif
+
+typedef struct {
+  const char *table, *json, *png, *swof, *pc;
+  int law; /* -1: auto */
+  int swof_rows, measured, quiet;
+  kr_fit_opts fit;
+  int petsc_argc;
+  char **petsc_argv;
+} relperm_args;
+
+static int parse_number(const char *opt, const char *s, double lo, double hi, double *v) {
+  char *end;
+  *v = strtod(s, &end);
+  if (end == s || *end || !(*v >= lo && *v < hi)) {
+    fprintf(stderr, "mdpore fit relperm: %s: expected a number in [%g, %g) (got '%s')\n", opt, lo,
+            hi, s);
+    return -1;
+  }
+  return 0;
+}
+
+/* Returns 0, 1 (help) or -1. */
+static int parse_args(int argc, char **argv, relperm_args *a) {
+  memset(a, 0, sizeof *a);
+  a->law = -1;
+  a->swof_rows = KR_SWOF_DEFAULT_ROWS;
+  a->fit.swc = a->fit.sor = NAN;
+  a->petsc_argv = calloc(argc + 1, sizeof(char *));
+  a->petsc_argv[a->petsc_argc++] = argv[0];
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i];
+    const int has_val = i + 1 < argc;
+    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (!strcmp(s, "--json") && has_val)
+      a->json = argv[++i];
+    else if ((!strcmp(s, "--png") || !strcmp(s, "--plot")) && has_val)
+      a->png = argv[++i];
+    else if (!strcmp(s, "--swof") && has_val)
+      a->swof = argv[++i];
+    else if (!strcmp(s, "--pc-morph") && has_val)
+      a->pc = argv[++i];
+    else if (!strcmp(s, "--law") && has_val) {
+      const char *v = argv[++i];
+      a->law = strcmp(v, "auto") ? kr_law_from_name(v) : -1;
+      if (strcmp(v, "auto") && a->law < 0) {
+        fprintf(stderr, "mdpore fit relperm: --law: expected auto, corey or let (got '%s')\n", v);
+        return -1;
+      }
+    } else if (!strcmp(s, "--swc") && has_val) {
+      if (parse_number(s, argv[++i], 0.0, 1.0, &a->fit.swc)) return -1;
+    } else if (!strcmp(s, "--sor") && has_val) {
+      if (parse_number(s, argv[++i], 0.0, 1.0, &a->fit.sor)) return -1;
+    } else if (!strcmp(s, "--swof-rows") && has_val) {
+      char *end;
+      const char *v = argv[++i];
+      long n = strtol(v, &end, 10);
+      if (end == v || *end || n < 2 || n > 10000) {
+        fprintf(stderr,
+                "mdpore fit relperm: --swof-rows: expected an integer in [2, 10000] (got "
+                "'%s')\n",
+                v);
+        return -1;
+      }
+      a->swof_rows = (int)n;
+    } else if (!strcmp(s, "--swof-points") && has_val) {
+      const char *v = argv[++i];
+      if (strcmp(v, "law") && strcmp(v, "measured")) {
+        fprintf(stderr, "mdpore fit relperm: --swof-points: expected law or measured (got '%s')\n",
+                v);
+        return -1;
+      }
+      a->measured = !strcmp(v, "measured");
+    } else if (!strcmp(s, "--quiet"))
+      a->quiet = 1;
+    else if (s[0] == '-' && s[1] == '-') {
+      fprintf(stderr, "mdpore fit relperm: unknown or incomplete option '%s'\n", s);
+      return -1;
+    } else if (s[0] == '-') {
+      a->petsc_argv[a->petsc_argc++] = argv[i];
+      if (has_val && argv[i + 1][0] != '-') a->petsc_argv[a->petsc_argc++] = argv[++i];
+    } else if (!a->table)
+      a->table = s;
+    else {
+      fprintf(stderr, "mdpore fit relperm: unexpected argument '%s'\n", s);
+      return -1;
+    }
+  }
+  if (!a->table) {
+    fprintf(stderr, "mdpore fit relperm: no TABLE given\n");
+    return -1;
+  }
+  if (isfinite(a->fit.swc) && isfinite(a->fit.sor) && !(a->fit.swc + a->fit.sor < 1.0)) {
+    fprintf(stderr, "mdpore fit relperm: --swc + --sor: expected a sum below 1 (got %g)\n",
+            a->fit.swc + a->fit.sor);
+    return -1;
+  }
+  return 0;
+}
+
+static int export_swof(const relperm_args *a, const kr_table *t, const kr_fit_result *r,
+                       const kr_choice *c, kr_swof *s) {
+  char err[1024], law_text[1024];
+  pc_curve pc;
+  if (a->pc && pc_curve_read(a->pc, &pc, err, sizeof err)) {
+    fprintf(stderr, "mdpore fit relperm: --pc-morph: %s\n", err);
+    return 1;
+  }
+  int rc = 0;
+  if (kr_swof_build(t, &r->law, a->swof_rows, a->measured, a->pc ? &pc : NULL, s, err,
+                    sizeof err)) {
+    fprintf(stderr, "mdpore fit relperm: %s\n", err);
+    rc = 1;
+  } else {
+    kr_law_text(r, law_text, sizeof law_text);
+    if (kr_swof_write(a->swof, s, t, a->pc ? &pc : NULL, law_text, c->text, err, sizeof err)) {
+      fprintf(stderr, "mdpore fit relperm: %s\n", err);
+      rc = 1;
+    } else if (!a->quiet) {
+      printf("wrote %s (%d rows, %s", a->swof, s->n, s->measured ? "measured points" : "law grid");
+      if (s->n_clipped)
+        printf("; %d row(s) with kr > 1 clipped to 1, peak %.4g", s->n_clipped, s->kr_peak);
+      if (a->pc && !isfinite(s->pc_bar_factor)) printf("; Pcow in reduced units");
+      printf(")\n");
+    }
+  }
+  if (a->pc) pc_curve_free(&pc);
+  return rc;
+}
+
+static int run(const relperm_args *a) {
+  char err[1024], json_path[4200];
+  if (a->json)
+    snprintf(json_path, sizeof json_path, "%s", a->json);
+  else
+    snprintf(json_path, sizeof json_path, "%s.fit.json", a->table);
+  const char *outs[3] = {json_path, a->swof, a->png}, *roles[3] = {"--json", "--swof", "--png"};
+  const char *ins[2] = {a->table, a->pc}, *in_roles[2] = {"the table", "--pc-morph"};
+  if (mdp_check_outputs(outs, roles, 3, ins, in_roles, a->pc ? 2 : 1, err, sizeof err)) {
+    fprintf(stderr, "mdpore fit relperm: %s\n", err);
+    return 1;
+  }
+  kr_table t;
+  if (kr_table_read(a->table, &t, err, sizeof err)) {
+    fprintf(stderr, "mdpore fit relperm: %s\n", err);
+    return 1;
+  }
+  kr_fit_result fits[KR_LAW_COUNT];
+  memset(fits, 0, sizeof fits);
+  for (int k = 0; k < KR_LAW_COUNT; k++) {
+    fits[k].kind = k;
+    if (k == KR_LET && a->law == KR_COREY) continue;
+    kr_fit_opts o = a->fit; /* LET starts from the Corey fit */
+    if (k == KR_LET && fits[KR_COREY].ok) o.corey_start = &fits[KR_COREY].law;
+    kr_fit_law(&t, k, &o, &fits[k]);
+  }
+  kr_choice c;
+  kr_choose(fits, a->law, &c);
+  int rc = 0;
+  if (c.chosen < 0) {
+    const kr_fit_result *r = &fits[a->law >= 0 ? a->law : KR_COREY];
+    fprintf(stderr, "mdpore fit relperm: %s: no law could be fitted: %s\n", t.path,
+            r->why[0] ? r->why : "no converged fit");
+    rc = 1;
+  }
+  kr_swof s = {0};
+  const int have_swof = !rc && a->swof;
+  if (have_swof) rc = export_swof(a, &t, &fits[c.chosen], &c, &s);
+  if (!rc && kr_write_json(json_path, &t, &a->fit, fits, &c, have_swof ? &s : NULL, a->swof)) {
+    fprintf(stderr, "mdpore fit relperm: %s: cannot write the report\n", json_path);
+    rc = 1;
+  }
+  if (!a->quiet) {
+    kr_print(stdout, &t, &a->fit, fits, &c);
+    if (!rc) printf("wrote %s\n", json_path);
+  }
+  if (!rc && a->png) {
+    char cmd[9000];
+    snprintf(cmd, sizeof cmd, "'%s' '%s' '%s' '%s'", MDPORE_PYTHON_EXE, MDPORE_RELPERM_PLOT_SCRIPT,
+             json_path, a->png);
+    if (system(cmd) != 0) {
+      fprintf(stderr, "mdpore fit relperm: plotting failed (%s)\n", cmd);
+      rc = 1;
+    } else if (!a->quiet)
+      printf("wrote %s\n", a->png);
+  }
+  kr_swof_free(&s);
+  kr_table_free(&t);
+  return rc;
+}
+
+int cmd_fit_relperm(int argc, char **argv) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  relperm_args a;
+  const int p = parse_args(argc, argv, &a);
+  if (p != 0) {
+    if (rank == 0) fprintf(p > 0 ? stdout : stderr, fit_relperm_usage, KR_SWOF_DEFAULT_ROWS);
+    free(a.petsc_argv);
+    return p > 0 ? 0 : 2;
+  }
+  if (PetscInitialize(&a.petsc_argc, &a.petsc_argv, NULL, NULL)) {
+    free(a.petsc_argv);
+    return 1;
+  }
+  int rc = rank == 0 ? run(&a) : 0; /* a fit is small: one rank does it */
+  MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  PetscFinalize();
+  free(a.petsc_argv);
+  return rc;
+}
