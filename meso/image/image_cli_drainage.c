@@ -303,6 +303,22 @@ static int write_csv(const char *path, const drain_args_t *a, const mdp_image_t 
   return 0;
 }
 
+/* mkdir -p: the folder and its missing parents. 0, or -1 with errno. */
+static int make_dirs(const char *path) {
+  char p[4096];
+  if (snprintf(p, sizeof p, "%s", path) >= (int)sizeof p) {
+    errno = ENAMETOOLONG;
+    return -1;
+  }
+  for (char *c = p + 1; *c; c++)
+    if (*c == '/') {
+      *c = 0;
+      if (mkdir(p, 0777) != 0 && errno != EEXIST) return -1;
+      *c = '/';
+    }
+  return mkdir(p, 0777) != 0 && errno != EEXIST ? -1 : 0;
+}
+
 int cmd_image_drainage(int argc, char **argv) {
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -348,7 +364,7 @@ int cmd_image_drainage(int argc, char **argv) {
     mdp_image_free(&img);
     return 1;
   }
-  if (mkdir(a.out_dir, 0777) != 0 && errno != EEXIST) {
+  if (make_dirs(a.out_dir) != 0) {
     fprintf(stderr, "mdpore image drainage: -o %s: cannot create the folder (%s)\n", a.out_dir,
             strerror(errno));
     rc = 1;
