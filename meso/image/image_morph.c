@@ -4,9 +4,9 @@
  * balls of radius R that fit in the pore space and (drainage) reach it from the inlet (Hilpert &
  * Miller, Adv. Water Resour. 24 (2001) 243). Per radius: the ball centres are the pore voxels whose
  * centre lies at least R from every solid voxel centre (the exact distance transform, image_edt.c;
- * 4 d^2 >= 4 R^2, integers); drainage keeps the 6-connected clusters of centres that touch the
- * inlet face; the covered voxels, whose centre lies less than R from a kept centre, come from a
- * second distance transform from the centres. Imbibition (R ascending) keeps the non-wetting phase
+ * 4 d^2 >= 4 R^2, integers); drainage keeps the centres that reach the inlet face through
+ * 6-connected centres or the already invaded voxels; the covered voxels, whose centre lies less
+ * than R from a kept centre, come from a second distance transform from the centres. Imbibition (R ascending) keeps the non-wetting phase
  * in the opening of the pore space by R. Trapping: the defending phase's clusters that no longer
  * touch the outlet face (the high face of the axis) keep their voxels for every later radius. */
 #include "image_internal.h"
@@ -133,12 +133,19 @@ static int step(morph_t *m, uint32_t r4, char *err) {
     sel[v] = m->state[v] != V_SOLID && m->d4[v] >= r4 && (!drainage || m->state[v] != V_TRAPPED);
     centres += sel[v];
   }
-  if (drainage && m->o->axis >= 0 && centres > 0) { /* keep the clusters that reach the inlet */
+  if (drainage && m->o->axis >= 0 && centres > 0) {
+    /* keep the centres that reach the inlet through centres or the invaded region: label the
+     * centres together with the non-wetting voxels (2 marks a centre) */
+    for (size_t v = 0; v < m->n; v++)
+      if (!sel[v] && m->state[v] == V_NW)
+        sel[v] = 1;
+      else if (sel[v])
+        sel[v] = 2;
     int nc = 0;
     label_selected(m, &nc);
     centres = 0;
     for (size_t v = 0; v < m->n; v++) {
-      sel[v] = m->cluster[v] >= 0 && (m->touch[m->cluster[v]] & 1u);
+      sel[v] = sel[v] == 2 && (m->touch[m->cluster[v]] & 1u);
       centres += sel[v];
     }
   }

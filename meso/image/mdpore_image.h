@@ -256,8 +256,8 @@ int mdp_image_pore_sizes(const mdp_image_t *img, const int periodic[3], mdp_imag
  * at sphere radius R (voxels) the non-wetting phase holds the voxels whose centre lies less than R
  * from a ball centre, the ball centres being the pore voxels whose centre lies at least R from
  * every solid voxel centre (exact distance transform). Drainage (R descending, from the pore space
- * full of wetting liquid) keeps only the 6-connected clusters of centres that touch the inlet face
- * (voxel 0 along axis); imbibition (R ascending, from the pore space full of non-wetting liquid)
+ * full of wetting liquid) keeps only the centres that reach the inlet face (voxel 0 along axis)
+ * through 6-connected centres or already invaded voxels; imbibition (R ascending, from the pore space full of non-wetting liquid)
  * keeps the non-wetting phase in the opening of the pore space by R. With trapping, the clusters
  * of the defending phase that do not touch the outlet face (voxel n-1 along axis) keep their
  * voxels for every later R (wetting in drainage, non-wetting in imbibition); without an axis

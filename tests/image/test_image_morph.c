@@ -1,8 +1,9 @@
 /* Morphological drainage and imbibition (image_morph.c): the union of balls against brute force on
- * a random image, a slit against the one-dimensional cover of its width, an ink bottle (a wide
- * body between two narrow throats along the axis): drainage enters the body only at the throat's
- * radius, imbibition traps the body's non-wetting phase with trapping and not without; the phase
- * image nearest a target saturation. */
+ * random images (without a connectivity rule, and from the inlet through centres or drained
+ * voxels), a slit against the one-dimensional cover of its width, an ink bottle (a wide body
+ * between two narrow throats along the axis): drainage enters the body only at the throat's radius,
+ * imbibition traps the body's non-wetting phase with trapping and not without; the phase image
+ * nearest a target saturation. */
 #include "check.h"
 #include "mdpore_image.h"
 
@@ -78,6 +79,91 @@ static void test_brute_force(void) {
   printf("brute force: %d radii %.3g..%.3g, union of balls equal at each\n", compared, st[0].radius,
          st[ns - 1].radius);
   free(st), free(d4), free(nw);
+  mdp_image_free(&img);
+}
+
+/* Drainage from the x = 0 face without trapping, by brute force on a small random image: at each R
+ * the centres that reach the inlet through centres or drained voxels (a flood fill over both), then
+ * the voxels within < R of a kept centre join the drained ones. Also counts the radii at which the
+ * rule through drained voxels keeps more centres than centres alone would. */
+static void test_brute_force_inlet(void) {
+  char err[MDP_IMAGE_ERR_LEN] = "";
+  mdp_image_t img;
+  enum { N = 16 };
+  const size_t n = N * N * N;
+  CHECK(mdp_image_alloc(&img, N, N, N, err) == 0, "%s", err);
+  mdp_image_parse_labels("pore=0,inorganic=1", img.phase_of, err);
+  rng_state = 777;
+  for (size_t v = 0; v < n; v++) img.label[v] = uniform() < 0.12;
+  long long *d4 = malloc(n * sizeof *d4);
+  for (size_t v = 0; v < n; v++) {
+    long long best = -1;
+    for (size_t u = 0; u < n; u++) {
+      if (!img.label[u]) continue;
+      const long long dx = (int)(v % N) - (int)(u % N), dy = (int)(v / N % N) - (int)(u / N % N),
+                      dz = (int)(v / (N * N)) - (int)(u / (N * N));
+      const long long d = 4 * (dx * dx + dy * dy + dz * dz);
+      if (best < 0 || d < best) best = d;
+    }
+    d4[v] = best;
+  }
+  mdp_morph_opts_t o = {.mode = MDP_MORPH_DRAINAGE, .axis = 0, .trapping = 0};
+  mdp_morph_step_t *st = NULL;
+  int ns = 0;
+  if (curve(&img, &o, &st, &ns)) return;
+  uint8_t *nw = calloc(n, 1), *seen = calloc(n, 1), *keep = calloc(n, 1);
+  size_t *queue = malloc(n * sizeof *queue);
+  int widened = 0;
+  for (int i = 0; i < ns; i++) {
+    const long long r4 = (long long)(4 * st[i].radius * st[i].radius + 0.5);
+    for (int pass = 0; pass < 2; pass++) { /* 0: centres only, 1: centres and drained voxels */
+      memset(seen, 0, n);
+      size_t head = 0, tail = 0;
+      for (size_t v = 0; v < n; v++)
+        if (v % N == 0 && !img.label[v] && (d4[v] >= r4 || (pass && nw[v])))
+          seen[v] = 1, queue[tail++] = v;
+      while (head < tail) {
+        const size_t v = queue[head++];
+        const int x = (int)(v % N), y = (int)(v / N % N), z = (int)(v / (N * N));
+        const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z},
+                              {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
+        for (int k = 0; k < 6; k++) {
+          if (nb[k][0] < 0 || nb[k][0] >= N || nb[k][1] < 0 || nb[k][1] >= N || nb[k][2] < 0 ||
+              nb[k][2] >= N)
+            continue;
+          const size_t u = (size_t)nb[k][0] + N * ((size_t)nb[k][1] + N * (size_t)nb[k][2]);
+          if (seen[u] || img.label[u] || !(d4[u] >= r4 || (pass && nw[u]))) continue;
+          seen[u] = 1, queue[tail++] = u;
+        }
+      }
+      long long kept = 0, more = 0;
+      for (size_t v = 0; v < n; v++) {
+        const int k = seen[v] && !img.label[v] && d4[v] >= r4;
+        more += pass && k && !keep[v];
+        keep[v] = (uint8_t)k;
+        kept += k;
+      }
+      widened += pass && more > 0;
+    }
+    long long covered = 0;
+    for (size_t v = 0; v < n; v++) {
+      const int x = (int)(v % N), y = (int)(v / N % N), z = (int)(v / (N * N));
+      for (size_t c = 0; c < n && !nw[v] && !img.label[v]; c++) {
+        if (!keep[c]) continue;
+        const long long dx = x - (int)(c % N), dy = y - (int)(c / N % N),
+                        dz = z - (int)(c / (N * N));
+        nw[v] = 4 * (dx * dx + dy * dy + dz * dz) < r4;
+      }
+      covered += nw[v];
+    }
+    CHECK(covered == st[i].nw_voxels, "R %g: brute force %lld drained voxels, morphology %lld",
+          st[i].radius, covered, st[i].nw_voxels);
+  }
+  CHECK(widened > 0, "the image never exercises the rule through drained voxels");
+  printf("brute force from the inlet: %d radii equal; at %d of them the drained voxels connect "
+         "centres that centres alone do not\n",
+         ns, widened);
+  free(st), free(d4), free(nw), free(seen), free(keep), free(queue);
   mdp_image_free(&img);
 }
 
@@ -225,6 +311,7 @@ static void test_ink_bottle(void) {
 
 int main(void) {
   test_brute_force();
+  test_brute_force_inlet();
   test_slit(10);
   test_slit(7);
   test_ink_bottle();
