@@ -639,10 +639,19 @@ void image_walls_report(const image_walls_t *g, FILE *out) {
           s->species[geo->fluid_species].name, ct->fluid_particles, ct->fluid_voxels, pv,
           ct->fluid_target, geo->fluid_density, pv, ct->fluid_dropped, g->min_distance,
           IMAGE_FLUID_TRIES, ct->fluid_redrawn, pv > 0 ? (double)ct->fluid_particles / pv : 0.0);
-  for (int k = 0; k < geo->n_species_labels; k++)
-    fprintf(out, "  fluid_species_labels: label %d (%lld voxels) filled with %s\n",
-            geo->species_label[k], g->label_voxels[k],
-            s->species[geo->species_label_species[k]].name);
+  long long labelled = 0;
+  for (int k = 0; k < geo->n_species_labels; k++) {
+    fprintf(out, "  fluid_species_labels: label %d: %lld particles of %s in %lld voxels\n",
+            geo->species_label[k], g->label_particles[k],
+            s->species[geo->species_label_species[k]].name, g->label_voxels[k]);
+    labelled += g->label_particles[k];
+  }
+  if (geo->n_species_labels > 0)
+    fprintf(out,
+            "  fluid_species_labels: %lld of the %ld fluid particles stay %s (before "
+            "fluid_species_regions)\n",
+            (long long)ct->fluid_particles - labelled, ct->fluid_particles,
+            s->species[geo->fluid_species].name);
   fprintf(out, "  particles: %ld (walls %ld, fluid %ld), ids 1..%ld\n", image_walls_total(g),
           g->n_wall, g->n_fluid, image_walls_total(g));
   /* memory: what each rank read and the peak of the build's arrays (window, clusters, distance

@@ -91,9 +91,10 @@ typedef struct {
   MPI_Comm work; /* the communicator of the reductions (MPI_COMM_SELF when whole)   */
   uint8_t *cls;  /* per window voxel (x fastest): enum image_voxel_class            */
   /* per window voxel: 0, or k + 1 when its image label is geometry.fluid_species_labels entry k
-   * (NULL without that key); label_voxels[k]: the image's voxels of that label */
+   * (NULL without that key); label_voxels[k]: the image's voxels of that label, label_particles[k]
+   * the fluid particles built in them (before fluid_species_regions) */
   uint8_t *label_sp;
-  long long label_voxels[SCENE_MAX_FILLS];
+  long long label_voxels[SCENE_MAX_FILLS], label_particles[SCENE_MAX_FILLS];
   wall_patches_t db; /* the patch database                                              */
   /* the local list: the gen voxels with particles, walls then fluid, each in voxel order: global
    * voxel index, first particle in the local list ([n + 1]) and its global id */

@@ -157,6 +157,7 @@ int main(int argc, char **argv) {
     CHECK(wrong == 0);
     CHECK(n_oil + n_water == ct->fluid_particles);
     CHECK(g.label_voxels[0] == n3);
+    CHECK(g.label_particles[0] == n_oil); /* the report's count */
     /* each voxel holds base or base + 1 particles before the drops */
     CHECK(n_oil >= base * n3 - ct->fluid_dropped && n_oil <= (base + 1) * n3);
     CHECK(n_water >= base * (ct->fluid_voxels - n3) - ct->fluid_dropped &&
