@@ -369,8 +369,12 @@ int image_fluid_count(image_walls_t *g, uint16_t **kept_out, char *err, size_t e
     const int k = image_fluid_voxel(g, v, g->cache->x, &dropped, &redrawn);
     kept[gi] = (uint16_t)k;
     if (own) sums[0] += k, sums[1] += dropped, sums[2] += redrawn;
+    if (own && g->label_sp && g->label_sp[w_]) g->label_particles[g->label_sp[w_] - 1] += k;
   })
   MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_LONG_LONG, MPI_SUM, g->work);
+  const int n_labels = s->geometry.n_species_labels;
+  if (n_labels > 0) /* geometry.fluid_species_labels: the kept particles of each label's voxels */
+    MPI_Allreduce(MPI_IN_PLACE, g->label_particles, n_labels, MPI_LONG_LONG, MPI_SUM, g->work);
   g->n_fluid = (long)sums[0];
   ct->fluid_particles = g->n_fluid;
   ct->fluid_dropped = (long)sums[1], ct->fluid_redrawn = (long)sums[2];
