@@ -115,7 +115,9 @@ typedef struct {
   double target_error;   /* the run's run.target_error (NAN: none) */
   int plateau; /* the blocked error of q reached a plateau (1), not (0: q_err a lower bound), -1 ? */
   long long steps, particles, steady_from;
-  double seconds; /* loop seconds of the run */
+  double seconds;        /* loop seconds of the run */
+  char summary_axis;     /* the summary's flux.axis ('x'..'z'; 0: not in the summary) */
+  double fluid_fraction; /* the summary's flux.fluid_fraction (NAN: not in the summary) */
 } camp_run;
 
 /* The campaign: its metadata (written to and read from the manifest) and its runs. */
@@ -232,6 +234,10 @@ int camp_write_commands(const char *workdir, const camp_opts *o, const campaign 
 
 /* campaign_summary.c: reads DIR/summary.json into r (have = 1 when it holds a usable flux). */
 int camp_read_summary(camp_run *r, char *why, int whylen);
+/* campaign_consistency.c: every summary read against its run's scene and the manifest (axis, g,
+ * G / g and the fluid fraction alike across the runs of an axis, the fluid fraction within the
+ * porosity). 0, or -1 after a message per inconsistent run naming its folder and the key. */
+int camp_check_consistency(const campaign *c);
 
 /* The standard mDPD water's isothermal bulk modulus K = n dp/dn at n = 6.2 (kT / rc^3): the
  * slope at 6.2 of the quadratic through the measured bulk pressures p(5.5, 6.0, 6.5) = -7.43,

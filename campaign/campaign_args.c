@@ -231,8 +231,10 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
       if (ll > CAMP_MAX_GRADIENTS) return bad(s, "at most 64 gradients", v);
       o->n_grads = (int)ll;
     } else if (!strcmp(s, "--velocity-range")) {
-      if (sscanf(v, "%lf,%lf", &o->u_lo, &o->u_hi) != 2 || !(o->u_lo > 0) || !(o->u_hi > o->u_lo))
-        return bad(s, "LO,HI with 0 < LO < HI (mean pore velocities)", v);
+      int end = 0;
+      if (sscanf(v, "%lf,%lf%n", &o->u_lo, &o->u_hi, &end) != 2 || v[end] || !(o->u_lo > 0) ||
+          !(o->u_hi > o->u_lo) || !isfinite(o->u_hi))
+        return bad(s, "LO,HI with 0 < LO < HI, finite (mean pore velocities)", v);
     } else if (!strcmp(s, "--target-error")) {
       if (parse_double(s, v, 0, 1, "a relative error 0 < E < 1", &o->target_error)) return -1;
       error_given = 1;

@@ -548,6 +548,7 @@ int camp_collect(const camp_opts *o, campaign *c, const char *workdir) {
   char why[CAMP_PATH + 256];
   for (int i = 0; i < c->n_runs; i++)
     if (!c->runs[i].have) camp_read_summary(&c->runs[i], why, sizeof why);
+  if (camp_check_consistency(c)) return -1;
   camp_core_viscosity(c);
   camp_units u;
   camp_units_of(c, &u);

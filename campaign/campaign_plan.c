@@ -143,13 +143,102 @@ int camp_write_manifest(const char *workdir, const campaign *c) {
   return atomic_commit(f, tmp, path);
 }
 
-static int num(const char *path, int line, const char *key, const char *v, double *out) {
+/* A number: the whole value, finite (or nan where the writer records "not known": `nan_ok`). */
+static int num(const char *path, int line, const char *key, const char *v, double *out,
+               int nan_ok) {
   char *end;
   *out = strtod(v, &end);
-  if (end == v) {
-    fprintf(stderr, "mdpore permeability: %s:%d: key '%s': expected a number, got '%s'\n", path,
+  while (end != v && (*end == ' ' || *end == '\t' || *end == '\r')) end++;
+  if (end == v || *end) {
+    fprintf(stderr, "mdpore permeability: %s:%d: key '%s': expected a number, got '%.60s'\n", path,
             line, key, v);
     return -1;
+  }
+  if (isinf(*out) || (isnan(*out) && !nan_ok)) {
+    fprintf(stderr, "mdpore permeability: %s:%d: key '%s': expected a finite number, got '%.60s'\n",
+            path, line, key, v);
+    return -1;
+  }
+  return 0;
+}
+
+/* The manifest's keys other than run:, each read at most once (a second viscosity line would
+ * silently win). */
+static const char *const manifest_keys[] = {"sample",
+                                            "input",
+                                            "image",
+                                            "porosity",
+                                            "rc_per_voxel",
+                                            "h_hydraulic",
+                                            "percolates",
+                                            "fluid_density",
+                                            "viscosity",
+                                            "viscosity_source",
+                                            "wall_density",
+                                            "fill_density",
+                                            "wall_adsorption",
+                                            "pair_rng",
+                                            "length_unit_m",
+                                            "length_source",
+                                            "temperature_K",
+                                            "target_error",
+                                            "np",
+                                            "energy_J",
+                                            "kT",
+                                            "particle_mass_kg",
+                                            "drive",
+                                            "reservoir",
+                                            "boundary",
+                                            "sides",
+                                            "seam_continuity",
+                                            "throat_voxels",
+                                            "min_throat",
+                                            "rc_per_voxel_source",
+                                            "particles_estimate",
+                                            "regime",
+                                            "resolution_warning",
+                                            NULL};
+
+/* 0 when `k` is a known key seen for the first time (its line recorded), else -1 after a message. */
+static int first_sighting(const char *path, int ln, const char *k, int *seen_line) {
+  for (int i = 0; manifest_keys[i]; i++) {
+    if (strcmp(k, manifest_keys[i])) continue;
+    if (seen_line[i]) {
+      fprintf(stderr,
+              "mdpore permeability: %s:%d: key '%s': given twice (first on line %d): expected "
+              "each key once (an edited or concatenated manifest?)\n",
+              path, ln, k, seen_line[i]);
+      return -1;
+    }
+    seen_line[i] = ln;
+    return 0;
+  }
+  fprintf(
+      stderr,
+      "mdpore permeability: %s:%d: key '%.60s': not a key of a campaign manifest (expected "
+      "run or one of sample, input, image, porosity, viscosity, ...; see docs/permeability.md)\n",
+      path, ln, k);
+  return -1;
+}
+
+/* A run line that names a folder or an (axis, g) an earlier line named: refused. */
+static int duplicate_run(const char *path, int ln, const campaign *c, const camp_run *r) {
+  for (int i = 0; i < c->n_runs; i++) {
+    const camp_run *o = &c->runs[i];
+    if (!strcmp(o->dir, r->dir)) {
+      fprintf(stderr,
+              "mdpore permeability: %s:%d: key 'run': the run folder %s is listed twice: expected "
+              "each run once (a duplicated row would count its result twice)\n",
+              path, ln, r->dir);
+      return -1;
+    }
+    if (o->axis == r->axis && o->g == r->g) {
+      fprintf(stderr,
+              "mdpore permeability: %s:%d: key 'run': axis %c, g = %.17g is listed twice (%s and "
+              "%s): expected one run per axis and gradient\n",
+              path, ln, 'x' + r->axis, r->g, o->dir, r->dir);
+      return -1;
+    }
   }
   return 0;
 }
@@ -173,6 +262,7 @@ int camp_read_manifest(const char *workdir, campaign *c) {
   c->particles_estimate = c->min_throat = NAN; /* a scene, or a manifest from before them */
   for (int d = 0; d < 3; d++) c->throat_voxels[d] = -1;
   int ln = 0, rc = 0, head = 0;
+  int seen_line[sizeof manifest_keys / sizeof manifest_keys[0]] = {0};
   while (!rc && fgets(line, sizeof line, f)) {
     ln++;
     line[strcspn(line, "\n")] = 0;
@@ -181,11 +271,16 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       if (!head) break;
       continue;
     }
+    if (line[0] == '#') continue; /* a comment */
     char *colon = strstr(line, ": ");
     if (!colon) continue;
     *colon = 0;
     const char *k = line, *v = colon + 2;
     double x;
+    if (strcmp(k, "run") && first_sighting(path, ln, k, seen_line)) {
+      rc = -1;
+      break;
+    }
     if (!strcmp(k, "sample"))
       snprintf(c->sample, sizeof c->sample, "%s", v);
     else if (!strcmp(k, "input"))
@@ -241,7 +336,9 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       c->sides_mirror = !strcmp(v, "mirror");
     } else if (!strcmp(k, "seam_continuity")) {
       if (sscanf(v, "%lf %lf %lf", &c->seam_continuity[0], &c->seam_continuity[1],
-                 &c->seam_continuity[2]) != 3) {
+                 &c->seam_continuity[2]) != 3 ||
+          isinf(c->seam_continuity[0]) || isinf(c->seam_continuity[1]) ||
+          isinf(c->seam_continuity[2])) {
         fprintf(stderr, "mdpore permeability: %s:%d: key 'seam_continuity': expected 3 numbers\n",
                 path, ln);
         rc = -1;
@@ -257,33 +354,63 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       camp_run *r = &c->runs[c->n_runs];
       int off = 0;
       if (c->n_runs >= CAMP_MAX_RUNS || sscanf(v, "%c %lf %n", &ax, &r->g, &off) != 2 || ax < 'x' ||
-          ax > 'z' || !v[off]) {
-        fprintf(stderr, "mdpore permeability: %s:%d: key 'run': expected 'AXIS G DIR', got '%s'\n",
+          ax > 'z' || !v[off] || !isfinite(r->g)) {
+        fprintf(stderr,
+                "mdpore permeability: %s:%d: key 'run': expected 'AXIS G DIR' with a finite G, "
+                "got '%.200s'\n",
                 path, ln, v);
         rc = -1;
       } else {
         r->axis = ax - 'x';
         snprintf(r->dir, sizeof r->dir, "%s", v + off);
-        c->n_runs++;
+        if (duplicate_run(path, ln, c, r))
+          rc = -1;
+        else
+          c->n_runs++;
       }
     } else {
+      /* nan_ok: the writer records nan for "not known" (a scene input); positive: > 0 */
       struct {
         const char *key;
         double *to;
-      } nums[] = {
-          {"porosity", &c->porosity},           {"rc_per_voxel", &c->rc_per_voxel},
-          {"h_hydraulic", &c->h_hydraulic},     {"fluid_density", &c->fluid_density},
-          {"viscosity", &c->viscosity},         {"wall_density", &c->wall_density},
-          {"length_unit_m", &c->length_unit_m}, {"temperature_K", &c->temperature_K},
-          {"target_error", &c->target_error},   {"reservoir", &c->reservoir},
-          {"energy_J", &c->energy_J},           {"particle_mass_kg", &c->particle_mass_kg},
-          {"min_throat", &c->min_throat},       {"particles_estimate", &c->particles_estimate},
-          {"fill_density", &c->fill_density},   {"wall_adsorption", &c->wall_adsorption}};
-      for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++)
-        if (!strcmp(k, nums[i].key)) rc = num(path, ln, k, v, nums[i].to);
+        int nan_ok, positive;
+      } nums[] = {{"porosity", &c->porosity, 1, 0},
+                  {"rc_per_voxel", &c->rc_per_voxel, 1, 0},
+                  {"h_hydraulic", &c->h_hydraulic, 1, 0},
+                  {"fluid_density", &c->fluid_density, 0, 1},
+                  {"viscosity", &c->viscosity, 0, 1},
+                  {"wall_density", &c->wall_density, 0, 0},
+                  {"length_unit_m", &c->length_unit_m, 0, 0},
+                  {"temperature_K", &c->temperature_K, 0, 0},
+                  {"target_error", &c->target_error, 0, 0},
+                  {"reservoir", &c->reservoir, 0, 0},
+                  {"energy_J", &c->energy_J, 0, 0},
+                  {"kT", &c->kT, 0, 1},
+                  {"particle_mass_kg", &c->particle_mass_kg, 0, 0},
+                  {"min_throat", &c->min_throat, 1, 0},
+                  {"particles_estimate", &c->particles_estimate, 1, 0},
+                  {"fill_density", &c->fill_density, 0, 0},
+                  {"wall_adsorption", &c->wall_adsorption, 1, 0}};
+      for (size_t i = 0; i < sizeof nums / sizeof nums[0]; i++) {
+        if (strcmp(k, nums[i].key)) continue;
+        rc = num(path, ln, k, v, nums[i].to, nums[i].nan_ok);
+        if (!rc && nums[i].positive && !(*nums[i].to > 0)) {
+          fprintf(stderr,
+                  "mdpore permeability: %s:%d: key '%s': expected a number > 0, got '%.60s'\n",
+                  path, ln, k, v);
+          rc = -1;
+        }
+      }
       if (!strcmp(k, "np")) {
-        rc = num(path, ln, k, v, &x);
-        c->np = (int)x;
+        rc = num(path, ln, k, v, &x, 0);
+        if (!rc && !(x >= 1 && x <= 1e6 && x == (int)x)) {
+          fprintf(stderr,
+                  "mdpore permeability: %s:%d: key 'np': expected an integer 1 to 10^6, got "
+                  "'%.60s'\n",
+                  path, ln, v);
+          rc = -1;
+        }
+        c->np = rc ? 0 : (int)x;
       }
     }
   }

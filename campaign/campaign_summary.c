@@ -39,7 +39,17 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   r->q = num(&t, flux, "q");
   r->q_err = num(&t, flux, "q_err");
   r->G = num(&t, flux, "G");
-  r->G_err = num(&t, flux, "G_err"); /* measured G (pressure drive); absent for a body force */
+  r->G_err = num(&t, flux, "G_err");
+  r->fluid_fraction = num(&t, flux, "fluid_fraction");
+  yaml_node_t *axis = yt_get(&t, flux, "axis");
+  char axis_text[8] = "";
+  r->summary_axis = 0;
+  if (axis && !yt_is_null(axis)) {
+    r->summary_axis = '?'; /* present but not an axis: the consistency check names it */
+    if (!yt_string(&t, axis, "axis", axis_text, sizeof axis_text) && axis_text[0] >= 'x' &&
+        axis_text[0] <= 'z' && !axis_text[1])
+      r->summary_axis = axis_text[0];
+  } /* measured G (pressure drive); absent for a body force */
   yaml_node_t *pd = yt_get(&t, flux, "pressure_drop");
   r->dp_balance = pd && pd->type == YAML_MAPPING_NODE ? num(&t, pd, "dp_over_force_per_area") : NAN;
   r->rel_err = num(&t, flux, "relative_error");

@@ -189,9 +189,21 @@ static int repeats_earlier_key(ytree_t *t, yaml_node_t *map, int i, const char *
   return 0;
 }
 
+void yt_record_keys(const char *path, const char *const *allowed, int any_other) {
+  const char *log = getenv("MDPORE_KEY_LOG");
+  if (!log || !*log) return;
+  FILE *f = fopen(log, "a");
+  if (!f) return;
+  fprintf(f, "%s\t", path);
+  for (int a = 0; allowed && allowed[a]; a++) fprintf(f, "%s%s", a ? " " : "", allowed[a]);
+  fprintf(f, "%s%s\n", allowed && allowed[0] && any_other ? " " : "", any_other ? "*" : "");
+  fclose(f);
+}
+
 int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path,
                   const char *const *allowed) {
   ytree_t *tm = (ytree_t *)t;
+  yt_record_keys(path, allowed, !allowed);
   if (yt_expect_map(t, map, path)) return -1;
   const int n = yt_map_size(map);
   for (int i = 0; i < n; i++) {

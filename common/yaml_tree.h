@@ -36,6 +36,11 @@ int yt_expect_seq(const ytree_t *t, yaml_node_t *n, const char *path);
 /* Check that every key of a mapping is plain text, in `allowed` (NULL-terminated) and appears once.
  * `allowed` NULL: any key (mappings whose keys the caller reads itself, such as species names). */
 int yt_check_keys(const ytree_t *t, yaml_node_t *map, const char *path, const char *const *allowed);
+/* The catalog of accepted keys, for the test that compares it with the docs (tests/docs,
+ * check_keys_docs.py): with MDPORE_KEY_LOG=FILE set, every key list a reader checks is appended
+ * to FILE as "PATH<TAB>KEY KEY ...", plus "*" when other keys (species names) are accepted too.
+ * yt_check_keys records its list; a reader that checks its keys itself records them here. */
+void yt_record_keys(const char *path, const char *const *allowed, int any_other);
 /* Value node of a key in a mapping, or NULL when absent. */
 yaml_node_t *yt_get(ytree_t *t, yaml_node_t *map, const char *key);
 /* Value node of a key that must be present; NULL after "key 'PATH': expected WHAT (the key is

@@ -24,6 +24,8 @@ static void defaults(scene_t *s) {
 /* body_force: {SPECIES: [gx, gy, gz], ..., reverse_along: x|y|z} */
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
+  static const char *const named[] = {"reverse_along", NULL}; /* + species names */
+  yt_record_keys(path, named, 1);
   if (yt_check_keys(t, opt, path, NULL)) return -1; /* a map; each key once, as text */
   const int n = yt_map_size(opt);
   for (int j = 0; j < n; j++) {

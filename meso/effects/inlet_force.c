@@ -45,6 +45,9 @@ static int interval(ytree_t *t, yaml_node_t *v, const char *path, double *lo, do
 static int parse(ytree_t *t, yaml_node_t *opt, const char *path, scene_t *s) {
   static const char *const axis_words[] = {"x", "y", "z", NULL};
   inlet_force_options_t *o = options(s);
+  static const char *const named[] = {"along",     "slab",        "sample",
+                                      "probe_gap", "probe_width", NULL}; /* + species names */
+  yt_record_keys(path, named, 1);
   if (yt_check_keys(t, opt, path, NULL)) return -1; /* a map; each key once, as text */
   const int n = yt_map_size(opt);
   int have_slab = 0;

@@ -3,6 +3,9 @@
 #include "mdpore_image.h"
 #include "mdpore_image_cli.h"
 
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -258,11 +261,43 @@ static int read_box_file(const char *path, double box[3], char *err) {
     if (!lx || !ly || !lz) continue;
     if (found && !strstr(line, "Relaxed")) continue;
     box[0] = atof(lx + 3), box[1] = atof(ly + 3), box[2] = atof(lz + 3);
+    if (!(isfinite(box[0]) && isfinite(box[1]) && isfinite(box[2]))) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s: 'Lx: Ly: Lz:' box sizes: expected finite numbers",
+               path);
+      fclose(f);
+      return 1;
+    }
     found = 1;
   }
   fclose(f);
   if (!found) snprintf(err, MDP_IMAGE_ERR_LEN, "%s: no line with 'Lx: Ly: Lz:' box sizes", path);
   return !found;
+}
+
+/* A whole-text integer 0..INT_MAX of option `opt`; 0, or 2 (usage) after a message naming it. */
+static int make_int(const char *opt, const char *v, int *out) {
+  char *end;
+  errno = 0;
+  const long x = strtol(v, &end, 10);
+  if (errno || end == v || *end || x < 0 || x > INT_MAX) {
+    fprintf(stderr, "mdpore image make: %s '%s': expected an integer 0 to %d\n", opt, v, INT_MAX);
+    return 2;
+  }
+  *out = (int)x;
+  return 0;
+}
+
+/* A whole-text finite number of option `opt`; 0, or 2 (usage) after a message naming it. */
+static int make_num(const char *opt, const char *v, double *out) {
+  char *end;
+  errno = 0;
+  const double x = strtod(v, &end);
+  if (errno || end == v || *end || !isfinite(x)) {
+    fprintf(stderr, "mdpore image make: %s '%s': expected a finite number\n", opt, v);
+    return 2;
+  }
+  *out = x;
+  return 0;
 }
 
 static int cmd_make(int argc, char **argv) {
@@ -276,6 +311,15 @@ static int cmd_make(int argc, char **argv) {
   double c = 0, radius = 0, porosity = 0, dx = 0, box[3] = {0, 0, 0}, vsize = 0;
   char unit[8] = "";
   unsigned long long seed = 1;
+  const struct {
+    const char *opt;
+    int *to;
+  } ints[] = {{"--width", &width}, {"--wall", &wall},   {"--length", &length}, {"--depth", &depth},
+              {"--cell", &cell},   {"--cells", &cells}, {"--size", &size}};
+  const struct {
+    const char *opt;
+    double *to;
+  } nums[] = {{"--c", &c}, {"--radius", &radius}, {"--porosity", &porosity}, {"--dx", &dx}};
   for (int i = 2; i < argc; i++) {
     const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!v) {
@@ -283,44 +327,43 @@ static int cmd_make(int argc, char **argv) {
       return 2;
     }
     i++;
+    int done = 0;
+    for (size_t k = 0; k < sizeof ints / sizeof ints[0] && !done; k++)
+      if (!strcmp(o, ints[k].opt)) {
+        if (make_int(o, v, ints[k].to)) return 2;
+        done = 1;
+      }
+    for (size_t k = 0; k < sizeof nums / sizeof nums[0] && !done; k++)
+      if (!strcmp(o, nums[k].opt)) {
+        if (make_num(o, v, nums[k].to)) return 2;
+        done = 1;
+      }
+    if (done) continue;
     if (!strcmp(o, "-o"))
       out = v;
-    else if (!strcmp(o, "--width"))
-      width = atoi(v);
-    else if (!strcmp(o, "--wall"))
-      wall = atoi(v);
-    else if (!strcmp(o, "--length"))
-      length = atoi(v);
-    else if (!strcmp(o, "--depth"))
-      depth = atoi(v);
-    else if (!strcmp(o, "--cell"))
-      cell = atoi(v);
-    else if (!strcmp(o, "--cells"))
-      cells = atoi(v);
-    else if (!strcmp(o, "--size"))
-      size = atoi(v);
-    else if (!strcmp(o, "--c"))
-      c = atof(v);
-    else if (!strcmp(o, "--radius"))
-      radius = atof(v);
-    else if (!strcmp(o, "--porosity"))
-      porosity = atof(v);
-    else if (!strcmp(o, "--seed"))
-      seed = strtoull(v, NULL, 10);
-    else if (!strcmp(o, "--dx"))
-      dx = atof(v);
-    else if (!strcmp(o, "--centres") || !strcmp(o, "--centers"))
+    else if (!strcmp(o, "--seed")) {
+      char *end;
+      errno = 0;
+      seed = strtoull(v, &end, 10);
+      if (errno || end == v || *end || v[0] == '-') {
+        fprintf(stderr, "mdpore image make: --seed '%s': expected an integer 0 to 2^64-1\n", v);
+        return 2;
+      }
+    } else if (!strcmp(o, "--centres") || !strcmp(o, "--centers"))
       centres = v;
     else if (!strcmp(o, "--box-file"))
       box_file = v;
     else if (!strcmp(o, "--box")) {
-      if (sscanf(v, "%lf,%lf,%lf", &box[0], &box[1], &box[2]) != 3) {
-        fprintf(stderr, "mdpore image make: --box '%s': expected LX,LY,LZ\n", v);
+      int end = 0;
+      if (sscanf(v, "%lf,%lf,%lf%n", &box[0], &box[1], &box[2], &end) != 3 || v[end] ||
+          !(isfinite(box[0]) && isfinite(box[1]) && isfinite(box[2]))) {
+        fprintf(stderr, "mdpore image make: --box '%s': expected LX,LY,LZ, three finite numbers\n",
+                v);
         return 2;
       }
     } else if (!strcmp(o, "--voxel-size")) {
       if (mdp_image_parse_voxel_size(v, &vsize, unit, err)) {
-        fprintf(stderr, "mdpore image make: %s\n", err);
+        fprintf(stderr, "mdpore image make: option --voxel-size: %s\n", err);
         return 2;
       }
     } else {

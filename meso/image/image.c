@@ -5,6 +5,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,9 +87,9 @@ int mdp_image_parse_voxel_size(const char *text, double *size, char unit[8], cha
   errno = 0;
   char *end = NULL;
   double v = strtod(text, &end);
-  if (end == text || errno || !(v > 0)) {
+  if (end == text || errno || !(v > 0) || !isfinite(v)) {
     snprintf(err, MDP_IMAGE_ERR_LEN,
-             "voxel size '%s': expected a positive number with a unit, e.g. 10um", text);
+             "voxel size '%s': expected a finite positive number with a unit, e.g. 10um", text);
     return 1;
   }
   while (isspace((unsigned char)*end)) end++;

@@ -87,6 +87,25 @@ static int parse_pad(const char *text, mdp_image_cli_t *c) {
   return 0;
 }
 
+static const char *const raw_types[] = {"uint8",  "int8",  "uint16", "int16",
+                                        "uint32", "int32", NULL};
+static const char *const byte_orders[] = {"little", "big", NULL};
+static const char *const formats[] = {"raw", "hdf5", "tiff", NULL};
+
+static int one_of(const char *v, const char *const *words) {
+  for (int i = 0; words[i]; i++)
+    if (!strcmp(v, words[i])) return 1;
+  return 0;
+}
+
+/* "option OPT: " before a reader's message (which names the value, not the option); -1. */
+static int prefix_option(const char *opt, char *err) {
+  char msg[MDP_IMAGE_ERR_LEN];
+  snprintf(msg, sizeof msg, "%s", err);
+  snprintf(err, MDP_IMAGE_ERR_LEN, "option %.32s: %.960s", opt, msg);
+  return -1;
+}
+
 int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char *err) {
   const char *opt = argv[*i];
   static const char *with_value[] = {"--dims",         "--type",   "--byte-order", "--order",
@@ -108,27 +127,30 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
     int d[3];
     bad = mdp_image_parse_dims(v, d);
     o->nx = d[0], o->ny = d[1], o->nz = d[2];
-  } else if (!strcmp(opt, "--type")) {
+  } else if (!strcmp(opt, "--type")) { /* checked here: an HDF5 or TIFF input ignores it */
+    bad = !one_of(v, raw_types);
     snprintf(o->type, sizeof o->type, "%s", v);
   } else if (!strcmp(opt, "--byte-order")) {
+    bad = !one_of(v, byte_orders);
     snprintf(o->byte_order, sizeof o->byte_order, "%s", v);
   } else if (!strcmp(opt, "--order")) {
-    bad = strlen(v) != 3;
+    bad = strlen(v) != 3 || !strchr(v, 'x') || !strchr(v, 'y') || !strchr(v, 'z');
     snprintf(o->axis_order, sizeof o->axis_order, "%s", v);
   } else if (!strcmp(opt, "--header-bytes")) {
     int h = 0;
     bad = parse_int(v, &h);
     o->header_bytes = h;
   } else if (!strcmp(opt, "--format")) {
+    bad = !one_of(v, formats);
     snprintf(o->format, sizeof o->format, "%s", v);
   } else if (!strcmp(opt, "--dataset")) {
     snprintf(o->dataset, sizeof o->dataset, "%s", v);
   } else if (!strcmp(opt, "--labels")) {
     uint8_t map[256];
-    if (mdp_image_parse_labels(v, map, err)) return -1;
+    if (mdp_image_parse_labels(v, map, err)) return prefix_option(opt, err);
     snprintf(o->labels, sizeof o->labels, "%s", v);
   } else if (!strcmp(opt, "--voxel-size")) {
-    if (mdp_image_parse_voxel_size(v, &o->voxel_size, o->unit, err)) return -1;
+    if (mdp_image_parse_voxel_size(v, &o->voxel_size, o->unit, err)) return prefix_option(opt, err);
   } else if (!strcmp(opt, "--crop")) {
     bad = parse_crop(v, c);
   } else if (!strcmp(opt, "--downsample")) {
@@ -148,6 +170,10 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
                            : !strcmp(opt, "--crop")       ? "X0:X1,Y0:Y1,Z0:Z1 (a part may be ':')"
                            : !strcmp(opt, "--downsample") ? "an integer factor >= 1"
                            : !strcmp(opt, "--mirror")     ? "axes x, y, z separated by commas"
+                           : !strcmp(opt, "--type") ? "uint8, int8, uint16, int16, uint32 or int32"
+                           : !strcmp(opt, "--byte-order") ? "little or big"
+                           : !strcmp(opt, "--order")      ? "a permutation of xyz, e.g. zyx"
+                           : !strcmp(opt, "--format")     ? "raw, hdf5 or tiff"
                                                           : "a valid value (see --help)";
     snprintf(err, MDP_IMAGE_ERR_LEN, "option %s: bad value '%s' (expected %s)", opt, v, expected);
     return -1;

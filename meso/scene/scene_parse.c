@@ -168,6 +168,8 @@ static int parse_pair_params(ytree_t *t, yaml_node_t *n, const char *path, pair_
 static int parse_pairs(ytree_t *t, yaml_node_t *n, const scene_t *s,
                        pair_in_t pin[SCENE_MAX_SPECIES][SCENE_MAX_SPECIES]) {
   TRY(yt_expect_map(t, n, "pairs"));
+  static const char *const named[] = {"default", NULL}; /* + speciesA-speciesB */
+  yt_record_keys("pairs", named, 1);
   const int np = yt_map_size(n);
   yaml_node_t *def = yt_get(t, n, "default");
   pair_in_t d;
@@ -223,6 +225,20 @@ static int parse_pairs(ytree_t *t, yaml_node_t *n, const scene_t *s,
  * effect itself (scene_effect_entry_t.parse). */
 static int parse_effects(ytree_t *t, yaml_node_t *n, const scene_catalog_t *cat, scene_t *s) {
   TRY(yt_expect_map(t, n, "effects"));
+  { /* the catalog of effect names, and of the effects that take no options (yt_record_keys) */
+    const char *names[64];
+    int k = 0;
+    for (; k < cat->count && k < 63; k++) names[k] = cat->entries[k]->name;
+    names[k] = NULL;
+    yt_record_keys("effects", names, 0);
+    static const char *const none[] = {NULL};
+    for (k = 0; k < cat->count; k++)
+      if (!cat->entries[k]->parse) {
+        char path[160];
+        snprintf(path, sizeof path, "effects.%s", cat->entries[k]->name);
+        yt_record_keys(path, none, 0);
+      }
+  }
   const int count = yt_map_size(n);
   for (int i = 0; i < count; i++) {
     yaml_node_t *kn;

@@ -15,6 +15,11 @@ k, writes k null and exits 3 (campaign/campaign_checks.c, campaign_collect.c; do
 - rejected: 5 healthy runs whose q is not monotone in G with 0.1% error bars (chi2/dof in the
   hundreds): "no Darcy range", no k and no chosen law in the report (mdpore fit is not run on
   them), the table marked, the range's k null in permeability.json, exit 3.
+- edited: a healthy folder edited between emit and collect as a careless user or script might: a
+  run line duplicated, a second viscosity line, an unknown key, nan or inf in the manifest, one
+  summary's G, flux.axis or fluid fraction changed, two run folders swapped, a scene removed.
+  Each is refused (exit 1, no permeability.json) by a message naming the manifest line or the run's
+  folder, and the key (campaign/campaign_plan.c: the manifest reader; campaign_consistency.c).
 """
 import json
 import math
@@ -39,7 +44,8 @@ def run_summary(G, q, rel, core=6.03, T=1.004, steady=True, reached=True):
     return {
         "thermo": {"T": {"mean": T, "err": 0.001}},
         "pore_core_density": {"mean": core, "err": 0.01},
-        "flux": {"q": q, "q_err": rel * abs(q), "G": G, "relative_error": rel,
+        "flux": {"axis": "x", "q": q, "q_err": rel * abs(q), "G": G, "relative_error": rel,
+                 "fluid_fraction": 0.48,
                  "steady_from_step": 500, "steady": steady, "plateau": reached,
                  "target_error": 0.05, "reached": reached},
         "timing": {"loop_seconds": 1.0, "steps": 8000, "particles": 1000},
@@ -64,6 +70,9 @@ def make_campaign(name, runs):
         os.makedirs(run)
         with open(os.path.join(run, "summary.json"), "w") as f:
             json.dump(summary, f)
+        with open(os.path.join(run, "scene.yaml"), "w") as f:  # the header mdpore permeability writes
+            f.write("# mdpore permeability run: axis x, body force g = %.15g per particle; folder = "
+                    "FNV-1a 64 of the text below and 'mdpore test'\n" % (G / FILL))
         lines.append("run: x %.17g %s" % (G / FILL, run))  # g = G / n (particle mass 1)
         dirs[G] = run
     with open(os.path.join(folder, "campaign.txt"), "w") as f:
@@ -185,11 +194,91 @@ def rejected():
           "its bound")
 
 
+def edited():
+    Gs = [0.1, 0.2, 0.3, 0.4, 0.5]
+    runs = [(G, run_summary(G, K / MU * G, 0.01)) for G in Gs]
+    folder, dirs = make_campaign("edited_pristine", runs)
+    rc, report, ax = collect(folder)
+    check(rc == 0 and ax is not None and abs(ax["k_rc2"] / K - 1) < 0.01,
+          "edited: the pristine folder collects (exit %d)" % rc)
+    manifest = open(os.path.join(folder, "campaign.txt")).read()
+
+    def variant(name, edit_manifest=None, edit_runs=None):
+        dst = os.path.join(OUT, "edited_" + name)
+        shutil.rmtree(dst, ignore_errors=True)
+        shutil.copytree(folder, dst)
+        for stale in ("permeability.json", "flow_x.csv", "fit_x.json", "flow_x.png"):
+            if os.path.exists(os.path.join(dst, stale)):
+                os.remove(os.path.join(dst, stale))
+        text = edit_manifest(manifest) if edit_manifest else manifest
+        text = text.replace(folder + "/", dst + "/")
+        with open(os.path.join(dst, "campaign.txt"), "w") as f:
+            f.write(text)
+        run_dirs = {G: d.replace(folder + "/", dst + "/") for G, d in dirs.items()}
+        if edit_runs:
+            edit_runs(run_dirs)
+        return dst, run_dirs
+
+    def refused(name, dst, *words):
+        rc, report, _ = collect(dst)
+        missing = [w for w in words if w not in report]
+        check(rc == 1 and not missing and
+              not os.path.exists(os.path.join(dst, "permeability.json")),
+              "edited %s: refused (exit %d), no permeability.json, the message names %s%s"
+              % (name, rc, words, "" if not missing else " (missing %s in: %s)"
+                 % (missing, report.strip()[-600:])))
+
+    def summary_edit(G, change):
+        def edit(run_dirs):
+            path = os.path.join(run_dirs[G], "summary.json")
+            data = json.load(open(path))
+            change(data["flux"])
+            json.dump(data, open(path, "w"))
+        return edit
+
+    run_lines = [l for l in manifest.splitlines() if l.startswith("run: ")]
+    dst, rd = variant("duplicate_row", lambda t: t + run_lines[2] + "\n")
+    refused("duplicate_row", dst, "key 'run'", "listed twice", rd[0.3])
+    dst, rd = variant("second_viscosity", lambda t: t + "viscosity: 50\n")
+    refused("second_viscosity", dst, "campaign.txt:", "key 'viscosity'", "given twice")
+    dst, rd = variant("unknown_key", lambda t: t.replace("viscosity: ", "viscosty: ", 1))
+    refused("unknown_key", dst, "key 'viscosty'", "not a key")
+    dst, rd = variant("viscosity_nan", lambda t: t.replace("viscosity: %g" % MU, "viscosity: nan"))
+    refused("viscosity_nan", dst, "key 'viscosity'", "finite", "nan")
+    dst, rd = variant("fluid_density_inf",
+                      lambda t: t.replace("fluid_density: %g" % FILL, "fluid_density: 1e400"))
+    refused("fluid_density_inf", dst, "key 'fluid_density'", "finite")
+    dst, rd = variant("g_inf", lambda t: t.replace(run_lines[1], "run: x inf " + run_lines[1].split()[3]))
+    refused("g_inf", dst, "key 'run'", "finite")
+    dst, rd = variant("summary_G", edit_runs=summary_edit(0.3, lambda f: f.update(G=f["G"] * 10)))
+    refused("summary_G", dst, rd[0.3], "key 'flux.G'")
+    dst, rd = variant("summary_axis", edit_runs=summary_edit(0.4, lambda f: f.update(axis="y")))
+    refused("summary_axis", dst, rd[0.4], "key 'flux.axis'")
+    dst, rd = variant("summary_fraction",
+                      edit_runs=summary_edit(0.2, lambda f: f.update(fluid_fraction=0.31)))
+    refused("summary_fraction", dst, rd[0.2], "key 'flux.fluid_fraction'")
+    dst, rd = variant("fraction_above_porosity",
+                      edit_runs=lambda r: [summary_edit(G, lambda f: f.update(fluid_fraction=0.9))(r)
+                                           for G in Gs])
+    refused("fraction_above_porosity", dst, rd[0.1], "key 'flux.fluid_fraction'", "porosity")
+
+    def swap(run_dirs):
+        a, b = run_dirs[0.1], run_dirs[0.5]
+        os.rename(a, a + ".tmp")
+        os.rename(b, a)
+        os.rename(a + ".tmp", b)
+    dst, rd = variant("swapped", edit_runs=swap)
+    refused("swapped", dst, rd[0.1], rd[0.5], "key 'g'")
+    dst, rd = variant("no_scene", edit_runs=lambda r: os.remove(os.path.join(r[0.2], "scene.yaml")))
+    refused("no_scene", dst, rd[0.2], "scene.yaml")
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     mixed()
     all_bad()
     rejected()
+    edited()
     print("%d failure(s)" % len(failures))
     return 1 if failures else 0
 

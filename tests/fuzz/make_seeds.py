@@ -37,6 +37,15 @@ for f in sorted(os.listdir(bad)):
 put("scene", "bad_deep_nesting.yaml", "a: " + "[" * 5000 + "]" * 5000 + "\n")
 put("scene", "bad_deep_block_nesting.yaml", "".join(" " * i + "k%d:\n" % i for i in range(300)))
 put("scene", "bad_empty.yaml", "")
+# a geometry scene with every block of its own (patches, fluid_region): read, not built
+put("scene", "ok_geometry_patches.yaml",
+    "box: {hi: [4, 4, 2]}\nspecies: [{name: liquid}, {name: wall, frozen: true}]\n"
+    "pairs: {default: {A: -40, B: 25, gamma: 4.5, rd: 0.75}}\n"
+    "effects: {mdpd_attraction: , mdpd_repulsion: , dpd_thermostat: , bounce_back: }\n"
+    "geometry: {image: slit.h5, rc_per_voxel: 0.5, flow_axis: x,\n"
+    "  species: {fluid: liquid, inorganic: wall}, patches: {file: patches.h5, seed: 2},\n"
+    "  fluid_region: {lo: [0, 0, 0], hi: [4, 4, 2]}}\n"
+    "initial: {temperature: 1}\nrun: {dt: 0.01, steps: 10}\n")
 put("scene", "bad_procs_overflow.yaml",
     "box: {hi: [10, 10, 10], procs: [4294967297, 1, 1]}\nspecies: [{name: a}]\n"
     "effects: {}\nrun: {dt: 0.01, steps: 1}\ninitial: {fill: [{species: a, density: 3}]}\n")
@@ -160,6 +169,8 @@ put("darcy_config", "ok_upscale.yaml",
     dc.replace("boundary: {x-: {pressure: 1}, x+: {pressure: 0}}\n", "") + "upscale: {conditions: [fixed]}\n# upscale")
 put("darcy_config", "bad_huge_grid.yaml", dc.replace("[4, 3], size: [4, 3]", "[100000, 100000, 5], size: [1, 1, 1]"))
 put("darcy_config", "bad_blocks_count.yaml", dc.replace("{uniform: {law: darcy, k: 0.5}}", "{blocks: [{law: darcy, k: 1}]}"))
+put("darcy_config", "bad_viscosity_nan.yaml", dc.replace("viscosity: 1}", "viscosity: .nan}"))
+put("darcy_config", "bad_k_overflow.yaml", dc.replace("k: 0.5}}", "k: 1e400}}"))
 
 total = sum(os.path.getsize(os.path.join(dp, f)) for dp, _, fs in os.walk(CORPUS) for f in fs)
 print("corpus: %d bytes" % total)
