@@ -251,6 +251,43 @@ typedef struct {
 int mdp_image_pore_sizes(const mdp_image_t *img, const int periodic[3], mdp_image_pore_sizes_t *ps,
                          char *err);
 
+/* ---- morphological drainage and imbibition (image_morph.c; docs/relperm.md section 2) ----
+ * The quasi-static displacement of a wetting liquid by a non-wetting one (Hilpert & Miller 2001):
+ * at sphere radius R (voxels) the non-wetting phase holds the voxels whose centre lies less than R
+ * from a ball centre, the ball centres being the pore voxels whose centre lies at least R from
+ * every solid voxel centre (exact distance transform). Drainage (R descending, from the pore space
+ * full of wetting liquid) keeps only the 6-connected clusters of centres that touch the inlet face
+ * (voxel 0 along axis); imbibition (R ascending, from the pore space full of non-wetting liquid)
+ * keeps the non-wetting phase in the opening of the pore space by R. With trapping, the clusters
+ * of the defending phase that do not touch the outlet face (voxel n-1 along axis) keep their
+ * voxels for every later R (wetting in drainage, non-wetting in imbibition); without an axis
+ * (-1) there is no connectivity rule and no trapping. The radii are the distinct distances of
+ * the pore voxels to the solid, one step each. Clusters connect across the faces of the periodic
+ * axes other than the flow axis. Memory: 15 bytes per voxel. */
+enum { MDP_MORPH_DRAINAGE = 0, MDP_MORPH_IMBIBITION = 1 };
+typedef struct {
+  int mode;        /* MDP_MORPH_DRAINAGE | MDP_MORPH_IMBIBITION */
+  int axis;        /* 0,1,2: drainage invades from the low face of this axis (inlet), imbibition's
+                      non-wetting phase escapes through the high face (outlet); -1: no
+                      connectivity rule (pure size-based, e.g. for periodic samples) */
+  int periodic[3]; /* distances (EDT) measured across these faces */
+  int trapping;    /* 1: the defending phase that loses its connection to the outlet stays */
+} mdp_morph_opts_t;
+typedef struct {
+  double radius; /* sphere radius, voxels (the invading interface's radius of curvature) */
+  double snw;    /* non-wetting saturation = nw pore voxels / pore voxels */
+  long long nw_voxels, pore_voxels, trapped_voxels;
+} mdp_morph_step_t;
+/* The whole quasi-static curve, one step per radius (descending for drainage, ascending for
+   imbibition). steps may be NULL to get the count. */
+int mdp_image_morph_curve(const mdp_image_t *img, const mdp_morph_opts_t *o,
+                          mdp_morph_step_t *steps, int max_steps, int *n_steps, char *err);
+/* The phase distribution nearest a target non-wetting saturation: out = a copy of img in which the
+   non-wetting pore voxels carry label nw_label (mapped to pore in out->phase_of); nw_label must be
+   unused in img (refused otherwise). *achieved = the step used. */
+int mdp_image_morph_at(const mdp_image_t *img, const mdp_morph_opts_t *o, double target_snw,
+                       uint8_t nw_label, mdp_image_t *out, mdp_morph_step_t *achieved, char *err);
+
 /* ---- synthetic images (image_make.c); all labels: 0 pore, 1 inorganic solid ---- */
 /* Slit along x: n_pore pore layers between `wall` solid layers normal to y; nx = length, nz =
  * depth. */
