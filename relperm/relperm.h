@@ -23,6 +23,8 @@
 
 enum { RP_WET_WATER = 0, RP_WET_OIL = 1 }; /* --wetting: the liquid that wets the walls */
 enum { RP_ROLE_TWO = 0, RP_ROLE_WATER, RP_ROLE_OIL }; /* a run: two liquids, or one reference */
+/* Where the phase distributions come from: MDP_MORPH_DRAINAGE (0), MDP_MORPH_IMBIBITION (1), or: */
+#define RP_MODE_GIVEN 2 /* --phase-images */
 
 /* The liquids (relperm_liquids.c): the documented two-liquid set of docs/twophase.md. */
 #define RP_A_LIKE -40.0    /* A_ww = A_oo */
@@ -106,6 +108,9 @@ int rp_write_template(const rp_opts *o, const relperm *rp, int role, const char 
                       const char *pairs, const char *path);
 char *rp_portable_scene(const char *scene, const char *workdir, const char *run_dir);
 
+/* relperm_plan.c: the name of a mode (drainage, imbibition, given) and back (-1: unknown). */
+const char *rp_mode_name(int mode);
+int rp_mode_parse(const char *name);
 /* relperm_plan.c: the phase images, templates, run folders, manifests and commands. 0 or -1. */
 int rp_plan(rp_opts *o, relperm *rp);
 int rp_write_manifest(const char *workdir, const relperm *rp);

@@ -102,8 +102,9 @@ static void definitions(FILE *f, const char *pre, const relperm *rp, double G) {
           "%sSw = N_water / (N_water + N_oil) of the run's particles (exact counts; Sw_err = 0); "
           "wetting liquid %s, non-wetting %s; phase images by %s\n",
           pre, rp->wetting == RP_WET_WATER ? "water" : "oil", nw,
-          rp->mode == MDP_MORPH_IMBIBITION ? "morphological imbibition (or given)"
-                                           : "morphological drainage (or given)");
+          rp->mode == MDP_MORPH_IMBIBITION ? "morphological imbibition"
+          : rp->mode == RP_MODE_GIVEN      ? "given labelled images (--phase-images)"
+                                           : "morphological drainage");
   fprintf(f,
           "%skr_i = q_i / q_i^(1): the phase's superficial velocity q_i = (1/V) sum_{i} v / n over "
           "that of the same liquid alone in the same image at the same body force (= mu_i q_i / "
@@ -229,7 +230,7 @@ int rp_collect(const rp_opts *o, relperm *rp, const char *workdir) {
   json_string(&j, "axis", ax);
   json_string(&j, "boundary", rp->boundary);
   json_string(&j, "wetting", rp->wetting == RP_WET_WATER ? "water" : "oil");
-  json_string(&j, "mode", rp->mode == MDP_MORPH_IMBIBITION ? "imbibition" : "drainage");
+  json_string(&j, "mode", rp_mode_name(rp->mode));
   json_string(&j, "kr_definition",
               "kr_i = q_i / q_i^(1): the phase's superficial velocity over that of the same "
               "liquid alone in the same image at the same body force");

@@ -47,6 +47,16 @@ static int write_text(const char *path, const char *text) {
   return atomic_commit(f, tmp, path);
 }
 
+const char *rp_mode_name(int mode) {
+  return mode == MDP_MORPH_IMBIBITION ? "imbibition" : mode == RP_MODE_GIVEN ? "given" : "drainage";
+}
+
+int rp_mode_parse(const char *name) {
+  for (int m = 0; m <= RP_MODE_GIVEN; m++)
+    if (!strcmp(name, rp_mode_name(m))) return m;
+  return -1;
+}
+
 static const char *role_name(int role) {
   return role == RP_ROLE_TWO ? "two" : role == RP_ROLE_WATER ? "water" : "oil";
 }
@@ -146,7 +156,7 @@ int rp_plan(rp_opts *o, relperm *rp) {
   rp->axis = o->axis;
   rp->wetting = o->wetting;
   rp->ratio = o->ratio;
-  rp->mode = o->mode;
+  rp->mode = o->n_phase_images ? RP_MODE_GIVEN : o->mode;
   snprintf(rp->boundary, sizeof rp->boundary, "%s",
            camp_boundary_name(co->boundary_of_axis[o->axis]));
   if (rp_liquids_of(o->ratio, &rp->liq)) return -1;
@@ -246,9 +256,8 @@ int rp_write_manifest(const char *workdir, const relperm *rp) {
   fprintf(f, "%s\n", RP_MANIFEST_HEAD);
   fprintf(f, "axis: %c\nwetting: %s\nviscosity_ratio: %d\nM: %.17g %.17g\n", 'x' + rp->axis,
           rp->wetting == RP_WET_WATER ? "water" : "oil", rp->ratio, rp->liq.M, rp->liq.M_err);
-  fprintf(f, "mode: %s\ng: %.17g\nnw_label: %d\nboundary: %s\n",
-          rp->mode == MDP_MORPH_IMBIBITION ? "imbibition" : "drainage", rp->g, rp->nw_label,
-          rp->boundary);
+  fprintf(f, "mode: %s\ng: %.17g\nnw_label: %d\nboundary: %s\n", rp_mode_name(rp->mode), rp->g,
+          rp->nw_label, rp->boundary);
   for (int i = 0; i < rp->n_runs; i++) {
     const rp_run *r = &rp->runs[i];
     fprintf(f, "rp: %s %.17g %.17g %.17g %.17g %.17g\n", role_name(r->role), r->sw_target,
@@ -304,7 +313,7 @@ int rp_read_manifest(const char *workdir, relperm *rp) {
     else if (sscanf(line, "viscosity_ratio: %d", &rp->ratio) == 1) {
     } else if (sscanf(line, "M: %lf %lf", &rp->liq.M, &rp->liq.M_err) == 2) {
     } else if (sscanf(line, "mode: %31s", word) == 1)
-      rp->mode = strcmp(word, "imbibition") ? MDP_MORPH_DRAINAGE : MDP_MORPH_IMBIBITION;
+      rp->mode = rp_mode_parse(word) < 0 ? MDP_MORPH_DRAINAGE : rp_mode_parse(word);
     else if (sscanf(line, "g: %lf", &rp->g) == 1) {
     } else if (sscanf(line, "nw_label: %d", &rp->nw_label) == 1) {
     } else if (sscanf(line, "boundary: %31s", rp->boundary) == 1) {

@@ -25,7 +25,7 @@ def main():
     ax.set_ylim(bottom=0)
     ax.set_xlabel("Sw (particle counts)")
     ax.set_ylabel("relative permeability")
-    ax.set_title(f"{d['sample']}: {d['wetting']}-wet, {d['mode']}, M = {d['M']:.3g}, axis {d['axis']}",
+    ax.set_title(f"{d['sample']}: {d['wetting']}-wet, phases {d['mode']}, M = {d['M']:.3g}, axis {d['axis']}",
                  fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
