@@ -15,6 +15,8 @@ static void usage(FILE *to) {
       "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--sizes [--periodic]] [--json]\n"
       "       mdpore image convert IMAGE -o OUT.h5|OUT.raw|OUT.tif [options]\n"
       "       mdpore image stack IMAGE IMAGE [...] --axis x|y|z -o OUT   (one after another)\n"
+      "       mdpore image drainage IMAGE --axis x|y|z|none [...]   (morphological Pc(Sw); see\n"
+      "                                     mdpore image drainage --help)\n"
       "       mdpore image make slit --width N [--wall W] [--length L] [--depth D] -o OUT\n"
       "       mdpore image make cylinders --cell L --c C [--cells N] [--depth D] -o OUT\n"
       "       mdpore image make spheres --cell L --c C [--cells N] -o OUT\n"
@@ -449,6 +451,8 @@ int cmd_image(int argc, char **argv) {
   if (!strcmp(argv[1], "convert")) return cmd_info_or_convert(argc - 1, argv + 1, 1);
   if (!strcmp(argv[1], "make")) return cmd_make(argc - 1, argv + 1);
   if (!strcmp(argv[1], "stack")) return cmd_stack(argc - 1, argv + 1);
-  fprintf(stderr, "mdpore image: unknown subcommand '%s' (info, convert, make, stack)\n", argv[1]);
+  if (!strcmp(argv[1], "drainage")) return cmd_image_drainage(argc - 1, argv + 1);
+  fprintf(stderr, "mdpore image: unknown subcommand '%s' (info, convert, make, stack, drainage)\n",
+          argv[1]);
   return 2;
 }

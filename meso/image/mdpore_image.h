@@ -263,7 +263,7 @@ int mdp_image_pore_sizes(const mdp_image_t *img, const int periodic[3], mdp_imag
  * voxels for every later R (wetting in drainage, non-wetting in imbibition); without an axis
  * (-1) there is no connectivity rule and no trapping. The radii are the distinct distances of
  * the pore voxels to the solid, one step each. Clusters connect across the faces of the periodic
- * axes other than the flow axis. Memory: 15 bytes per voxel. */
+ * axes other than the flow axis. Memory: 19 bytes per voxel. */
 enum { MDP_MORPH_DRAINAGE = 0, MDP_MORPH_IMBIBITION = 1 };
 typedef struct {
   int mode;        /* MDP_MORPH_DRAINAGE | MDP_MORPH_IMBIBITION */
@@ -277,6 +277,7 @@ typedef struct {
   double radius; /* sphere radius, voxels (the invading interface's radius of curvature) */
   double snw;    /* non-wetting saturation = nw pore voxels / pore voxels */
   long long nw_voxels, pore_voxels, trapped_voxels;
+  int nw_spans; /* 1: a non-wetting cluster touches both faces of the axis (0 without an axis) */
 } mdp_morph_step_t;
 /* The whole quasi-static curve, one step per radius (descending for drainage, ascending for
    imbibition). steps may be NULL to get the count. */

@@ -24,4 +24,7 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
 int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *img, char *err);
 void mdp_image_cli_help(FILE *to);
 
+/* mdpore image drainage (image_cli_drainage.c): argv[0] = "drainage". */
+int cmd_image_drainage(int argc, char **argv);
+
 #endif

@@ -112,8 +112,11 @@ static double wall_thickness(const scene_t *s, double h) {
   const int walls[2] = {geo->organic_species, geo->inorganic_species};
   double t = 0;
   for (int k = 0; k < 2; k++)
-    for (int f = -1; f < geo->n_species_regions && walls[k] >= 0; f++) {
-      const int fluid = f < 0 ? geo->fluid_species : geo->species_region[f].species;
+    for (int f = -1; f < geo->n_species_regions + geo->n_species_labels && walls[k] >= 0; f++) {
+      const int fluid = f < 0 ? geo->fluid_species
+                        : f < geo->n_species_regions
+                            ? geo->species_region[f].species
+                            : geo->species_label_species[f - geo->n_species_regions];
       const scene_pair_t *p = &s->pair[fluid][walls[k]];
       if (p->rc + p->rd > t) t = p->rc + p->rd;
     }
@@ -367,8 +370,13 @@ static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_l
         cnt[0]++;
         cnt[1] += p == MDP_PHASE_PORE, cnt[2] += p == MDP_PHASE_ORGANIC;
         cnt[3] += p == MDP_PHASE_INORGANIC;
+        if (g->label_sp && g->label_sp[image_walls_win(g, q)])
+          g->label_voxels[g->label_sp[image_walls_win(g, q)] - 1]++;
       }
   MPI_Allreduce(MPI_IN_PLACE, cnt, 4, MPI_LONG_LONG, MPI_SUM, g->work);
+  if (geo->n_species_labels > 0)
+    MPI_Allreduce(MPI_IN_PLACE, g->label_voxels, geo->n_species_labels, MPI_LONG_LONG, MPI_SUM,
+                  g->work);
   ct->voxels = cnt[0], ct->pore = cnt[1], ct->organic = cnt[2], ct->inorganic = cnt[3];
   /* the checks below see the same sums on every rank, so they fail everywhere or nowhere */
   if (ct->voxels != (long long)g->n[0] * g->n[1] * g->n[2]) {
@@ -387,6 +395,14 @@ static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_l
                "%s (got none)",
                s->file, k ? "inorganic" : "organic", nsolid[k], k ? "inorganic" : "organic",
                geo->image);
+      rc = -1;
+    }
+  for (int k = 0; k < geo->n_species_labels && !rc; k++)
+    if (g->label_voxels[k] == 0) {
+      snprintf(err, sizeof err,
+               "%s: key 'geometry.fluid_species_labels.%d': expected a label that voxels of %s "
+               "carry (got %d: no voxel of the image has it)",
+               s->file, geo->species_label[k], geo->image, geo->species_label[k]);
       rc = -1;
     }
   if (!rc && ct->pore == 0) {
@@ -468,7 +484,7 @@ int image_walls_build_local(const scene_t *s, MPI_Comm comm, const double sub_lo
 }
 
 void image_walls_free(image_walls_t *g) {
-  free(g->cls);
+  free(g->cls), free(g->label_sp);
   free(g->wall_vox), free(g->wall_start), free(g->wall_id);
   free(g->fluid_vox), free(g->fluid_start), free(g->fluid_id);
   free(g->rank_read), free(g->rank_peak);
@@ -528,6 +544,13 @@ void image_walls_particle(const image_walls_t *g, long i, int64_t *id, int *spec
     *id = 1 + g->n_wall + g->fluid_id[f] + (i - nw - g->fluid_start[f]);
     image_fluid_particle(g, i - nw, x);
     *species = geo->fluid_species;
+    if (g->label_sp) { /* geometry.fluid_species_labels: the species of the voxel's label */
+      const int64_t v = g->fluid_vox[f];
+      const int q[3] = {(int)(v % g->n[0]), (int)(v / g->n[0] % g->n[1]),
+                        (int)(v / ((int64_t)g->n[0] * g->n[1]))};
+      const int k = g->label_sp[image_walls_win(g, q)];
+      if (k) *species = geo->species_label_species[k - 1];
+    }
     for (int k = 0; k < geo->n_species_regions; k++) {
       const scene_fill_t *r = &geo->species_region[k];
       int in = init_shape_keeps(r, x);
@@ -616,6 +639,10 @@ void image_walls_report(const image_walls_t *g, FILE *out) {
           s->species[geo->fluid_species].name, ct->fluid_particles, ct->fluid_voxels, pv,
           ct->fluid_target, geo->fluid_density, pv, ct->fluid_dropped, g->min_distance,
           IMAGE_FLUID_TRIES, ct->fluid_redrawn, pv > 0 ? (double)ct->fluid_particles / pv : 0.0);
+  for (int k = 0; k < geo->n_species_labels; k++)
+    fprintf(out, "  fluid_species_labels: label %d (%lld voxels) filled with %s\n",
+            geo->species_label[k], g->label_voxels[k],
+            s->species[geo->species_label_species[k]].name);
   fprintf(out, "  particles: %ld (walls %ld, fluid %ld), ids 1..%ld\n", image_walls_total(g),
           g->n_wall, g->n_fluid, image_walls_total(g));
   /* memory: what each rank read and the peak of the build's arrays (window, clusters, distance

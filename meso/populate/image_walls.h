@@ -87,9 +87,13 @@ typedef struct {
    * partition the image), gen = the voxels that overlap the subdomain, one more on each side (their
    * particles are offered), win = gen plus the halo (what was read). */
   int own_lo[3], own_n[3], gen_lo[3], gen_n[3], win_lo[3], win_n[3];
-  int whole;         /* every rank built the whole image (image_walls_build)            */
-  MPI_Comm work;     /* the communicator of the reductions (MPI_COMM_SELF when whole)   */
-  uint8_t *cls;      /* per window voxel (x fastest): enum image_voxel_class            */
+  int whole;     /* every rank built the whole image (image_walls_build)            */
+  MPI_Comm work; /* the communicator of the reductions (MPI_COMM_SELF when whole)   */
+  uint8_t *cls;  /* per window voxel (x fastest): enum image_voxel_class            */
+  /* per window voxel: 0, or k + 1 when its image label is geometry.fluid_species_labels entry k
+   * (NULL without that key); label_voxels[k]: the image's voxels of that label */
+  uint8_t *label_sp;
+  long long label_voxels[SCENE_MAX_FILLS];
   wall_patches_t db; /* the patch database                                              */
   /* the local list: the gen voxels with particles, walls then fluid, each in voxel order: global
    * voxel index, first particle in the local list ([n + 1]) and its global id */

@@ -128,6 +128,19 @@ int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3]
     return -1;
   }
   image_walls_mem(g, total);
+  if (geo->n_species_labels > 0) { /* geometry.fluid_species_labels: which entry each voxel is */
+    g->label_sp = calloc(total ? (size_t)total : 1, 1);
+    if (!g->label_sp) {
+      free(ph);
+      snprintf(err, errlen, "%s: geometry: out of memory for a window of %lld voxels", s->file,
+               total);
+      return -1;
+    }
+    image_walls_mem(g, total);
+  }
+  uint8_t entry_of[256] = {0}; /* label -> fluid_species_labels entry + 1 */
+  for (int k = 0; k < geo->n_species_labels; k++)
+    entry_of[geo->species_label[k]] = (uint8_t)(k + 1);
   /* up to two pieces per axis (a window across a periodic face), so up to 8 boxes */
   int pn[3], plo[3][2], plen[3][2], poff[3][2];
   for (int d = 0; d < 3; d++) {
@@ -156,6 +169,21 @@ int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3]
           image_walls_mem(g, -total);
           return -1;
         }
+        for (int k = 0; k < geo->n_species_labels; k++)
+          if (img.phase_of[geo->species_label[k]] != MDP_PHASE_PORE) {
+            char map[512];
+            mdp_image_format_labels(img.phase_of, map, sizeof map);
+            snprintf(err, errlen,
+                     "%s: key 'geometry.fluid_species_labels.%d': expected a label that is pore "
+                     "in the label map of %s (%s) (got %d: %s)",
+                     s->file, geo->species_label[k], geo->image, map, geo->species_label[k],
+                     img.phase_of[geo->species_label[k]] == MDP_PHASE_UNSET
+                         ? "not in the map"
+                         : mdp_phase_name(img.phase_of[geo->species_label[k]]));
+            mdp_image_free(&img);
+            free(ph);
+            return -1;
+          }
         g->voxels_read += (long long)fsz[0] * fsz[1] * fsz[2];
         image_walls_mem(g, (long long)fsz[0] * fsz[1] * fsz[2]);
         for (int k = 0; k < fsz[2]; k++)
@@ -168,6 +196,7 @@ int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3]
                 stride *= g->win_n[d];
               }
               ph[w] = (uint8_t)mdp_image_phase(&img, mdp_image_index(&img, i, j, k));
+              if (g->label_sp) g->label_sp[w] = entry_of[img.label[mdp_image_index(&img, i, j, k)]];
             }
         mdp_image_free(&img);
         image_walls_mem(g, -(long long)fsz[0] * fsz[1] * fsz[2]);

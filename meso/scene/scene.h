@@ -107,6 +107,12 @@ typedef struct {
    * species_region[k].species instead of fluid_species (two liquids in one image) */
   int n_species_regions;
   scene_fill_t species_region[SCENE_MAX_FILLS];
+  /* geometry.fluid_species_labels: a fluid particle the builder places in a pore voxel of image
+   * label species_label[k] takes the mobile species species_label_species[k] (regions still
+   * override); e.g. a non-wetting phase from `mdpore image drainage --at` */
+  int n_species_labels;
+  int species_label[SCENE_MAX_FILLS];
+  int species_label_species[SCENE_MAX_FILLS];
 } scene_geometry_t;
 
 typedef struct {

@@ -3,6 +3,7 @@
 #include "scene/scene_geometry.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define TRY(x)                                                                                     \
@@ -135,6 +136,58 @@ static int parse_species_regions(ytree_t *t, yaml_node_t *n, scene_t *s) {
   return 0;
 }
 
+/* A species for fluid particles at key `path` (node v): listed, mobile and as heavy as
+ * geometry.species.fluid (the builder removes the centre-of-mass velocity summed over the fluid's
+ * ids with one mass, populate/init_config.c). */
+static int fluid_like_species(ytree_t *t, yaml_node_t *v, const char *path, const scene_t *s,
+                              int *out) {
+  char name[SCENE_NAME_LEN];
+  TRY(yt_string(t, v, path, name, sizeof name));
+  if ((*out = scene_species_index(s, name)) < 0)
+    return yt_error(t, v, path, "expected one of the species listed under 'species' (got '%s')",
+                    name);
+  const scene_species_t *sp = &s->species[*out], *fl = &s->species[s->geometry.fluid_species];
+  if (sp->frozen)
+    return yt_error(t, v, path, "expected a species that is not frozen (got '%s', frozen)", name);
+  if (sp->mass != fl->mass)
+    return yt_error(t, v, path,
+                    "expected a species as heavy as the fluid '%s' (mass %g) (got '%s', mass %g)",
+                    fl->name, fl->mass, name, sp->mass);
+  return 0;
+}
+
+/* geometry.fluid_species_labels: {LABEL: species, ...}: the builder's fluid particles in pore
+ * voxels of image label LABEL (0..255) take that species. Whether LABEL is pore in the image's
+ * label map and present in the image is checked by the builder (populate/image_window.c), which
+ * reads the image. */
+static int parse_species_labels(ytree_t *t, yaml_node_t *n, scene_t *s) {
+  scene_geometry_t *g = &s->geometry;
+  TRY(yt_expect_map(t, n, "geometry.fluid_species_labels"));
+  const int count = yt_map_size(n);
+  if (count < 1 || count > SCENE_MAX_FILLS)
+    return yt_error(t, n, "geometry.fluid_species_labels",
+                    "expected a map of 1 to %d entries {LABEL: species} (got %d)", SCENE_MAX_FILLS,
+                    count);
+  for (int i = 0; i < count; i++) {
+    yaml_node_t *key = NULL;
+    const char *text = yt_map_key(t, n, i, &key);
+    char path[96];
+    snprintf(path, sizeof path, "geometry.fluid_species_labels.%s", text ? text : "?");
+    char *end = NULL;
+    const long label = text ? strtol(text, &end, 10) : -1;
+    if (!text || end == text || *end || label < 0 || label > 255)
+      return yt_error(t, key ? key : n, path,
+                      "expected an image label, an integer 0..255 (got '%s')", text ? text : "");
+    for (int k = 0; k < i; k++)
+      if (g->species_label[k] == (int)label)
+        return yt_error(t, key, path, "expected each label once (got %ld twice)", label);
+    g->species_label[i] = (int)label;
+    TRY(fluid_like_species(t, yt_map_value(t, n, i), path, s, &g->species_label_species[i]));
+  }
+  g->n_species_labels = count;
+  return 0;
+}
+
 int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   static const char *const keys[] = {"image",
                                      "labels",
@@ -152,6 +205,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
                                      "strict",
                                      "fluid_region",
                                      "fluid_species_regions",
+                                     "fluid_species_labels",
                                      NULL};
   TRY(yt_check_keys(t, n, "geometry", keys));
   scene_geometry_t *g = &s->geometry;
@@ -248,6 +302,7 @@ int scene_parse_geometry(ytree_t *t, yaml_node_t *n, scene_t *s) {
   if ((v = yt_get(t, n, "strict"))) TRY(yt_bool(t, v, "geometry.strict", &g->strict));
   if ((v = yt_get(t, n, "fluid_region"))) TRY(parse_fluid_region(t, v, s));
   if ((v = yt_get(t, n, "fluid_species_regions"))) TRY(parse_species_regions(t, v, s));
+  if ((v = yt_get(t, n, "fluid_species_labels"))) TRY(parse_species_labels(t, v, s));
   if ((v = yt_get(t, n, "patches"))) {
     static const char *const pk[] = {"file", "seed", NULL};
     TRY(yt_check_keys(t, v, "geometry.patches", pk));
