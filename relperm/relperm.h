@@ -45,11 +45,12 @@ typedef struct {
   int axis;
   double sw[RP_MAX_SATURATIONS]; /* target water saturations, ascending */
   int n_sw;
-  int mode;    /* MDP_MORPH_DRAINAGE | MDP_MORPH_IMBIBITION (0 | 1) */
-  int wetting; /* RP_WET_* */
-  int ratio;   /* --viscosity-ratio 1|2|5 */
-  double g;    /* --force: body force per particle (0: auto from the hydraulic size) */
-  double a_wo; /* --cross-attraction (default RP_A_WO) */
+  int mode;     /* MDP_MORPH_DRAINAGE | MDP_MORPH_IMBIBITION (0 | 1) */
+  int trapping; /* the morphology traps the defending phase (--no-trapping: 0) */
+  int wetting;  /* RP_WET_* */
+  int ratio;    /* --viscosity-ratio 1|2|5 */
+  double g;     /* --force: body force per particle (0: auto from the hydraulic size) */
+  double a_wo;  /* --cross-attraction (default RP_A_WO) */
   char phase_images[RP_MAX_SATURATIONS][CAMP_PATH]; /* --phase-images: given distributions */
   int n_phase_images;
   int nw_label_given, nw_label;  /* --nw-label: the non-wetting label of --phase-images */
@@ -72,7 +73,7 @@ typedef struct {
   campaign c; /* metadata and run folders (campaign.txt) */
   rp_run runs[RP_RUNS];
   int n_runs;
-  int axis, wetting, ratio, mode, nw_label;
+  int axis, wetting, ratio, mode, nw_label, trapping;
   double g;
   rp_liquids liq;
   char boundary[32];

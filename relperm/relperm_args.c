@@ -22,6 +22,8 @@ const char *rp_usage =
     "  --saturations LIST    target water saturations in (0, 1) (default 0.2,0.35,0.5,0.65,0.8)\n"
     "  --mode M              drainage (default: the non-wetting liquid invades from the inlet\n"
     "                        face) or imbibition\n"
+    "  --no-trapping         the morphology without trapping of the defending phase (with it a\n"
+    "                        small crop keeps the wetting clusters cut off from the outlet face)\n"
     "  --phase-images LIST   labelled images of the phase distributions instead of the\n"
     "                        morphology (the IMAGE's pore space, the non-wetting voxels labelled\n"
     "                        --nw-label; e.g. from mdpore image drainage --write-image)\n"
@@ -152,6 +154,7 @@ int rp_parse_args(int argc, char **argv, rp_opts *o) {
   snprintf(co->mpiexec, sizeof co->mpiexec, "mpiexec");
   o->axis = -1;
   o->ratio = 1;
+  o->trapping = 1;
   o->a_wo = RP_A_WO;
   parse_saturations("0.2,0.35,0.5,0.65,0.8", o);
   const char *pos[2] = {NULL, NULL};
@@ -159,6 +162,10 @@ int rp_parse_args(int argc, char **argv, rp_opts *o) {
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (!strcmp(s, "--no-trapping")) {
+      o->trapping = 0;
+      continue;
+    }
     if (!strcmp(s, "--allow-coarse")) {
       co->force = 1;
       continue;

@@ -102,9 +102,12 @@ static void definitions(FILE *f, const char *pre, const relperm *rp, double G) {
           "%sSw = N_water / (N_water + N_oil) of the run's particles (exact counts; Sw_err = 0); "
           "wetting liquid %s, non-wetting %s; phase images by %s\n",
           pre, rp->wetting == RP_WET_WATER ? "water" : "oil", nw,
-          rp->mode == MDP_MORPH_IMBIBITION ? "morphological imbibition"
-          : rp->mode == RP_MODE_GIVEN      ? "given labelled images (--phase-images)"
-                                           : "morphological drainage");
+          rp->mode == RP_MODE_GIVEN ? "given labelled images (--phase-images)"
+          : rp->mode == MDP_MORPH_IMBIBITION
+              ? (rp->trapping ? "morphological imbibition, trapping on"
+                              : "morphological imbibition, no trapping")
+              : (rp->trapping ? "morphological drainage, trapping on"
+                              : "morphological drainage, no trapping"));
   fprintf(f,
           "%skr_i = q_i / q_i^(1): the phase's superficial velocity q_i = (1/V) sum_{i} v / n over "
           "that of the same liquid alone in the same image at the same body force (= mu_i q_i / "

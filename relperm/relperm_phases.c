@@ -105,7 +105,8 @@ int rp_phase_image(const rp_opts *o, const mdp_image_t *img, double sw_target, c
   } else {
     const camp_opts *co = &o->co;
     const int periodic_axis = co->boundary_of_axis[o->axis] == CAMP_BOUNDARY_PERIODIC;
-    mdp_morph_opts_t mo = {.mode = o->mode, .axis = periodic_axis ? -1 : o->axis, .trapping = 1};
+    mdp_morph_opts_t mo = {
+        .mode = o->mode, .axis = periodic_axis ? -1 : o->axis, .trapping = o->trapping};
     for (int d = 0; d < 3; d++) mo.periodic[d] = d == o->axis ? periodic_axis : !co->sides_mirror;
     mdp_morph_step_t step;
     if (mdp_image_morph_at(img, &mo, 1.0 - sw_target, nw_label, &out, &step, err)) {

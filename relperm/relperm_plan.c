@@ -89,6 +89,15 @@ static int add_run(rp_opts *o, relperm *rp, const char *tpl, const char *phase_d
   h = camp_fnv1a(h, version, strlen(version));
   snprintf(dir, sizeof dir, "%.4000s/runs/%c-%016llx", o->co.workdir, 'x' + o->axis,
            (unsigned long long)h);
+  for (int i = 0; i < rp->c.n_runs; i++)
+    if (!strcmp(rp->c.runs[i].dir, dir)) { /* the same phase image as an earlier target */
+      fprintf(stderr,
+              "mdpore relperm: target Sw %g gives the same phase distribution as target Sw %g (the "
+              "nearest step of the morphology): one run for both\n",
+              meta->sw_target, rp->runs[i].sw_target);
+      rc = 0;
+      goto done;
+    }
   char header[512];
   if (meta->role == RP_ROLE_TWO)
     snprintf(header, sizeof header,
@@ -157,6 +166,7 @@ int rp_plan(rp_opts *o, relperm *rp) {
   rp->wetting = o->wetting;
   rp->ratio = o->ratio;
   rp->mode = o->n_phase_images ? RP_MODE_GIVEN : o->mode;
+  rp->trapping = o->trapping;
   snprintf(rp->boundary, sizeof rp->boundary, "%s",
            camp_boundary_name(co->boundary_of_axis[o->axis]));
   if (rp_liquids_of(o->ratio, &rp->liq)) return -1;
@@ -207,6 +217,18 @@ int rp_plan(rp_opts *o, relperm *rp) {
     if (rp_phase_image(o, &img, meta.sw_target, o->n_phase_images ? o->phase_images[i] : NULL,
                        (uint8_t)label, dir, &meta))
       goto fail;
+    int same = -1; /* a morphological step an earlier target already runs */
+    for (int k = 0; k < rp->n_runs && !o->n_phase_images; k++)
+      if (rp->runs[k].role == RP_ROLE_TWO && rp->runs[k].radius == meta.radius &&
+          rp->runs[k].snw_image == meta.snw_image)
+        same = k;
+    if (same >= 0) {
+      fprintf(stderr,
+              "mdpore relperm: target Sw %g: the nearest step of the morphology (non-wetting "
+              "saturation %.4f, radius %g voxels) is that of target Sw %g: one run for both\n",
+              meta.sw_target, meta.snw_image, meta.radius, rp->runs[same].sw_target);
+      continue;
+    }
     fprintf(stderr,
             "mdpore relperm: phase image %d/%d: non-wetting saturation %.4f by voxels "
             "(connected %.4f, disconnected %.4f)%s\n",
@@ -256,8 +278,8 @@ int rp_write_manifest(const char *workdir, const relperm *rp) {
   fprintf(f, "%s\n", RP_MANIFEST_HEAD);
   fprintf(f, "axis: %c\nwetting: %s\nviscosity_ratio: %d\nM: %.17g %.17g\n", 'x' + rp->axis,
           rp->wetting == RP_WET_WATER ? "water" : "oil", rp->ratio, rp->liq.M, rp->liq.M_err);
-  fprintf(f, "mode: %s\ng: %.17g\nnw_label: %d\nboundary: %s\n", rp_mode_name(rp->mode), rp->g,
-          rp->nw_label, rp->boundary);
+  fprintf(f, "mode: %s\ntrapping: %d\ng: %.17g\nnw_label: %d\nboundary: %s\n",
+          rp_mode_name(rp->mode), rp->trapping, rp->g, rp->nw_label, rp->boundary);
   for (int i = 0; i < rp->n_runs; i++) {
     const rp_run *r = &rp->runs[i];
     fprintf(f, "rp: %s %.17g %.17g %.17g %.17g %.17g\n", role_name(r->role), r->sw_target,
@@ -314,7 +336,8 @@ int rp_read_manifest(const char *workdir, relperm *rp) {
     } else if (sscanf(line, "M: %lf %lf", &rp->liq.M, &rp->liq.M_err) == 2) {
     } else if (sscanf(line, "mode: %31s", word) == 1)
       rp->mode = rp_mode_parse(word) < 0 ? MDP_MORPH_DRAINAGE : rp_mode_parse(word);
-    else if (sscanf(line, "g: %lf", &rp->g) == 1) {
+    else if (sscanf(line, "trapping: %d", &rp->trapping) == 1) {
+    } else if (sscanf(line, "g: %lf", &rp->g) == 1) {
     } else if (sscanf(line, "nw_label: %d", &rp->nw_label) == 1) {
     } else if (sscanf(line, "boundary: %31s", rp->boundary) == 1) {
     } else if (sscanf(line, "rp: %31s %lf %lf %lf %lf %lf", word, &a, &b, &d, &e, &g) == 6) {

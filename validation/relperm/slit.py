@@ -47,7 +47,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--h", type=int, default=12, help="pore width in voxels = rc (default 12)")
-    ap.add_argument("--length", type=int, default=8)
+    ap.add_argument("--length", type=int, default=6)
     ap.add_argument("--depth", type=int, default=4)
     ap.add_argument("--films", default=None, help="film thicknesses a in voxels (default 1..h/2-1)")
     ap.add_argument("--g", type=float, default=0.01)
@@ -113,7 +113,7 @@ def main():
         fails.append(f"krw does not increase with Sw: {krw}")
     mdval.write_report(out, tag, ["film (rc)", "Sw", "Snw image", "krw", "krw err", "layered", "ratio", "kro", "kro err",
                                   "layered", "ratio", "Ca", "check"], table,
-                       notes=f"`{' '.join(os.path.basename(c) if '/' in c else c for c in cmd)}`\n\n"
+                       notes=f"`{' '.join(','.join(os.path.basename(x) for x in c.split(',')) if '/' in c else c for c in cmd)}`\n\n"
                              f"slit h = {args.h}, box {args.length} x {ny} x {args.depth}, g = {args.g}, "
                              f"A_wo = {args.a_wo}, M = {d['M']}; q_w^(1) = {d['q_water_single']:.5g} +- "
                              f"{d['q_water_single_err']:.2g}, q_o^(1) = {d['q_oil_single']:.5g} +- "
