@@ -47,7 +47,9 @@ const char *rp_usage =
     "  --seed S              base seed (default 12345)\n"
     "  --jobs N|auto         runs at once (default 1)\n"
     "  --emit-scenes DIR     write the phase images, scenes and commands.txt, run nothing\n"
-    "  --collect DIR         read a campaign folder back: relperm.csv, .json, .png, .txt\n";
+    "  --collect DIR         read a campaign folder back: relperm.csv, .json, .png, .txt\n"
+    "Exit: 0 every run used; 1 runs left out (the report says why) or an error; 2 bad usage.\n"
+    "More: docs/relperm.md (mdpore --help lists every command)\n";
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore relperm: %s: expected %s (got '%s')\n", opt, expected, got);
