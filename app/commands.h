@@ -11,6 +11,7 @@ int cmd_foam(int argc, char **argv);   /* mdpore foam IMAGE --axis ...        (c
 int cmd_fit(int argc, char **argv);    /* mdpore fit TABLE                    (upscale/fit)      */
 int cmd_darcy(int argc, char **argv);  /* mdpore darcy CONFIG                 (upscale/darcy)    */
 int cmd_permeability(int argc, char **argv); /* mdpore permeability IMAGE|SCENE (campaign/) */
+int cmd_relperm(int argc, char **argv);      /* mdpore relperm IMAGE (relperm/) */
 int cmd_couple(int argc, char **argv);       /* mdpore couple CONFIG (coupling/) */
 int cmd_slip(int argc, char **argv);         /* mdpore slip INPUT... (upscale/fit, no PETSc) */
 

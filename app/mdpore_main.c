@@ -21,6 +21,8 @@ static const command_t commands[] = {
     {"darcy", cmd_darcy, "continuum Darcy/non-Darcy solve on a grid of rock blocks"},
     {"permeability", cmd_permeability,
      "permeability campaign: forcing ladder of mdpore runs, flow table, fit, k in nD"},
+    {"relperm", cmd_relperm,
+     "relative permeability of water and oil: co-flow runs per saturation, kr table, PNG"},
     {"couple", cmd_couple,
      "pore-scale <-> continuum loop: campaigns per block, fitted laws, feedback of gradients"},
     {"slip", cmd_slip,

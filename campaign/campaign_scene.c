@@ -240,14 +240,35 @@ static int pressure_drive(doc_t *d, int root, int effects, const camp_opts *o, i
   return 0;
 }
 
-/* The fluid species names: geometry.species.fluid, else the species not frozen. */
+/* Appends `name` to names unless there already (n names so far, at most max). */
+static int add_name(const char **names, int n, int max, const char *name) {
+  if (!name) return n;
+  for (int i = 0; i < n; i++)
+    if (!strcmp(names[i], name)) return n;
+  if (n < max) names[n++] = name;
+  return n;
+}
+
+/* The fluid species names: geometry.species.fluid with the species that
+ * geometry.fluid_species_labels and geometry.fluid_species_regions give pore voxels (two liquids:
+ * `mdpore relperm` drives both), else the species not frozen. */
 static int fluid_species(doc_t *d, int root, const char **names, int max) {
   int g = get(d, root, "geometry");
   if (g) {
     const char *f = text_of(d, get(d, get(d, g, "species"), "fluid"));
     if (f) {
-      names[0] = f;
-      return 1;
+      int n = add_name(names, 0, max, f);
+      yaml_node_t *labels = yaml_document_get_node(d, get(d, g, "fluid_species_labels"));
+      if (labels && labels->type == YAML_MAPPING_NODE)
+        for (yaml_node_pair_t *p = labels->data.mapping.pairs.start;
+             p < labels->data.mapping.pairs.top; p++)
+          n = add_name(names, n, max, text_of(d, p->value));
+      yaml_node_t *regions = yaml_document_get_node(d, get(d, g, "fluid_species_regions"));
+      if (regions && regions->type == YAML_SEQUENCE_NODE)
+        for (yaml_node_item_t *it = regions->data.sequence.items.start;
+             it < regions->data.sequence.items.top; it++)
+          n = add_name(names, n, max, text_of(d, get(d, *it, "species")));
+      return n;
     }
   }
   int n = 0;

@@ -66,6 +66,8 @@ int flux_def_init(flux_def_t *d, const scene_t *s, const double count[SCENE_MAX_
       force += count[sp] * b->g[sp][d->axis];
     }
   }
+  d->n_phases = s->flux.n_phases;
+  for (int k = 0; k < d->n_phases; k++) d->phase[k] = s->flux.phase_species[k];
   d->fluid_fraction = fluid_volume / d->volume;
   d->mass_density = fluid_volume > 0 ? mass / fluid_volume : 0;
   /* G: the body force per fluid volume. A pressure-driven run (reservoir pistons)
@@ -100,6 +102,11 @@ void flux_sample(const flux_def_t *d, long step, double time, const double count
   out->G = d->G; /* constant for a body force; a pressure-driven run measures it here */
   out->u = n > 0 ? v / n : 0;
   out->N = n;
+  for (int k = 0; k < d->n_phases; k++) { /* the same terms as q's sum, one species each */
+    const int sp = d->phase[k];
+    out->q_phase[k] = vsum[sp] / d->n[sp] / d->length / d->area;
+    out->N_phase[k] = count[sp];
+  }
 }
 
 const char *flux_density_source_name(int source) {

@@ -14,6 +14,10 @@
  * q = phi u_mean with phi = sum_s N_s / (n_s V) the fluid fraction of the box and u_mean the mean
  * particle velocity (one species).
  *
+ * Per phase (output.flux.phases): each listed species' own share of the same sum,
+ *   q_p = (1/V) (1/n_p) sum_{i in p} v_axis,i,    so q = sum_p q_p when the phases are the counted
+ * species (the superficial velocity of each liquid; relative permeabilities, docs/relperm.md).
+ *
  * G = -dp/dx, the driving gradient: with body_force, the body force per fluid volume,
  * G = sum_s N_s F_s,axis / V_fluid, V_fluid = sum_s N_s / n_s (one species: G = n F = n m g with g
  * the acceleration); NaN with reverse_along (no net gradient); 0 without a driving effect.
@@ -39,11 +43,15 @@ typedef struct {
   int density_source;               /* enum flux_density_source */
   int gradient_source;              /* enum flux_gradient_source */
   double G;                         /* driving gradient (NaN: none defined) */
+  int n_phases;                     /* output.flux.phases (0: none) */
+  int phase[SCENE_MAX_SPECIES];     /* their species */
 } flux_def_t;
 
 typedef struct {
   long step;
-  double time, q, Q, G, u, N; /* u: mean v_axis of the counted particles; N: their number */
+  double time, q, Q, G, u, N;        /* u: mean v_axis of the counted particles; N: their number */
+  double q_phase[SCENE_MAX_SPECIES]; /* q_p of each of def.phase (output.flux.phases) */
+  double N_phase[SCENE_MAX_SPECIES]; /* its mobile particles */
 } flux_sample_t;
 
 /* The definitions for a scene with output.flux, from the global counts of sim_flux_sums. 0, or -1

@@ -81,6 +81,8 @@ static double batch_tau(const double *x, long n, long *batch, long *k_out, doubl
   return tau < 0.5 ? 0.5 : tau;
 }
 
+static void window_stats(const double *x, long n, steady_state_t *out);
+
 double integrated_autocorrelation_time(const double *x, long n) {
   long b, k;
   double var_z;
@@ -109,6 +111,12 @@ void steady_state_analyse_from(const double *x, long n, double tau_slow, steady_
       out->slow_governs = 1;
     }
   }
+  window_stats(x, n, out);
+}
+
+/* The mean and error of x[out->start..n): the block error, or the autocorrelation error where it
+ * is larger; n_eff, tau_int and rel_err with them. */
+static void window_stats(const double *x, long n, steady_state_t *out) {
   const long m = n - out->start;
   out->avg = block_average_plateau(x + out->start, m);
   /* The autocorrelation estimate on (batch means of) the window: error sqrt(var_z 2 tau_b / k),
@@ -151,4 +159,13 @@ int steady_state_converged(const steady_state_t *s, double target) {
          window >= STEADY_WINDOW_OVER_TRANSIENT * s->mser_start &&
          (double)window >= STEADY_SLOW_WINDOW_TIMES * s->tau_slow &&
          s->n_eff >= STEADY_MIN_EFFECTIVE && s->rel_err <= target;
+}
+
+void steady_state_window(const double *x, long n, const steady_state_t *ref, steady_state_t *out) {
+  *out = *ref;
+  out->n = n;
+  out->tau_floor = 0;
+  out->floor_governs = 0;
+  window_stats(x, n, out);
+  steady_state_floor_tau(out, x, ref->tau_floor);
 }

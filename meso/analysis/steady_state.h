@@ -90,6 +90,11 @@ double integrated_autocorrelation_time(const double *x, long n);
  * tau_floor <= 0 or not finite: nothing changes. */
 void steady_state_floor_tau(steady_state_t *s, const double *x, double tau_floor);
 
+/* Another series sampled with the one `ref` analysed (a part of it: one liquid's flux): its mean
+ * and error over ref's window [ref->start, n), with ref's correlation-time floor (the verdict
+ * fields are ref's). */
+void steady_state_window(const double *x, long n, const steady_state_t *ref, steady_state_t *out);
+
 /* Whether the analysed series meets a relative error target: steady, a plateau of the blocked
  * error, at least STEADY_MIN_SAMPLES samples used, a window >= STEADY_WINDOW_OVER_TRANSIENT x
  * MSER's transient and >= STEADY_SLOW_WINDOW_TIMES x tau_slow, >= STEADY_MIN_EFFECTIVE effective

@@ -25,7 +25,8 @@ int run_flux_open(run_flux_t *rf, sim_t *sim, int restart, long first, int rank)
   }
   if (rank == 0)
     bad = flux_log_open(&rf->log, s, &rf->def, s->flux.path, restart ? first : -1, &rf->steps,
-                        &rf->q) != 0;
+                        &rf->q, rf->q_phase) != 0;
+  for (int k = 0; k < rf->def.n_phases; k++) rf->N_phase[k] = count[rf->def.phase[k]];
   rf->samples = rf->q.n;
   MPI_Comm comm = sim_comm(sim);
   MPI_Bcast(&rf->samples, 1, MPI_LONG, 0, comm);
@@ -118,6 +119,10 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
     flux_log_row(&rf->log, &r);
     series_push(&rf->steps, (double)step);
     series_push(&rf->q, r.q);
+    for (int k = 0; k < rf->def.n_phases; k++) {
+      series_push(&rf->q_phase[k], r.q_phase[k]);
+      rf->N_phase[k] = r.N_phase[k];
+    }
   }
   if (!check) return 0;
   /* The next check once the series has grown by 5% (at least 10 samples): the analysis stays a
@@ -147,6 +152,8 @@ int run_flux_sample(run_flux_t *rf, sim_t *sim, long step, int rank) {
 void run_flux_finish(run_flux_t *rf, const scene_t *s, int rank) {
   if (!rf->on || rank != 0) return;
   analyse(rf, s);
+  for (int k = 0; k < rf->def.n_phases; k++) /* each phase over the total's steady window */
+    steady_state_window(rf->q_phase[k].x, rf->q_phase[k].n, &rf->result, &rf->phase_result[k]);
   if (rf->pd.on) {
     pressure_drop_analyse(&rf->pd, rf->result.start, &rf->pd_result);
     if (pressure_drop_write_profile(&rf->pd, rf->result.start, rf->pd.profile_path))
@@ -195,5 +202,6 @@ void run_flux_close(run_flux_t *rf) {
   pressure_drop_free(&rf->pd);
   series_free(&rf->steps);
   series_free(&rf->q);
+  for (int k = 0; k < rf->def.n_phases; k++) series_free(&rf->q_phase[k]);
   rf->on = 0;
 }

@@ -21,7 +21,11 @@ typedef struct run_flux {
   long every; /* output.flux.every */
   flux_def_t def;
   flux_log_t log;
-  series_t steps, q;     /* rank 0: the series (with a restart's earlier rows) */
+  series_t steps, q;                   /* rank 0: the series (with a restart's earlier rows) */
+  series_t q_phase[SCENE_MAX_SPECIES]; /* rank 0: q of each of def.phase (output.flux.phases) */
+  double N_phase[SCENE_MAX_SPECIES];   /* their particles at the latest sample */
+  steady_state_t phase_result[SCENE_MAX_SPECIES]; /* rank 0, after run_flux_finish: each phase's
+                                                     mean and error over result's window */
   long samples;          /* its length, on every rank (the check schedule) */
   long next_check;       /* length at which the next early-stop check runs */
   double target;         /* run.target_error (0: none) */

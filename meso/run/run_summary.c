@@ -133,6 +133,32 @@ static void flux_text(FILE *out, const run_flux_t *f, const scene_t *s) {
     fprintf(out, "  target relative error %g: %s (relative error %.3g)%s\n", f->target,
             f->reached ? "reached" : "NOT reached within the step budget", r->rel_err,
             f->stopped_early ? ", stopped early" : "");
+  double n_phases = 0;
+  for (int k = 0; k < f->def.n_phases; k++) n_phases += f->N_phase[k];
+  for (int k = 0; k < f->def.n_phases && r->n > 0; k++)
+    fprintf(out, "  phase %s: q = %.6g +- %.2g, N = %.0f, saturation N / N_phases = %.4f\n",
+            s->species[f->def.phase[k]].name, f->phase_result[k].avg.mean,
+            f->phase_result[k].avg.err, f->N_phase[k],
+            n_phases > 0 ? f->N_phase[k] / n_phases : NAN);
+}
+
+/* The summary's flux.phases object: per phase q and q_err over the total's steady window, its
+ * particles and its saturation (its share of the phases' particles). */
+static void flux_phases_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
+  double n_phases = 0;
+  for (int k = 0; k < f->def.n_phases; k++) n_phases += f->N_phase[k];
+  fprintf(fp, "    \"phases\": {");
+  for (int k = 0; k < f->def.n_phases; k++) {
+    const int empty = f->result.n <= 0;
+    fprintf(fp, "%s\"%s\": {\"q\": ", k ? ", " : "", s->species[f->def.phase[k]].name);
+    json_num(fp, empty ? NAN : f->phase_result[k].avg.mean);
+    fprintf(fp, ", \"q_err\": ");
+    json_num(fp, empty ? NAN : f->phase_result[k].avg.err);
+    fprintf(fp, ", \"N\": %.0f, \"saturation\": ", f->N_phase[k]);
+    json_num(fp, n_phases > 0 ? f->N_phase[k] / n_phases : NAN);
+    fprintf(fp, "}");
+  }
+  fprintf(fp, "},\n");
 }
 
 /* The summary's "flux" object. */
@@ -210,6 +236,7 @@ static void flux_json(FILE *fp, const run_flux_t *f, const scene_t *s) {
     fprintf(fp, "null, \"reached\": null, ");
   fprintf(fp, "\"stopped_early\": %s, \"file\": \"%s\",\n", f->stopped_early ? "true" : "false",
           s->flux.path);
+  if (f->def.n_phases > 0) flux_phases_json(fp, f, s);
   fprintf(fp,
           "    \"method\": \"%s\",\n    \"convention\": \"q = Q / A_total, A_total = the whole box "
           "cross-section normal to the axis (solid included); Q = (1/L) sum_s sum_i v_i / n_s; G "

@@ -157,6 +157,8 @@ typedef struct {
   double bulk_modulus; /* > 0: the liquid's isothermal bulk modulus K = n dp/dn
                           (output.flux.bulk_modulus), which sets the pressure-diffusion transient
                           the steady-state analysis leaves out (run/run_flux.c); 0: none */
+  int n_phases;        /* output.flux.phases: species with their own q column */
+  int phase_species[SCENE_MAX_SPECIES]; /* (0: none; each counted, listed once) */
   char path[SCENE_PATH_LEN];
 } scene_flux_t;
 

@@ -607,12 +607,43 @@ static int parse_periodic(ytree_t *t, yaml_node_t *n, const char *path, scene_ou
   return 0;
 }
 
-/* output.flux: {axis, every, file, species, density} (docs/scene-format.md). Checks what the scene
- * alone can tell: the counted species are mobile, and a fluid density is known (from the fill,
- * from geometry.fluid_density, or given). */
+/* output.flux.phases: species whose own superficial velocity gets a column (docs/scene-format.md);
+ * each one counted by the flux (so the phases' q add up to a part of q) and listed once. */
+static int parse_flux_phases(ytree_t *t, yaml_node_t *v, scene_t *s) {
+  scene_flux_t *f = &s->flux;
+  TRY(yt_expect_seq(t, v, "output.flux.phases"));
+  if (yt_seq_size(v) < 1)
+    return yt_error(t, v, "output.flux.phases",
+                    "expected a list of counted species names, e.g. [water, oil] (got an empty "
+                    "list)");
+  for (int i = 0; i < yt_seq_size(v); i++) {
+    char sub[64], name[SCENE_NAME_LEN];
+    snprintf(sub, sizeof sub, "output.flux.phases[%d]", i);
+    yaml_node_t *item = yt_seq_item(t, v, i);
+    TRY(yt_string(t, item, sub, name, sizeof name));
+    const int sp = scene_species_index(s, name);
+    if (sp < 0)
+      return yt_error(t, item, sub, "expected one of the species listed under 'species' (got '%s')",
+                      name);
+    if (!(f->species_mask >> sp & 1u))
+      return yt_error(t, item, sub,
+                      "expected a species the flux counts (mobile, and in output.flux.species when "
+                      "that is given) (got '%s')",
+                      name);
+    for (int k = 0; k < f->n_phases; k++)
+      if (f->phase_species[k] == sp)
+        return yt_error(t, item, sub, "expected each species once (got '%s' twice)", name);
+    f->phase_species[f->n_phases++] = sp;
+  }
+  return 0;
+}
+
+/* output.flux: {axis, every, file, species, density, bulk_modulus, phases} (docs/scene-format.md).
+ * Checks what the scene alone can tell: the counted species are mobile, and a fluid density is
+ * known (from the fill, from geometry.fluid_density, or given). */
 static int parse_flux(ytree_t *t, yaml_node_t *n, scene_t *s) {
-  static const char *const keys[] = {"axis",    "every",        "file", "species",
-                                     "density", "bulk_modulus", NULL};
+  static const char *const keys[] = {"axis",    "every",        "file",   "species",
+                                     "density", "bulk_modulus", "phases", NULL};
   static const char *const ext[] = {".csv", ".h5", NULL};
   scene_flux_t *f = &s->flux;
   TRY(yt_check_keys(t, n, "output.flux", keys));
@@ -667,6 +698,7 @@ static int parse_flux(ytree_t *t, yaml_node_t *n, scene_t *s) {
       return yt_error(t, n, "output.flux",
                       "expected a scene with a mobile species to count (got only frozen ones)");
   }
+  if ((v = yt_get(t, n, "phases"))) TRY(parse_flux_phases(t, v, s));
   if ((v = yt_get(t, n, "bulk_modulus"))) {
     TRY(yt_double(t, v, "output.flux.bulk_modulus", &f->bulk_modulus));
     if (!(f->bulk_modulus > 0) || !isfinite(f->bulk_modulus))
