@@ -230,6 +230,9 @@ int camp_fold_named_files(uint64_t *h, const char *scene_text);
 int camp_plan(camp_opts *o, campaign *c);
 int camp_write_manifest(const char *workdir, const campaign *c);
 int camp_read_manifest(const char *workdir, campaign *c);
+/* The same, with one_run_per_gradient 0 for campaigns that run several states at one gradient
+ * (mdpore relperm: one run per saturation); a run folder listed twice is refused either way. */
+int camp_read_manifest_runs(const char *workdir, campaign *c, int one_run_per_gradient);
 int camp_write_commands(const char *workdir, const camp_opts *o, const campaign *c);
 
 /* campaign_summary.c: reads DIR/summary.json into r (have = 1 when it holds a usable flux). */

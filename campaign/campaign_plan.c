@@ -221,8 +221,10 @@ static int first_sighting(const char *path, int ln, const char *k, int *seen_lin
   return -1;
 }
 
-/* A run line that names a folder or an (axis, g) an earlier line named: refused. */
-static int duplicate_run(const char *path, int ln, const campaign *c, const camp_run *r) {
+/* A run line that names a folder or an (axis, g) an earlier line named: refused (the second only
+ * where each gradient has one run: a relperm campaign runs every saturation at the same g). */
+static int duplicate_run(const char *path, int ln, const campaign *c, const camp_run *r,
+                         int one_run_per_gradient) {
   for (int i = 0; i < c->n_runs; i++) {
     const camp_run *o = &c->runs[i];
     if (!strcmp(o->dir, r->dir)) {
@@ -232,7 +234,7 @@ static int duplicate_run(const char *path, int ln, const campaign *c, const camp
               path, ln, r->dir);
       return -1;
     }
-    if (o->axis == r->axis && o->g == r->g) {
+    if (one_run_per_gradient && o->axis == r->axis && o->g == r->g) {
       fprintf(stderr,
               "mdpore permeability: %s:%d: key 'run': axis %c, g = %.17g is listed twice (%s and "
               "%s): expected one run per axis and gradient\n",
@@ -244,6 +246,10 @@ static int duplicate_run(const char *path, int ln, const campaign *c, const camp
 }
 
 int camp_read_manifest(const char *workdir, campaign *c) {
+  return camp_read_manifest_runs(workdir, c, 1);
+}
+
+int camp_read_manifest_runs(const char *workdir, campaign *c, int one_run_per_gradient) {
   char path[CAMP_PATH + 32], line[3 * CAMP_PATH];
   snprintf(path, sizeof path, "%s/%s", workdir, MANIFEST_NAME);
   FILE *f = fopen(path, "r");
@@ -363,7 +369,7 @@ int camp_read_manifest(const char *workdir, campaign *c) {
       } else {
         r->axis = ax - 'x';
         snprintf(r->dir, sizeof r->dir, "%s", v + off);
-        if (duplicate_run(path, ln, c, r))
+        if (duplicate_run(path, ln, c, r, one_run_per_gradient))
           rc = -1;
         else
           c->n_runs++;

@@ -300,7 +300,7 @@ int rp_write_manifest(const char *workdir, const relperm *rp) {
 
 int rp_read_manifest(const char *workdir, relperm *rp) {
   campaign *c = &rp->c;
-  if (camp_read_manifest(workdir, c)) return -1;
+  if (camp_read_manifest_runs(workdir, c, 0)) return -1; /* every saturation at one g */
   /* the folders under this work folder (it may have moved since the plan) */
   for (int i = 0; i < c->n_runs; i++) {
     const char *name = strrchr(c->runs[i].dir, '/');
