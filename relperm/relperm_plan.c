@@ -3,7 +3,7 @@
  * every target saturation and the single-phase image of the references under WORKDIR/phases/, one
  * run folder per scene under WORKDIR/runs/ named by the FNV-1a hash of its (portable) text, the
  * files it names and the binary's version, the manifests (campaign.txt: the campaign's metadata
- * and folders, read by camp_read_manifest; relperm.txt: each run's role and saturations) and
+ * and folders, read by camp_read_manifest; relperm_runs.txt: each run's role and saturations) and
  * commands.txt (one line per run, relative to WORKDIR). */
 #include <math.h>
 #include <stdio.h>
@@ -13,7 +13,7 @@
 #include "common/atomic_file.h"
 #include "relperm.h"
 
-#define RP_MANIFEST "relperm.txt"
+#define RP_MANIFEST "relperm_runs.txt" /* not relperm.txt: that is the report collect writes */
 #define RP_MANIFEST_HEAD "# mdpore relperm campaign v1"
 /* --force auto: the body force that would drive the water at this mean pore velocity through a
  * slit of the image's hydraulic size h (u = n g h^2 / (12 mu)), capped at RP_AUTO_G_MAX (the

@@ -93,6 +93,14 @@ def main():
         return 1
     d = json.load(open(os.path.join(work, "relperm.json")))
     rows, fails, table = d["rows"], [], []
+    # a second collect of the finished folder reads what the first left (its outputs do not
+    # replace its inputs) and writes the same table
+    csv_first = open(os.path.join(work, "relperm.csv")).read()
+    p2 = subprocess.run([mdval.mdpore_binary(), "relperm", "--collect", work], env=mdval.mpi_env(),
+                        capture_output=True, text=True)
+    if p2.returncode != p.returncode or open(os.path.join(work, "relperm.csv")).read() != csv_first:
+        fails.append(f"a second --collect: exit {p2.returncode} (first {p.returncode}), table "
+                     f"{'changed' if p2.returncode == 0 else 'not written'}: {p2.stderr[-300:]}")
     if len(rows) != len(films):
         fails.append(f"{len(rows)} rows of {len(films)} runs (left out: {d['left_out']})")
     for r in rows:
