@@ -67,6 +67,13 @@ static int rm_entry(const char *path, const struct stat *sb, int flag, struct FT
   return remove(path);
 }
 
+/* v formatted with fmt, or "null" when it is not finite (JSON has no NaN or inf). */
+static const char *finite_or_null(char *buf, size_t len, const char *fmt, double v) {
+  if (!isfinite(v)) return "null";
+  snprintf(buf, len, fmt, v);
+  return buf;
+}
+
 static int axis_of(const char *s) {
   return !strcmp(s, "x") ? 0 : !strcmp(s, "y") ? 1 : !strcmp(s, "z") ? 2 : -1;
 }
@@ -278,6 +285,9 @@ int cmd_foam(int argc, char **argv) {
     snprintf(kphys, sizeof kphys, "%.8e", k_vox * dx * dx);
     snprintf(kmd, sizeof kmd, "%.8e", k_vox * dx * dx / 9.869233e-16);
   }
+  /* the solver's diagnostics can be undefined (an error estimate from too few samples is NaN):
+   * written as null, so the JSON stays valid */
+  char tort[32], rp[32], ru[32], fc[32], fe[32];
   snprintf(json, sizeof json,
            "{\"image\": \"%s\", \"axis\": \"%c\", \"dims\": [%d, %d, %d], \"refine\": %d, "
            "\"cells\": %d, \"walls\": %s, \"drive\": \"%s\", \"sides\": \"%s\", \"ranks\": %d, "
@@ -291,9 +301,9 @@ int cmd_foam(int argc, char **argv) {
            "the whole cross-section including solid\",\n"
            " \"model_units\": \"lengths in voxels, nu = 1, kinematic pressure gradient %.6g\",\n"
            " \"flow_rate\": %.10e, \"superficial_velocity\": %.10e, \"mean_pore_velocity\": %.10e, "
-           "\"tortuosity\": %.8f,\n"
-           " \"converged\": %s, \"iterations\": %d, \"residual_p\": %.3e, \"residual_U\": %.3e, "
-           "\"flux_change\": %.3e, \"flux_error_estimate\": %.3e, \"tol_residual\": %.3g, "
+           "\"tortuosity\": %s,\n"
+           " \"converged\": %s, \"iterations\": %d, \"residual_p\": %s, \"residual_U\": %s, "
+           "\"flux_change\": %s, \"flux_error_estimate\": %s, \"tol_residual\": %.3g, "
            "\"tol_flux\": %.3g, \"wall_s\": %.2f, "
            "\"case\": %s%s%s}\n",
            path, 'x' + o.axis, img.nx, img.ny, img.nz, o.refine, res.cells, walls,
@@ -306,8 +316,12 @@ int cmd_foam(int argc, char **argv) {
            o.np, o.simple ? "simpleFoam" : "pimpleFoam", o.simple ? 0.0 : res.dt, res.restarts,
            img.voxel_size, img.unit, st.porosity, st.connected_porosity[o.axis], dropped, end_walls,
            k_vox, kphys, kmd, o.gradient, q * area, q, q / st.porosity,
-           res.int_mag_u / res.int_u[o.axis], res.converged ? "true" : "false", res.iterations,
-           res.res_p, res.res_u, res.flux_change, res.flux_error, o.tol_residual, o.tol_flux,
+           finite_or_null(tort, sizeof tort, "%.8f", res.int_mag_u / res.int_u[o.axis]),
+           res.converged ? "true" : "false", res.iterations,
+           finite_or_null(rp, sizeof rp, "%.3e", res.res_p),
+           finite_or_null(ru, sizeof ru, "%.3e", res.res_u),
+           finite_or_null(fc, sizeof fc, "%.3e", res.flux_change),
+           finite_or_null(fe, sizeof fe, "%.3e", res.flux_error), o.tol_residual, o.tol_flux,
            res.wall_s, keep ? "\"" : "", keep ? dir : "null", keep ? "\"" : "");
   fputs(json, stdout);
   rc = res.converged ? 0 : EXIT_NOT_CONVERGED;
