@@ -11,6 +11,7 @@ usage: check_numeric_options.py MDPORE WORKDIR [COMMAND ...]   (COMMAND as in `m
        "image make" stands for each kind of its usage lines)"""
 import os
 import re
+import shutil
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -19,10 +20,11 @@ mdpore, work, commands = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[
 os.makedirs(work, exist_ok=True)
 BAD = ["nan", "inf", "1e400"]
 # values that are paths, folders, names or command lines: any text is valid there
-TEXT = {"--workdir", "--emit-scenes", "--collect", "--mpiexec", "--sample", "--out", "--json",
+TEXT = {"--workdir", "--emit-scenes", "--collect", "--template", "--phase-images", "--write-image",
+        "--swof", "--png", "--pc-morph", "--mpiexec", "--sample", "--out", "--json",
         "--plot", "-o", "--centres", "--box-file", "--dataset", "--output-dir", "--restart"}
 # list values: the bad number goes in as one element of an otherwise valid list
-LIST = {"--gradients": "0.1,{}", "--velocity-range": "0.02,{}", "--box": "10,{},10",
+LIST = {"--saturations": "0.3,{}", "--gradients": "0.1,{}", "--velocity-range": "0.02,{}", "--box": "10,{},10",
         "--dims": "4x{}x4", "--crop": "0:{},:,:", "--pad": "x={}", "--voxel-size": "{}um"}
 failures = []
 
@@ -58,6 +60,9 @@ def make_inputs():
     assert rc == 0, out
     with open(os.path.join(work, "slip.csv"), "w") as f:
         f.write("h,k,k_err\n4,1.6,0.02\n6,3.4,0.04\n8,5.9,0.06\n")
+    here = os.path.dirname(os.path.abspath(__file__))
+    shutil.copy(os.path.join(here, "..", "..", "cases", "upscale", "relperm_synthetic.csv"),
+                os.path.join(work, "kr.csv"))
     with open(os.path.join(work, "table.csv"), "w") as f:
         f.write("pressure_gradient,darcy_velocity,darcy_velocity_stderr\n"
                 "0.1,0.01,0.001\n0.2,0.02,0.001\n0.3,0.03,0.001\n0.4,0.04,0.001\n")
@@ -80,6 +85,10 @@ BASE = {
     "image": ["image", "info", "slit.h5"],
     "run": ["run", "--explain", "scene.yaml"],
     "build patches": ["build", "patches", "--out", "patches_out.h5"],
+    "relperm": ["relperm", "slit.h5", "--axis", "x", "--rc-per-voxel", "1", "--emit-scenes",
+                "relperm_emitted"],
+    "image drainage": ["image", "drainage", "slit.h5", "--axis", "x", "--no-plot", "-o", "pc_out"],
+    "fit relperm": ["fit", "relperm", "kr.csv", "--json", "kr_fit.json"],
     "darcy": None, "couple": None,  # no option takes a number (the config holds them)
 }
 MAKE = {"slit": ["--width", "8"], "cylinders": ["--cell", "10", "--c", "0.3"],
