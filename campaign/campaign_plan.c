@@ -9,35 +9,10 @@
 
 #include "campaign.h"
 #include "common/atomic_file.h"
+#include "common/text.h"
 
 #define MANIFEST_NAME "campaign.txt"
 #define MANIFEST_HEAD "# mdpore permeability campaign v1"
-
-static char *read_all(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  size_t cap = 4096, n = 0, r;
-  char *s = malloc(cap);
-  while (s && (r = fread(s + n, 1, cap - n - 1, f)) > 0) {
-    n += r;
-    if (n + 1 >= cap) {
-      char *t = realloc(s, cap *= 2);
-      if (!t) free(s);
-      s = t;
-    }
-  }
-  fclose(f);
-  if (s) s[n] = 0;
-  return s;
-}
-
-static int write_text(const char *path, const char *text) {
-  char tmp[CAMP_PATH + 64];
-  FILE *f = atomic_open(path, tmp, sizeof tmp);
-  if (!f) return -1;
-  fputs(text, f);
-  return atomic_commit(f, tmp, path);
-}
 
 int camp_plan(camp_opts *o, campaign *c) {
   char template_path[CAMP_PATH], version[256];
@@ -84,9 +59,9 @@ int camp_plan(camp_opts *o, campaign *c) {
       char *text = malloc(len);
       if (!text) return -1;
       snprintf(text, len, "%s%s", header, scene);
-      char *old = read_all(path);
+      char *old = text_read_file(path);
       int rc = 0;
-      if (!old || strcmp(old, text)) rc = make_dirs(r->dir) || write_text(path, text);
+      if (!old || strcmp(old, text)) rc = make_dirs(r->dir) || atomic_write_text(path, text);
       free(old);
       free(text);
       free(scene);

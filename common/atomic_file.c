@@ -39,6 +39,14 @@ int atomic_commit(FILE *fp, const char *tmp, const char *path) {
   return atomic_rename(tmp, path);
 }
 
+int atomic_write_text(const char *path, const char *text) {
+  char tmp[4096 + 64];
+  FILE *f = atomic_open(path, tmp, sizeof tmp);
+  if (!f) return -1;
+  fputs(text, f);
+  return atomic_commit(f, tmp, path);
+}
+
 int make_dirs(const char *dir) {
   char buf[4096];
   if (snprintf(buf, sizeof buf, "%s", dir) >= (int)sizeof buf) return -1;

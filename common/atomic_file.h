@@ -16,6 +16,8 @@ FILE *atomic_open(const char *path, char *tmp, size_t len);
 int atomic_commit(FILE *fp, const char *tmp, const char *path);
 /* Rename a finished temporary (e.g. an HDF5 file closed by the library) over `path`. */
 int atomic_rename(const char *tmp, const char *path);
+/* Write text as the whole file at path, atomically. 0, or -1 with a message. */
+int atomic_write_text(const char *path, const char *text);
 /* Create a directory and its parents (mkdir -p). 0 or -1 with a message. */
 int make_dirs(const char *dir);
 

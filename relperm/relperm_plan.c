@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "common/atomic_file.h"
+#include "common/text.h"
 #include "relperm.h"
 
 #define RP_MANIFEST "relperm_runs.txt" /* not relperm.txt: that is the report collect writes */
@@ -20,32 +21,6 @@
  * flood's 0.1 heats a slit by 6.6%, docs/twophase.md section 8). */
 #define RP_AUTO_VELOCITY 0.1
 #define RP_AUTO_G_MAX 0.05
-
-static char *read_all(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  size_t cap = 4096, n = 0, r;
-  char *s = malloc(cap);
-  while (s && (r = fread(s + n, 1, cap - n - 1, f)) > 0) {
-    n += r;
-    if (n + 1 >= cap) {
-      char *t = realloc(s, cap *= 2);
-      if (!t) free(s);
-      s = t;
-    }
-  }
-  fclose(f);
-  if (s) s[n] = 0;
-  return s;
-}
-
-static int write_text(const char *path, const char *text) {
-  char tmp[CAMP_PATH + 64];
-  FILE *f = atomic_open(path, tmp, sizeof tmp);
-  if (!f) return -1;
-  fputs(text, f);
-  return atomic_commit(f, tmp, path);
-}
 
 const char *rp_mode_name(int mode) {
   return mode == MDP_MORPH_IMBIBITION ? "imbibition" : mode == RP_MODE_GIVEN ? "given" : "drainage";
@@ -116,9 +91,9 @@ static int add_run(rp_opts *o, relperm *rp, const char *tpl, const char *phase_d
   snprintf(text, len, "%s%s", header, portable);
   char path[CAMP_PATH + 32];
   snprintf(path, sizeof path, "%s/scene.yaml", dir);
-  char *old = read_all(path);
+  char *old = text_read_file(path);
   rc = 0;
-  if (!old || strcmp(old, text)) rc = make_dirs(dir) || write_text(path, text);
+  if (!old || strcmp(old, text)) rc = make_dirs(dir) || atomic_write_text(path, text);
   free(old);
   free(text);
   if (rc) goto done;
