@@ -6,8 +6,8 @@ a section of a docs page points at a heading that exists.
    for, how to use it, the reference of its options or keys, the validation that backs it, its
    limits (the keywords of PARTS below). The internal pages and the tutorial have their own parts
    (PAGE_PARTS). The pages of NOT_YET are not checked yet.
-2. References, in the sources, scripts, CMake files and Markdown of the repository (build folders,
-   .git, shared/ and CHANGELOG.md, a record of past versions, left out):
+2. References, in the sources, scripts, CMake files and Markdown of the repository (folders named
+   build*, hidden folders, shared/ and CHANGELOG.md, a record of past versions, left out):
    - `docs/PAGE.md section N` (also `sections N and M`, `sections N, M`, `section N.M`): PAGE has a
      heading whose text starts with that number;
    - `PAGE.md, "Title"` and `PAGE.md, section "Title"`: PAGE has a heading that starts with Title
@@ -56,7 +56,7 @@ NOT_YET = {
     "stability.md",
     "twophase.md",
 }
-SKIP_DIRS = {".git", "shared", "node_modules", "__pycache__"}
+SKIP_DIRS = {"shared", "node_modules", "__pycache__"}
 SCANNED = (".c", ".h", ".cu", ".cuh", ".py", ".sh", ".md", ".txt", ".cmake", ".yaml", ".in")
 
 
@@ -80,6 +80,20 @@ def slugs(heads):
         seen[s] = n + 1
         out.add(s if n == 0 else "%s-%d" % (s, n))
     return out
+
+
+JOIN = re.compile(r"\n[ \t]*(?:#+|//|\*|--)?[ \t]*")
+
+
+def line_in(text, pos):
+    """The line of `text` that holds offset `pos` of JOIN.sub(" ", text)."""
+    line, shift = 1, 0
+    for m in JOIN.finditer(text):
+        if m.start() - shift >= pos:
+            break
+        shift += len(m.group(0)) - 1
+        line += 1
+    return line
 
 
 def norm(t):
@@ -116,8 +130,8 @@ def main():
     n_refs = 0
     for dirpath, dirnames, filenames in os.walk(root):
         rel_dir = os.path.relpath(dirpath, root)
-        dirnames[:] = [d for d in dirnames if d not in SKIP_DIRS and not d.startswith("build")
-                       and not (rel_dir == "." and d == "out")]
+        dirnames[:] = [d for d in dirnames
+                       if d not in SKIP_DIRS and not d.startswith(("build", "."))]
         for name in filenames:
             rel = os.path.normpath(os.path.join(rel_dir, name))
             if rel == "CHANGELOG.md" or not (name.endswith(SCANNED) or name == "CMakeLists.txt"):
@@ -126,17 +140,11 @@ def main():
                 text = open(os.path.join(dirpath, name), encoding="utf-8").read()
             except (UnicodeDecodeError, OSError):
                 continue
-            # a reference may wrap: join lines, dropping the comment leaders of the next line
-            flat = re.sub(r"\n[ \t]*(?:#+|//|\*|--)?[ \t]*", " ", text)
+            # a reference may wrap: join the lines, dropping the comment leaders of the next line
+            flat = JOIN.sub(" ", text)
+
             def line_of(pos):
-                # map an offset of `flat` back to a line of `text`: count the joins before it
-                joined, shift = 0, 0
-                for m in re.finditer(r"\n[ \t]*(?:#+|//|\*|--)?[ \t]*", text):
-                    if m.start() - shift >= pos:
-                        break
-                    shift += len(m.group(0)) - 1
-                    joined += 1
-                return joined + 1
+                return line_in(text, pos)
 
             for m in number_rx.finditer(flat):
                 page = m.group(1)
