@@ -16,7 +16,8 @@ typedef struct {
   const char *measured;
 } accuracy_preset;
 
-/* The cheapest settings found for each target (docs/accuracy.md, "Cheapest settings"):
+/* The cheapest settings found for each target (docs/accuracy.md, "Results", the paragraph
+ * "Cheapest settings found"):
  *   10%: dt 0.01 with a 10 tau window met it (1.5 s on the H100); the preset allows 50 tau;
  *    3%: dt 0.01 with a 40 tau window met it (2.5 s); the preset allows 200 tau and asks 3%;
  *    1%: dt 0.005 with a 640 tau window met it (-0.11 +- 0.79% against the reference, 38.7 s on

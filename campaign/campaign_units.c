@@ -1,12 +1,13 @@
-/* Reduced -> SI units of a campaign (docs/permeability.md, "Units"). The length unit rc comes from
- * --voxel-size / rc_per_voxel, else a SCENE's `units:` block (common/units_block.h), else the
- * image's own voxel size, else the mDPD water mapping (rc = 0.82 nm for A = -40 with N_m = 3 water
- * molecules per particle, physics.md section 4). Energy kT = kB T (--temperature, else the block's).
- * Mass: the block's, else a particle carries the water of its volume, m = rho_water / n. Time tau =
- * rc sqrt(m / kT). The formulas are common/units.c's (shared with mdpore run). This is the
- * dimensional mapping: it is not tuned to water's viscosity (mDPD water's mu maps about 6x below
- * real water's; physics.md section 4). k = mu q / G is a length squared in any consistent units, so
- * k[m^2] = k* rc^2 does not depend on that choice; G in Pa/m and q in m/s do. */
+/* Reduced -> SI units of a campaign (docs/permeability.md, "Conventions and units"). The length
+ * unit rc comes from --voxel-size / rc_per_voxel, else a SCENE's `units:` block
+ * (common/units_block.h), else the image's own voxel size, else the mDPD water mapping (rc =
+ * 0.82 nm for A = -40 with N_m = 3 water molecules per particle, physics.md section 4). Energy
+ * kT = kB T (--temperature, else the block's). Mass: the block's, else a particle carries the
+ * water of its volume, m = rho_water / n. Time tau = rc sqrt(m / kT). The formulas are
+ * common/units.c's (shared with mdpore run). This is the dimensional mapping: it is not tuned to
+ * water's viscosity (mDPD water's mu maps about 6x below real water's; physics.md section 4).
+ * k = mu q / G is a length squared in any consistent units, so k[m^2] = k* rc^2 does not depend
+ * on that choice; G in Pa/m and q in m/s do. */
 #include <math.h>
 
 #include "campaign.h"

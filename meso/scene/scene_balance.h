@@ -1,4 +1,4 @@
-/* The `balance:` block of a scene (docs/scene-format.md, "Load balancing"): where the cuts between
+/* The `balance:` block of a scene (docs/scene-format.md, "`balance`"): where the cuts between
  * the ranks' subdomains go (meso/domain/balance.c) and when they move again during a run
  * (meso/engine/sim_balance.c). */
 #ifndef MESO_SCENE_SCENE_BALANCE_H

@@ -1,5 +1,5 @@
-"""`mdpore relperm` on a slit against the layered co-flow solution (docs/relperm.md, "6. Validation:
-slit").
+"""`mdpore relperm` on a slit against the layered co-flow solution (docs/relperm.md section
+6.2).
 
 The image: a slit along x, walls of 2 voxels normal to y, pore width --h voxels at 1 rc per voxel
 (periodic along x: --boundary periodic). The phase distributions are layered (a slit has one pore
