@@ -40,6 +40,8 @@ INTERNAL = {
 PAGE_PARTS = {
     "architecture.md": INTERNAL,
     "engine-core.md": INTERNAL,
+    # internal, with the user-facing GPU options (--backend, --skin, --gpu-memory, rng, precision)
+    "engine-cuda.md": dict(INTERNAL, **{"how to use it": PARTS["how to use it"]}),
     # a walk-through: what it shows, its numbered steps, and where it stops
     "tutorial.md": {"what it is for": PARTS["what it is for"], "steps": r"^1\. ",
                     "limits": PARTS["limits"]},
@@ -48,7 +50,6 @@ PAGE_PARTS = {
 # this list when it is done, and the check above then holds it to the five parts.
 NOT_YET = {
     "accuracy.md",
-    "engine-cuda.md",
     "fuzzing.md",
     "permeability.md",
     "relperm.md",
