@@ -54,7 +54,6 @@ NOT_YET = {
     "permeability.md",
     "relperm.md",
     "scene-format.md",
-    "stability.md",
     "twophase.md",
 }
 SKIP_DIRS = {"shared", "node_modules", "__pycache__"}
