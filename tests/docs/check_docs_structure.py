@@ -52,7 +52,6 @@ NOT_YET = {
     "fuzzing.md",
     "permeability.md",
     "relperm.md",
-    "scene-format.md",
     "twophase.md",
 }
 SKIP_DIRS = {"shared", "node_modules", "__pycache__"}
