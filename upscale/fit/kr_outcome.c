@@ -43,7 +43,7 @@ void kr_decide(const kr_table *t, const kr_fit_result fits[KR_LAW_COUNT], const 
   if (jc->phase[0].verdict == KR_PHASE_NO_ERRORS || jc->phase[1].verdict == KR_PHASE_NO_ERRORS) {
     int n = 0; /* no law is fitted to points without weights (cmd_fit_relperm.c) */
     for (int ph = 0; ph < 2; ph++)
-      if (jc->phase[ph].verdict == KR_PHASE_NO_ERRORS) {
+      if (jc->phase[ph].verdict == KR_PHASE_NO_ERRORS && n < (int)sizeof r1) {
         kr_phase_text(&jc->phase[ph], ph, r0, sizeof r0);
         n += snprintf(r1 + n, sizeof r1 - n, "%s%s", n ? "; " : "", r0);
       }
