@@ -24,7 +24,9 @@
 enum { RP_WET_WATER = 0, RP_WET_OIL = 1 }; /* --wetting: the liquid that wets the walls */
 enum { RP_ROLE_TWO = 0, RP_ROLE_WATER, RP_ROLE_OIL }; /* a run: two liquids, or one reference */
 /* Where the phase distributions come from: MDP_MORPH_DRAINAGE (0), MDP_MORPH_IMBIBITION (1), or: */
-#define RP_MODE_GIVEN 2 /* --phase-images */
+#define RP_MODE_GIVEN 2                /* --phase-images */
+#define RP_MANIFEST "relperm_runs.txt" /* not relperm.txt: that is the report collect writes */
+#define RP_MANIFEST_HEAD "# mdpore relperm campaign v1"
 
 /* The liquids (relperm_liquids.c): the documented two-liquid set of docs/twophase.md. */
 #define RP_A_LIKE -40.0    /* A_ww = A_oo */
@@ -115,7 +117,12 @@ int rp_mode_parse(const char *name);
 /* relperm_plan.c: the phase images, templates, run folders, manifests and commands. 0 or -1. */
 int rp_plan(rp_opts *o, relperm *rp);
 int rp_write_manifest(const char *workdir, const relperm *rp);
+/* relperm_manifest.c: reads campaign.txt (camp_read_manifest_runs) and relperm_runs.txt; a line
+ * that is not the writer's (a key twice or missing, a value out of its range, a number that is not
+ * finite, a run line short of fields, more runs than RP_RUNS, a line over 1023 characters) is
+ * refused with "FILE:LINE: key 'K': expected ... (got ...)" on stderr. Returns 0 or -1. */
 int rp_read_manifest(const char *workdir, relperm *rp);
+const char *rp_role_name(int role); /* "two", "water", "oil" */
 
 /* relperm_collect.c: reads the runs, computes kr, writes relperm.csv, relperm.json, the report and
  * the PNG. 0, 1 (some rows left out), or -1. */

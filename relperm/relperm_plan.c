@@ -14,8 +14,6 @@
 #include "common/text.h"
 #include "relperm.h"
 
-#define RP_MANIFEST "relperm_runs.txt" /* not relperm.txt: that is the report collect writes */
-#define RP_MANIFEST_HEAD "# mdpore relperm campaign v1"
 /* --force auto: the body force that would drive the water at this mean pore velocity through a
  * slit of the image's hydraulic size h (u = n g h^2 / (12 mu)), capped at RP_AUTO_G_MAX (the
  * flood's 0.1 heats a slit by 6.6%, docs/twophase.md section 8). */
@@ -32,7 +30,7 @@ int rp_mode_parse(const char *name) {
   return -1;
 }
 
-static const char *role_name(int role) {
+const char *rp_role_name(int role) {
   return role == RP_ROLE_TWO ? "two" : role == RP_ROLE_WATER ? "water" : "oil";
 }
 
@@ -84,7 +82,7 @@ static int add_run(rp_opts *o, relperm *rp, const char *tpl, const char *phase_d
     snprintf(header, sizeof header,
              "# mdpore relperm run: single-phase reference, all %s, body force g = %.15g along %c; "
              "folder = FNV-1a 64 of the image files, the text below and '%s'\n",
-             role_name(meta->role), rp->g, 'x' + o->axis, version);
+             rp_role_name(meta->role), rp->g, 'x' + o->axis, version);
   const size_t len = strlen(header) + strlen(portable) + 1;
   char *text = malloc(len);
   if (!text) goto done;
@@ -232,7 +230,7 @@ int rp_plan(rp_opts *o, relperm *rp) {
       meta.snw_image = meta.snw_connected = meta.snw_disconnected = meta.radius = NAN;
       snprintf(meta.image, sizeof meta.image, "%.4000s", path);
       char t[CAMP_PATH + 96];
-      snprintf(t, sizeof t, "%s/template_%s.yaml", dir, role_name(role));
+      snprintf(t, sizeof t, "%s/template_%s.yaml", dir, rp_role_name(role));
       if (rp_write_template(o, rp, role, path, pairs, t) || add_run(o, rp, t, dir, version, &meta))
         goto fail;
     }
@@ -257,7 +255,7 @@ int rp_write_manifest(const char *workdir, const relperm *rp) {
           rp_mode_name(rp->mode), rp->trapping, rp->g, rp->nw_label, rp->boundary);
   for (int i = 0; i < rp->n_runs; i++) {
     const rp_run *r = &rp->runs[i];
-    fprintf(f, "rp: %s %.17g %.17g %.17g %.17g %.17g\n", role_name(r->role), r->sw_target,
+    fprintf(f, "rp: %s %.17g %.17g %.17g %.17g %.17g\n", rp_role_name(r->role), r->sw_target,
             r->snw_image, r->snw_connected, r->snw_disconnected, r->radius);
   }
   /* the commands: one per run, from WORKDIR, with the binary from $MDPORE or the PATH */
@@ -271,75 +269,4 @@ int rp_write_manifest(const char *workdir, const relperm *rp) {
             name ? name + 1 : rp->c.runs[i].dir);
   }
   return atomic_commit(f, tmp, path);
-}
-
-int rp_read_manifest(const char *workdir, relperm *rp) {
-  campaign *c = &rp->c;
-  if (camp_read_manifest_runs(workdir, c, 0)) return -1; /* every saturation at one g */
-  /* the folders under this work folder (it may have moved since the plan) */
-  for (int i = 0; i < c->n_runs; i++) {
-    const char *name = strrchr(c->runs[i].dir, '/');
-    char dir[CAMP_PATH];
-    snprintf(dir, sizeof dir, "%.3000s/runs/%.900s", workdir, name ? name + 1 : c->runs[i].dir);
-    snprintf(c->runs[i].dir, sizeof c->runs[i].dir, "%s", dir);
-  }
-  char path[CAMP_PATH + 32], line[1024];
-  snprintf(path, sizeof path, "%s/%s", workdir, RP_MANIFEST);
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    fprintf(stderr,
-            "mdpore relperm: %s: cannot read it: expected a folder made by mdpore relperm\n", path);
-    return -1;
-  }
-  int ln = 0, rc = 0;
-  rp->n_runs = 0;
-  while (!rc && fgets(line, sizeof line, f)) {
-    ln++;
-    line[strcspn(line, "\n")] = 0;
-    if (ln == 1 && strcmp(line, RP_MANIFEST_HEAD)) {
-      fprintf(stderr, "mdpore relperm: %s:1: expected the line '%s'\n", path, RP_MANIFEST_HEAD);
-      rc = -1;
-      break;
-    }
-    char word[32];
-    double a, b, d, e, g;
-    if (sscanf(line, "axis: %31s", word) == 1)
-      rp->axis = word[0] - 'x';
-    else if (sscanf(line, "wetting: %31s", word) == 1)
-      rp->wetting = strcmp(word, "oil") ? RP_WET_WATER : RP_WET_OIL;
-    else if (sscanf(line, "viscosity_ratio: %d", &rp->ratio) == 1) {
-    } else if (sscanf(line, "M: %lf %lf", &rp->liq.M, &rp->liq.M_err) == 2) {
-    } else if (sscanf(line, "mode: %31s", word) == 1)
-      rp->mode = rp_mode_parse(word) < 0 ? MDP_MORPH_DRAINAGE : rp_mode_parse(word);
-    else if (sscanf(line, "trapping: %d", &rp->trapping) == 1) {
-    } else if (sscanf(line, "g: %lf", &rp->g) == 1) {
-    } else if (sscanf(line, "nw_label: %d", &rp->nw_label) == 1) {
-    } else if (sscanf(line, "boundary: %31s", rp->boundary) == 1) {
-    } else if (sscanf(line, "rp: %31s %lf %lf %lf %lf %lf", word, &a, &b, &d, &e, &g) == 6) {
-      if (rp->n_runs >= RP_RUNS) {
-        rc = -1;
-        break;
-      }
-      rp_run *r = &rp->runs[rp->n_runs++];
-      memset(r, 0, sizeof *r);
-      r->role = !strcmp(word, "two")     ? RP_ROLE_TWO
-                : !strcmp(word, "water") ? RP_ROLE_WATER
-                                         : RP_ROLE_OIL;
-      r->sw_target = a;
-      r->snw_image = b;
-      r->snw_connected = d;
-      r->snw_disconnected = e;
-      r->radius = g;
-    } else if (line[0] && line[0] != '#') {
-      fprintf(stderr, "mdpore relperm: %s:%d: unexpected line '%.80s'\n", path, ln, line);
-      rc = -1;
-    }
-  }
-  fclose(f);
-  if (!rc && rp->n_runs != c->n_runs) {
-    fprintf(stderr, "mdpore relperm: %s: %d runs, campaign.txt %d: expected the same runs\n", path,
-            rp->n_runs, c->n_runs);
-    rc = -1;
-  }
-  return rc;
 }

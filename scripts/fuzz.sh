@@ -9,7 +9,7 @@
 # oom-*) and exits non-zero. Extra libFuzzer flags: MDPORE_FUZZ_FLAGS="-jobs=2 -workers=2".
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-targets="scene image_raw image_hdf5 image_tiff flow_table lammps_data darcy_config"
+targets="scene image_raw image_hdf5 image_tiff flow_table lammps_data darcy_config couple_config kr_table pc_curve relperm_manifest"
 target=${1:-}
 seconds=${2:-300}
 if [ -z "$target" ] || ! echo " $targets " | grep -q " $target "; then

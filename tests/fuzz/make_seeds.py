@@ -172,5 +172,76 @@ put("darcy_config", "bad_blocks_count.yaml", dc.replace("{uniform: {law: darcy, 
 put("darcy_config", "bad_viscosity_nan.yaml", dc.replace("viscosity: 1}", "viscosity: .nan}"))
 put("darcy_config", "bad_k_overflow.yaml", dc.replace("k: 0.5}}", "k: 1e400}}"))
 
+# ---- relative-permeability table (mdpore fit relperm): a relperm.csv as mdpore relperm writes it
+kr_head = ("# mdpore relperm: Sw = water particles / all liquid particles; rc = 8.2e-10 m; T = 298.15 K\n"
+           "# M: 1\nSw,Sw_err,krw,krw_err,kro,kro_err,Ca,Snw_connected,Snw_disconnected,pc,pc_err\n")
+kr_rows = ("0.249584,0,0.0443912,0.0443,0.460486,0.0622,0.04817,0.75,0,,\n"
+           "0.748752,0,0.571163,0.129,0.33984,0.0703,0.1062,0.25,0,,\n")
+put("kr_table", "ok_slit_quick.csv", kr_head + kr_rows)
+put("kr_table", "ok_no_errors.csv", "Sw,krw,kro\n0.2,0.01,0.7\n0.5,0.2,0.2\n0.8,0.6,0.01\n")
+put("kr_table", "ok_equal_sw_and_bump.csv",
+    "Sw,krw,krw_err,kro,kro_err\n0.2,0.01,0.01,0.7,0.01\n0.2,0.03,0.01,0.6,0.01\n"
+    "0.4,0.5,0.004,0.3,0.01\n0.6,0.2,0.01,0.1,0.01\n1,0.9,0.01,0,0.01\n")
+put("kr_table", "ok_sw_zero_one.csv", "Sw,krw,krw_err,kro,kro_err\n0,0,0.01,1,0.01\n1,1,0.01,0,0.01\n")
+put("kr_table", "bad_nan.csv", kr_head + kr_rows.replace("0.0443912", "nan"))
+put("kr_table", "bad_unsorted.csv", kr_head + "".join(reversed(kr_rows.splitlines(True))))
+put("kr_table", "bad_no_kro.csv", "Sw,krw\n0.2,0.1\n")
+put("kr_table", "bad_short_row.csv", kr_head + "0.2,0,0.1\n")
+put("kr_table", "bad_sw_above_one.csv", kr_head + kr_rows.replace("0.748752", "1.5"))
+put("kr_table", "bad_negative_kr.csv", kr_head + kr_rows.replace("0.0443912", "-1"))
+put("kr_table", "bad_long_line.csv", kr_head + "0.2," + "0" * 5000 + ",0.1,0.01,0.5,0.01,0,0,0,,\n")
+put("kr_table", "bad_empty.csv", "")
+put("kr_table", "bad_bad_metadata.csv", kr_head.replace("# M: 1", "# rc_m: -5") + kr_rows)
+
+# ---- Pc(Sw) curve (mdpore fit relperm --pc-morph): the pc_morph.csv of mdpore image drainage
+copy("pc_curve", "ok_rock_imbibition.csv", "validation/results/relperm/rock/pc_imbibition/pc_morph.csv")
+pc_head = "# mdpore image drainage\nstep,radius_vox,radius_rc,Sw,Snw,trapped,nw_spans,pc,pc_depleted,pc_Pa,pc_depleted_Pa,J\n"
+put("pc_curve", "ok_reduced.csv", pc_head + "0,4,4,1,0,0,0,4.3,,,,\n1,2,2,0.5,0.5,0,1,8.7,,,,\n"
+    "2,1,1,0.1,0.9,0,1,17.3,,,,\n")
+put("pc_curve", "bad_no_pc.csv", "Sw,Snw\n0.5,0.5\n0.2,0.8\n")
+put("pc_curve", "bad_one_row.csv", pc_head + "0,4,4,1,0,0,0,4.3,,,,\n")
+put("pc_curve", "bad_nan.csv", pc_head + "0,4,4,nan,0,0,0,4.3,,,,\n1,2,2,0.5,0.5,0,1,8.7,,,,\n")
+put("pc_curve", "bad_sw_above_one.csv", pc_head + "0,4,4,1.5,0,0,0,4.3,,,,\n1,2,2,0.5,0.5,0,1,8.7,,,,\n")
+put("pc_curve", "bad_long_line.csv", pc_head + "0,4,4,1," + "0" * 5000 + ",0,0,4.3,,,,\n1,2,2,0.5,0.5,0,1,8.7,,,,\n")
+
+# ---- relperm campaign manifests (mdpore relperm --collect): campaign.txt, a line %%, relperm_runs.txt
+rp_camp = ("# mdpore permeability campaign v1\nsample: slit\ninput: slit.raw\nimage: slit.raw\n"
+           "porosity: 0.66666666666666663\nrc_per_voxel: 1\nh_hydraulic: 8\npercolates: 1 0 1\n"
+           "fluid_density: 6.2000000000000002\nviscosity: 5.4100000000000001\nviscosity_source: mDPD\n"
+           "wall_density: 4\nfill_density: 6.2650000000000006\nwall_adsorption: 0.26000000000000001\n"
+           "pair_rng: philox\nlength_unit_m: 8.1999999999999996e-10\nlength_source: mDPD water\n"
+           "temperature_K: 298.14999999999998\ntarget_error: 0.02\nnp: 1\nkT: 1\ndrive: body\n"
+           "reservoir: 0\nboundary: periodic auto auto\nsides: periodic\nseam_continuity: 1 1.22222 1\n"
+           "throat_voxels: 8 0 8\nmin_throat: 4\nrc_per_voxel_source: --rc-per-voxel\n"
+           "particles_estimate: 691.2\nregime: nanopore\n"
+           "run: x 0.02 work/runs/x-7a6f923c7e8b4cd1\nrun: x 0.02 work/runs/x-7f204d247d677fd6\n"
+           "run: x 0.02 work/runs/x-1c2633ef17ee1706\nrun: x 0.02 work/runs/x-d92853d8c5ca4816\n")
+rp_runs = ("# mdpore relperm campaign v1\naxis: x\nwetting: water\nviscosity_ratio: 1\nM: 1 0\n"
+           "mode: given\ntrapping: 1\ng: 0.02\nnw_label: 3\nboundary: periodic\n"
+           "rp: two nan 0.75 0.75 0 nan\nrp: two nan 0.25 0.25 0 nan\nrp: water 1 nan nan nan nan\n"
+           "rp: oil 0 nan nan nan nan\n")
+put("relperm_manifest", "ok_slit_quick", rp_camp + "%%\n" + rp_runs)
+put("relperm_manifest", "ok_drainage_m2", rp_camp + "%%\n" + rp_runs.replace("mode: given", "mode: drainage")
+    .replace("viscosity_ratio: 1\nM: 1 0", "viscosity_ratio: 2\nM: 2.2309999999999999 0.023")
+    .replace("two nan 0.75 0.75 0 nan", "two 0.25 0.75 0.7 0.05 3.5"))
+for name, old, new in (("axis_q", "axis: x", "axis: q"), ("axis_twice", "axis: x", "axis: x\naxis: y"),
+                       ("no_axis", "axis: x\n", ""), ("g_nan", "g: 0.02", "g: nan"),
+                       ("g_inf", "g: 0.02", "g: 1e400"), ("m_negative", "M: 1 0", "M: -1 0"),
+                       ("ratio_3", "viscosity_ratio: 1", "viscosity_ratio: 3"),
+                       ("wetting_gas", "wetting: water", "wetting: gas"),
+                       ("mode_unknown", "mode: given", "mode: flooding"),
+                       ("label_0", "nw_label: 3", "nw_label: 0"),
+                       ("boundary_auto", "boundary: periodic", "boundary: auto"),
+                       ("role_gas", "rp: oil 0", "rp: gas 0"),
+                       ("run_short", "rp: oil 0 nan nan nan nan", "rp: oil 0 nan"),
+                       ("run_sw_2", "rp: water 1 nan", "rp: water 2 nan"),
+                       ("run_missing", "rp: oil 0 nan nan nan nan\n", ""),
+                       ("unknown_key", "trapping: 1", "trapping: 1\ncolour: red"),
+                       ("head", "# mdpore relperm campaign v1", "# mdpore relperm campaign v0")):
+    put("relperm_manifest", "bad_" + name, rp_camp + "%%\n" + rp_runs.replace(old, new, 1))
+put("relperm_manifest", "bad_too_many_runs", rp_camp + "%%\n" + rp_runs + "rp: two nan 0.5 0.5 0 nan\n" * 200)
+put("relperm_manifest", "bad_long_line", rp_camp + "%%\n" + rp_runs.replace("g: 0.02", "g: 0.0" + "0" * 3000 + "2"))
+put("relperm_manifest", "bad_no_campaign", rp_runs)
+
 total = sum(os.path.getsize(os.path.join(dp, f)) for dp, _, fs in os.walk(CORPUS) for f in fs)
 print("corpus: %d bytes" % total)

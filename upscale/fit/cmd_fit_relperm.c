@@ -9,13 +9,14 @@
 #include <string.h>
 
 #include "common/same_file.h"
+#include "kr_outcome.h"
 #include "kr_report.h"
 #include "kr_select.h"
 #include "kr_swof.h"
 #include "pc_curve.h"
 
 const char *const fit_relperm_usage =
-    "usage: mdpore fit relperm TABLE [--law auto|corey|let] [--swc V] [--sor V]\n"
+    "usage: mdpore fit relperm TABLE [--law auto|corey|let [--force]] [--swc V] [--sor V]\n"
     "                                [--swof FILE] [--swof-rows N] [--swof-points law|measured]\n"
     "                                [--pc-morph pc_morph.csv] [--json FILE] [--png FILE] "
     "[--quiet]\n"
@@ -24,9 +25,16 @@ const char *const fit_relperm_usage =
     "when\n"
     "it is significantly better (chi2-drop test at 0.27 %% and a lower BIC), writes JSON (default\n"
     "TABLE.fit.json) and optionally an Eclipse/OPM SWOF table (Sw krw krow Pcow, METRIC).\n"
-    "  --law L           auto (default: the test decides), corey (Corey only), let (LET, forced)\n"
+    "A law is a result only when each phase follows it within its errors: chi2/dof <= 1 + 3\n"
+    "sqrt(2/dof) for krw and for kro. When no law passes (or the kr have no errors, so chi2\n"
+    "cannot be judged), the report says why with the numbers, prints no law parameters, and the\n"
+    "SWOF table is the measured points (monotone), said so in its header; exit 0.\n"
+    "  --law L           auto (default: the test decides), corey (Corey only), let (LET, forced);\n"
+    "                    L refused by the check (or not fitted): no SWOF, exit 3\n"
+    "  --force           with --law: take L even when the check refuses it (flagged)\n"
     "  --swc V, --sor V  fix the end-point saturations (default: fitted within the data's bounds)\n"
-    "  --swof FILE       write the SWOF table of the chosen law (kr > 1 clipped to 1, listed)\n"
+    "  --swof FILE       write the SWOF table of the accepted law, else of the measured points\n"
+    "                    (kr > 1 clipped to 1, listed)\n"
     "  --swof-rows N     law grid points from swc to 1 - sor (default %d)\n"
     "  --swof-points P   law (default) or measured (the points, made monotone)\n"
     "  --pc-morph FILE   Pcow from the morphological Pc(Sw) curve (else Pcow = 0)\n"
@@ -43,7 +51,7 @@ const char *const fit_relperm_usage =
 typedef struct {
   const char *table, *json, *png, *swof, *pc;
   int law; /* -1: auto */
-  int swof_rows, measured, quiet;
+  int swof_rows, measured, quiet, force;
   kr_fit_opts fit;
   int petsc_argc;
   char **petsc_argv;
@@ -113,6 +121,8 @@ static int parse_args(int argc, char **argv, relperm_args *a) {
       a->measured = !strcmp(v, "measured");
     } else if (!strcmp(s, "--quiet"))
       a->quiet = 1;
+    else if (!strcmp(s, "--force"))
+      a->force = 1;
     else if (s[0] == '-' && s[1] == '-') {
       fprintf(stderr, "mdpore fit relperm: unknown or incomplete option '%s'\n", s);
       return -1;
@@ -130,6 +140,12 @@ static int parse_args(int argc, char **argv, relperm_args *a) {
     fprintf(stderr, "mdpore fit relperm: no TABLE given\n");
     return -1;
   }
+  if (a->force && a->law < 0) {
+    fprintf(stderr,
+            "mdpore fit relperm: --force: expected with --law corey or --law let (it takes the "
+            "law asked for even when the data refuse it)\n");
+    return -1;
+  }
   if (isfinite(a->fit.swc) && isfinite(a->fit.sor) && !(a->fit.swc + a->fit.sor < 1.0)) {
     fprintf(stderr, "mdpore fit relperm: --swc + --sor: expected a sum below 1 (got %g)\n",
             a->fit.swc + a->fit.sor);
@@ -138,26 +154,37 @@ static int parse_args(int argc, char **argv, relperm_args *a) {
   return 0;
 }
 
-static int export_swof(const relperm_args *a, const kr_table *t, const kr_fit_result *r,
-                       const kr_choice *c, kr_swof *s) {
-  char err[1024], law_text[1024];
+static int export_swof(const relperm_args *a, const kr_table *t, const kr_fit_result fits[],
+                       const kr_choice *c, const kr_outcome *out, kr_swof *s) {
+  char err[1024], law_text[3000];
   pc_curve pc;
   if (a->pc && pc_curve_read(a->pc, &pc, err, sizeof err)) {
     fprintf(stderr, "mdpore fit relperm: --pc-morph: %s\n", err);
     return 1;
   }
+  const kr_fit_result *r = out->law >= 0 ? &fits[out->law] : NULL;
   int rc = 0;
-  if (kr_swof_build(t, &r->law, a->swof_rows, a->measured, a->pc ? &pc : NULL, s, err,
+  if (kr_swof_build(t, r ? &r->law : NULL, a->swof_rows, a->measured, a->pc ? &pc : NULL, s, err,
                     sizeof err)) {
     fprintf(stderr, "mdpore fit relperm: %s\n", err);
     rc = 1;
   } else {
-    kr_law_text(r, law_text, sizeof law_text);
+    if (r) {
+      kr_law_text(r, law_text, sizeof law_text);
+      if (out->text[0]) {
+        const size_t n = strlen(law_text);
+        snprintf(law_text + n, sizeof law_text - n, " [%s]", out->text);
+      }
+    } else
+      snprintf(law_text, sizeof law_text, "none accepted: %s", out->text);
     if (kr_swof_write(a->swof, s, t, a->pc ? &pc : NULL, law_text, c->text, err, sizeof err)) {
       fprintf(stderr, "mdpore fit relperm: %s\n", err);
       rc = 1;
     } else if (!a->quiet) {
-      printf("wrote %s (%d rows, %s", a->swof, s->n, s->measured ? "measured points" : "law grid");
+      printf("wrote %s (%d rows, %s", a->swof, s->n,
+             s->no_law     ? "the MEASURED POINTS, not a law"
+             : s->measured ? "measured points"
+                           : "law grid");
       if (s->n_clipped)
         printf("; %d row(s) with kr > 1 clipped to 1, peak %.4g", s->n_clipped, s->kr_peak);
       if (a->pc && !isfinite(s->pc_bar_factor)) printf("; Pcow in reduced units");
@@ -187,32 +214,36 @@ static int run(const relperm_args *a) {
   }
   kr_fit_result fits[KR_LAW_COUNT];
   memset(fits, 0, sizeof fits);
+  /* points without errors cannot weight a fit nor judge it: no law is fitted when a phase has
+   * none (kr_outcome.h) */
+  const int weighted =
+      kr_phase_points_with_error(&t, 0) > 0 && kr_phase_points_with_error(&t, 1) > 0;
   for (int k = 0; k < KR_LAW_COUNT; k++) {
     fits[k].kind = k;
-    if (k == KR_LET && a->law == KR_COREY) continue;
+    if (!weighted || (k == KR_LET && a->law == KR_COREY)) continue;
     kr_fit_opts o = a->fit; /* LET starts from the Corey fit */
     if (k == KR_LET && fits[KR_COREY].ok) o.corey_start = &fits[KR_COREY].law;
     kr_fit_law(&t, k, &o, &fits[k]);
   }
   kr_choice c;
   kr_choose(fits, a->law, &c);
-  int rc = 0;
-  if (c.chosen < 0) {
-    const kr_fit_result *r = &fits[a->law >= 0 ? a->law : KR_COREY];
-    fprintf(stderr, "mdpore fit relperm: %s: no law could be fitted: %s\n", t.path,
-            r->why[0] ? r->why : "no converged fit");
-    rc = 1;
-  }
+  kr_outcome out;
+  kr_decide(&t, fits, &c, a->law, a->force, &out);
+  int rc = out.refused ? KR_EXIT_LAW_REFUSED : 0;
+  if (out.refused)
+    fprintf(stderr, "mdpore fit relperm: %s: %s%s\n", t.path, out.text,
+            a->swof ? "; no SWOF table written" : "");
   kr_swof s = {0};
   const int have_swof = !rc && a->swof;
-  if (have_swof) rc = export_swof(a, &t, &fits[c.chosen], &c, &s);
-  if (!rc && kr_write_json(json_path, &t, &a->fit, fits, &c, have_swof ? &s : NULL, a->swof)) {
+  if (have_swof) rc = export_swof(a, &t, fits, &c, &out, &s);
+  if ((!rc || rc == KR_EXIT_LAW_REFUSED) &&
+      kr_write_json(json_path, &t, &a->fit, fits, &c, &out, have_swof ? &s : NULL, a->swof)) {
     fprintf(stderr, "mdpore fit relperm: %s: cannot write the report\n", json_path);
     rc = 1;
   }
   if (!a->quiet) {
-    kr_print(stdout, &t, &a->fit, fits, &c);
-    if (!rc) printf("wrote %s\n", json_path);
+    kr_print(stdout, &t, &a->fit, fits, &c, &out);
+    if (!rc || rc == KR_EXIT_LAW_REFUSED) printf("wrote %s\n", json_path);
   }
   if (!rc && a->png) {
     char cmd[9000];

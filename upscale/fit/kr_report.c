@@ -35,12 +35,36 @@ static const char *endpoint_rule(const kr_fit_opts *o) {
          "the campaign stopped, not residual saturations";
 }
 
-static void json_fit(json_out *j, const kr_fit_result *r) {
+static void json_check(json_out *j, const kr_judgement *g) {
+  json_object(j, "check");
+  json_bool(j, "judged", g->judged);
+  json_bool(j, "accepted", g->accepted);
+  for (int ph = 0; ph < 2; ph++) {
+    const kr_phase_check *p = &g->phase[ph];
+    char text[400];
+    kr_phase_text(p, ph, text, sizeof text);
+    json_object(j, ph ? "kro" : "krw");
+    json_int(j, "points", p->n);
+    json_number(j, "chi2", p->chi2);
+    json_number(j, "dof", p->dof);
+    json_number(j, "chi2_dof", p->chi2_dof);
+    json_number(j, "chi2_dof_max", p->limit);
+    json_number(j, "chi2_dof_monotone", p->chi2_dof_monotone);
+    json_string(j, "verdict", kr_verdict_name(p->verdict));
+    json_string(j, "text", text);
+    json_object_end(j);
+  }
+  json_object_end(j);
+}
+
+static void json_fit(json_out *j, const kr_fit_result *r, const kr_judgement *g) {
   json_object(j, NULL);
   json_string(j, "law", kr_law_name(r->kind));
   json_bool(j, "ok", r->ok);
   json_bool(j, "converged", r->converged);
+  json_bool(j, "accepted", g->accepted);
   if (r->why[0]) json_string(j, "why", r->why);
+  json_check(j, g);
   if (r->ok) {
     json_int(j, "iterations", r->iterations);
     json_int(j, "starts", r->starts);
@@ -88,8 +112,8 @@ static void json_curves(json_out *j, const kr_fit_result fits[KR_LAW_COUNT]) {
 }
 
 int kr_write_json(const char *path, const kr_table *t, const kr_fit_opts *o,
-                  const kr_fit_result fits[KR_LAW_COUNT], const kr_choice *c, const kr_swof *swof,
-                  const char *swof_path) {
+                  const kr_fit_result fits[KR_LAW_COUNT], const kr_choice *c,
+                  const kr_outcome *outcome, const kr_swof *swof, const char *swof_path) {
   char tmp[4200];
   FILE *f = atomic_open(path, tmp, sizeof tmp);
   if (!f) return -1;
@@ -103,13 +127,20 @@ int kr_write_json(const char *path, const kr_table *t, const kr_fit_opts *o,
   json_string(&j, "endpoints", endpoint_rule(o));
   json_array(&j, "fits");
   for (int k = 0; k < KR_LAW_COUNT; k++)
-    if (fits[k].ok || fits[k].why[0]) json_fit(&j, &fits[k]);
+    if (fits[k].ok || fits[k].why[0]) json_fit(&j, &fits[k], &outcome->judge[k]);
   json_array_end(&j);
   json_object(&j, "choice");
-  if (c->chosen >= 0)
-    json_string(&j, "law", kr_law_name(c->chosen));
+  if (outcome->law >= 0)
+    json_string(&j, "law", kr_law_name(outcome->law));
   else
     json_null(&j, "law");
+  json_bool(&j, "forced", outcome->forced);
+  json_bool(&j, "refused", outcome->refused);
+  json_string(&j, "outcome", outcome->text);
+  if (c->chosen >= 0)
+    json_string(&j, "test_law", kr_law_name(c->chosen));
+  else
+    json_null(&j, "test_law");
   json_bool(&j, "tested", c->tested);
   json_number(&j, "D", c->D);
   json_number(&j, "D_crit", c->D_crit);
@@ -129,7 +160,10 @@ int kr_write_json(const char *path, const kr_table *t, const kr_fit_opts *o,
     json_object(&j, "swof");
     json_string(&j, "path", swof_path);
     json_int(&j, "rows", swof->n);
-    json_string(&j, "points", swof->measured ? "measured" : "law");
+    json_string(&j, "points",
+                swof->no_law     ? "measured_no_law"
+                : swof->measured ? "measured"
+                                 : "law");
     json_int(&j, "clipped_rows", swof->n_clipped);
     json_number(&j, "kr_peak_unclipped", swof->kr_peak);
     json_numbers(&j, "sw", swof->sw, swof->n);
@@ -142,8 +176,12 @@ int kr_write_json(const char *path, const kr_table *t, const kr_fit_opts *o,
   return atomic_commit(f, tmp, path);
 }
 
-static void print_fit(FILE *out, const kr_fit_result *r, int chosen) {
-  fprintf(out, "%s%s", kr_law_name(r->kind), chosen ? " (chosen)" : "");
+static void print_fit(FILE *out, const kr_fit_result *r, int chosen, int forced,
+                      const kr_judgement *g) {
+  fprintf(out, "%s%s", kr_law_name(r->kind),
+          chosen ? (forced ? " (taken with --force: REFUSED by the check)" : " (chosen)")
+          : g->judged && !g->accepted ? " (REFUSED)"
+                                      : "");
   if (!r->ok) {
     fprintf(out, ": not fitted: %s\n", r->why);
     return;
@@ -152,6 +190,18 @@ static void print_fit(FILE *out, const kr_fit_result *r, int chosen) {
           ": chi2 = %.4g, dof = %d, chi2/dof = %.3g, BIC = %.4g, %d points (%d krw, %d kro)%s%s\n",
           r->chi2, r->dof, r->chi2_dof, r->bic, r->n_points, r->n_krw, r->n_kro,
           r->converged ? "" : ", ", r->converged ? "" : r->why);
+  for (int ph = 0; ph < 2 && g->judged; ph++) {
+    char text[400];
+    kr_phase_text(&g->phase[ph], ph, text, sizeof text);
+    fprintf(out, "  check %s\n", text);
+  }
+  if (!g->accepted && !forced) {
+    fprintf(out,
+            "  (parameters not printed: the law is %s, so they are not a result; the JSON "
+            "keeps them, flagged)\n",
+            g->judged ? "refused by the check" : "not judged");
+    return;
+  }
   for (int p = 0; p < kr_law_nparams(r->kind); p++) {
     fprintf(out, "  %-8s %10.5g", kr_law_param_name(r->kind, p), r->law.p[p]);
     if (r->fixed[p])
@@ -168,7 +218,8 @@ static void print_fit(FILE *out, const kr_fit_result *r, int chosen) {
 }
 
 void kr_print(FILE *out, const kr_table *t, const kr_fit_opts *o,
-              const kr_fit_result fits[KR_LAW_COUNT], const kr_choice *c) {
+              const kr_fit_result fits[KR_LAW_COUNT], const kr_choice *c,
+              const kr_outcome *outcome) {
   fprintf(out, "%s: %d rows\n", t->path, t->n);
   const int lw = fits[KR_COREY].ok ? fits[KR_COREY].left_out_krw : fits[KR_LET].left_out_krw;
   const int lo = fits[KR_COREY].ok ? fits[KR_COREY].left_out_kro : fits[KR_LET].left_out_kro;
@@ -176,6 +227,11 @@ void kr_print(FILE *out, const kr_table *t, const kr_fit_opts *o,
     fprintf(out, "left out (no error to weight them): %d krw and %d kro point(s)\n", lw, lo);
   fprintf(out, "end points: %s\n", endpoint_rule(o));
   for (int k = 0; k < KR_LAW_COUNT; k++)
-    if (fits[k].ok || fits[k].why[0]) print_fit(out, &fits[k], c->chosen == k);
-  fprintf(out, "choice: %s\n", c->text);
+    if (fits[k].ok || fits[k].why[0])
+      print_fit(out, &fits[k], outcome->law == k, outcome->forced, &outcome->judge[k]);
+  if (c->text[0]) fprintf(out, "choice: %s\n", c->text);
+  if (outcome->text[0]) fprintf(out, "result: %s\n", outcome->text);
+  if (outcome->law < 0 && !outcome->refused)
+    fprintf(out, "result: NO LAW is a result of these data; a SWOF export (--swof) is the measured "
+                 "points themselves\n");
 }

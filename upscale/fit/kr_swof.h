@@ -25,13 +25,19 @@
 
 #define KR_SWOF_DEFAULT_ROWS 41
 #define KR_SWOF_MAX_CLIPPED 64
+/* Sw is written with 6 decimals: end rows closer than this to a measured row are not added. */
+#define KR_SWOF_SW_RESOLUTION 1e-6
 
 typedef struct {
   int n;
   double *sw, *krw, *krow, *pcow; /* pcow in bar, or reduced units when pc_bar_factor is NAN */
   int measured;                   /* 1: rows from the measured points */
+  int no_law;                     /* 1: measured points without a law (none accepted) */
+  int head_row;                   /* no law: a row at Sw = 0 added */
+  double first_krw_measured;      /* no law, no head row: the first row's krw before set to 0 */
+  double last_krow_measured;      /* no law, no tail row: the last row's krow before set to 0 */
   int grid_rows;                  /* law: grid points from swc to 1 - sor */
-  int tail_row;                   /* law: a last row at Sw = 1 added (sor > 0) */
+  int tail_row;                   /* a last row at Sw = 1 added (law: sor > 0) */
   int n_clipped;                  /* rows with a kr above 1 clipped to it */
   int clipped_row[KR_SWOF_MAX_CLIPPED];
   double clipped_krw[KR_SWOF_MAX_CLIPPED], clipped_krow[KR_SWOF_MAX_CLIPPED]; /* unclipped */
@@ -42,8 +48,11 @@ typedef struct {
   double pc_pa_per_reduced; /* Pa per reduced pressure unit (kT/rc^3), NAN if unknown */
 } kr_swof;
 
-/* Builds the rows: the law on `rows` grid points (measured = 0) or the measured points. pc may be
- * NULL (Pcow = 0). Returns 0 or -1 with err. */
+/* Builds the rows: the law on `rows` grid points (measured = 0) or the measured points with end
+ * rows from the law (measured = 1); law NULL (no law accepted, docs/relperm.md section 5): the
+ * measured points, made monotone, with end rows at Sw = 0 (krw = 0, krow held from the first row)
+ * and Sw = 1 (krow = 0, krw held from the last row). pc may be NULL (Pcow = 0). Returns 0 or -1
+ * with err. */
 int kr_swof_build(const kr_table *t, const kr_law *law, int rows, int measured, const pc_curve *pc,
                   kr_swof *s, char *err, int errlen);
 /* Writes the SWOF file (atomically). law_text: the law and its parameters in words; choice: the

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kr_isotonic.h"
 #include "kr_swof.h"
 
 #define BOLTZMANN_J_PER_K 1.380649e-23
@@ -17,28 +18,6 @@ static int alloc_rows(kr_swof *s, int n) {
   s->krow = calloc((size_t)n, sizeof(double));
   s->pcow = calloc((size_t)n, sizeof(double));
   return s->sw && s->krw && s->krow && s->pcow ? 0 : -1;
-}
-
-/* Weighted isotonic (non-decreasing) regression by pool adjacent violators, in place; returns the
- * number of values it moved. */
-static int isotonic_increasing(double *y, const double *w, int n) {
-  double *val = malloc((size_t)n * sizeof(double)), *wt = malloc((size_t)n * sizeof(double));
-  int *len = malloc((size_t)n * sizeof(int)), nb = 0, moved = 0;
-  for (int i = 0; i < n; i++) {
-    val[nb] = y[i], wt[nb] = w[i], len[nb] = 1, nb++;
-    while (nb > 1 && val[nb - 2] > val[nb - 1]) {
-      const double ww = wt[nb - 2] + wt[nb - 1];
-      val[nb - 2] = (wt[nb - 2] * val[nb - 2] + wt[nb - 1] * val[nb - 1]) / ww;
-      wt[nb - 2] = ww, len[nb - 2] += len[nb - 1], nb--;
-    }
-  }
-  for (int b = 0, i = 0; b < nb; b++)
-    for (int k = 0; k < len[b]; k++, i++) {
-      if (y[i] != val[b]) moved++;
-      y[i] = val[b];
-    }
-  free(val), free(wt), free(len);
-  return moved;
 }
 
 /* The measured rows: end rows from the law at swc (if below the first point) and at Sw = 1 (if
@@ -84,7 +63,12 @@ static int measured_rows(const kr_table *t, const kr_law *law, kr_swof *s) {
   s->n = n;
   /* krow non-increasing = -krow non-decreasing */
   for (int i = 0; i < n; i++) s->krow[i] = -s->krow[i];
-  s->n_isotonic = isotonic_increasing(s->krw, ww, n) + isotonic_increasing(s->krow, wo, n);
+  const int mw = kr_isotonic_increasing(s->krw, ww, n), mo = kr_isotonic_increasing(s->krow, wo, n);
+  if (mw < 0 || mo < 0) {
+    free(ww), free(wo);
+    return -1;
+  }
+  s->n_isotonic = mw + mo;
   for (int i = 0; i < n; i++) {
     s->krow[i] = -s->krow[i];
     s->krw[i] = fmax(s->krw[i], 0.0); /* noise below 0 (kr_table.h keeps it within 3 errors) */
@@ -93,6 +77,62 @@ static int measured_rows(const kr_table *t, const kr_law *law, kr_swof *s) {
   s->krw[0] = 0.0; /* krw = 0 at the first row and krow = 0 at the last, as simulators expect */
   s->krow[n - 1] = 0.0; /* (already so at the law's end rows; kept monotone by construction) */
   free(ww), free(wo);
+  return 0;
+}
+
+/* The measured rows without a law (no law accepted): rows of equal Sw merged, krw made
+ * non-decreasing and krow non-increasing by weighted isotonic regression, then an end row at Sw = 0
+ * (krw = 0: no water, no water flow; krow the first row's, held) and one at Sw = 1 (krow = 0; krw
+ * the last row's, held) where the table does not reach them. A table that starts at Sw = 0 has
+ * krw = 0 set there, the measured value kept for the header. */
+static int measured_rows_no_law(const kr_table *t, kr_swof *s) {
+  const int head = t->sw[0] >= KR_SWOF_SW_RESOLUTION,
+            tail = t->sw[t->n - 1] <= 1.0 - KR_SWOF_SW_RESOLUTION;
+  const int cap = t->n + head + tail;
+  if (alloc_rows(s, cap)) return -1;
+  double *ww = calloc((size_t)cap, sizeof(double)), *wo = calloc((size_t)cap, sizeof(double));
+  if (!ww || !wo) {
+    free(ww), free(wo);
+    return -1;
+  }
+  int n = head; /* the measured rows from index `head` on */
+  for (int i = 0; i < t->n; i++) {
+    const double w1 = t->krw_err[i] > 0 ? 1.0 / (t->krw_err[i] * t->krw_err[i]) : 1.0;
+    const double w2 = t->kro_err[i] > 0 ? 1.0 / (t->kro_err[i] * t->kro_err[i]) : 1.0;
+    if (n > head && t->sw[i] == s->sw[n - 1]) { /* same Sw: weighted mean */
+      s->krw[n - 1] = (ww[n - 1] * s->krw[n - 1] + w1 * t->krw[i]) / (ww[n - 1] + w1);
+      s->krow[n - 1] = (wo[n - 1] * s->krow[n - 1] - w2 * t->kro[i]) / (wo[n - 1] + w2);
+      ww[n - 1] += w1, wo[n - 1] += w2;
+      continue;
+    }
+    s->sw[n] = t->sw[i], s->krw[n] = t->krw[i], s->krow[n] = -t->kro[i]; /* -kro: see below */
+    ww[n] = w1, wo[n] = w2, n++;
+  }
+  const int m = n - head; /* measured rows after merging */
+  const int mw = kr_isotonic_increasing(s->krw + head, ww + head, m);
+  const int mo = kr_isotonic_increasing(s->krow + head, wo + head, m);
+  free(ww), free(wo);
+  if (mw < 0 || mo < 0) return -1;
+  s->n_isotonic = mw + mo;
+  for (int i = head; i < n; i++) {
+    s->krow[i] = fmax(-s->krow[i], 0.0); /* noise below 0 (kr_table.h keeps it within 3 errors) */
+    s->krw[i] = fmax(s->krw[i], 0.0);
+  }
+  if (head) {
+    s->sw[0] = 0.0, s->krw[0] = 0.0, s->krow[0] = s->krow[1];
+  } else {
+    s->first_krw_measured = s->krw[0]; /* the table starts at Sw = 0 */
+    s->krw[0] = 0.0;
+  }
+  if (tail) {
+    s->sw[n] = 1.0, s->krw[n] = s->krw[n - 1], s->krow[n] = 0.0;
+    n++;
+  } else {
+    s->last_krow_measured = s->krow[n - 1];
+    s->krow[n - 1] = 0.0;
+  }
+  s->n = n;
+  s->head_row = head, s->tail_row = tail;
   return 0;
 }
 
@@ -148,12 +188,16 @@ static void pc_scale(const kr_table *t, const pc_curve *pc, kr_swof *s) {
 int kr_swof_build(const kr_table *t, const kr_law *law, int rows, int measured, const pc_curve *pc,
                   kr_swof *s, char *err, int errlen) {
   memset(s, 0, sizeof *s);
-  s->measured = measured;
+  s->no_law = !law;
+  s->measured = measured || !law;
+  s->first_krw_measured = s->last_krow_measured = NAN;
   if (!measured && rows < 2) {
     snprintf(err, errlen, "--swof-rows: expected at least 2 rows (got %d)", rows);
     return -1;
   }
-  if (measured ? measured_rows(t, law, s) : law_rows(law, rows, s)) {
+  if (!law       ? measured_rows_no_law(t, s)
+      : measured ? measured_rows(t, law, s)
+                 : law_rows(law, rows, s)) {
     snprintf(err, errlen, "out of memory building the SWOF rows");
     kr_swof_free(s);
     return -1;

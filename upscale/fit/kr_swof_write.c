@@ -79,7 +79,7 @@ static void clip_header(FILE *f, const kr_swof *s) {
 
 int kr_swof_write(const char *path, const kr_swof *s, const kr_table *t, const pc_curve *pc,
                   const char *law_text, const char *choice, char *err, int errlen) {
-  char tmp[4200], buf[1200];
+  char tmp[4200], buf[3200];
   FILE *f = atomic_open(path, tmp, sizeof tmp);
   if (!f) {
     snprintf(err, errlen, "%s: cannot write the SWOF table", path);
@@ -98,7 +98,26 @@ int kr_swof_write(const char *path, const kr_swof *s, const kr_table *t, const p
     snprintf(buf, sizeof buf, "law choice: %.1000s", choice);
     comment(f, buf);
   }
-  if (s->measured)
+  if (s->no_law) {
+    int k = snprintf(
+        buf, sizeof buf,
+        "rows: THE MEASURED POINTS, NOT A LAW (no law is accepted: the reason above): "
+        "the %d rows of the table, krw made non-decreasing and krow non-increasing by weighted "
+        "isotonic regression (%d value(s) moved)",
+        t->n, s->n_isotonic);
+    if (s->head_row)
+      k += snprintf(buf + k, sizeof buf - k,
+                    "; first row Sw = 0 added (krw = 0; krow held from the first measured row)");
+    else
+      k += snprintf(buf + k, sizeof buf - k, "; the first row's krw %.6g set to 0",
+                    s->first_krw_measured);
+    if (s->tail_row)
+      snprintf(buf + k, sizeof buf - k,
+               "; last row Sw = 1 added (krow = 0; krw held from the last measured row)");
+    else
+      snprintf(buf + k, sizeof buf - k, "; the last row's krow %.6g set to 0",
+               s->last_krow_measured);
+  } else if (s->measured)
     snprintf(
         buf, sizeof buf,
         "rows: the %d measured points (Sw from particle counts), krw and krow made monotone by "

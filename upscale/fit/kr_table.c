@@ -42,7 +42,7 @@ static int split_fields(char *s, char **f) {
 
 /* "# key: value" metadata, and rc written in words ("... rc = 8.2e-10 m; ...", as `mdpore relperm`
  * states it) when no rc_m line gave it. */
-static void read_metadata(kr_table *t, const char *text) {
+static int read_metadata(kr_table *t, const char *text, int lineno, char *err, int errlen) {
   const char *w = strstr(text, "rc = ");
   if (w && !isfinite(t->rc_m)) {
     char *end;
@@ -57,7 +57,10 @@ static void read_metadata(kr_table *t, const char *text) {
     if (strncmp(text, keys[k], len) || text[len] != ':') continue;
     char *end;
     double v = strtod(text + len + 1, &end);
-    if (end == text + len + 1 || !isfinite(v)) continue;
+    if (end == text + len + 1) continue; /* words, not a value: a comment */
+    if (!isfinite(v) || !(v > 0))
+      return fail(err, errlen, "%s:%d: metadata '%s': expected a finite number > 0 (got '%.40s')",
+                  t->path, lineno, keys[k], text + len + 1 + strspn(text + len + 1, " \t"));
     if (k <= 1)
       t->rc_m = v;
     else if (k == 2)
@@ -65,6 +68,7 @@ static void read_metadata(kr_table *t, const char *text) {
     else
       t->M = v;
   }
+  return 0;
 }
 
 static int grow(kr_table *t, int *cap) {
@@ -144,10 +148,15 @@ int kr_table_read(const char *path, kr_table *t, char *err, int errlen) {
   for (int c = 0; c < N_COLS; c++) col_of[c] = -1;
   while (!rc && fgets(line, sizeof line, f)) {
     lineno++;
+    if (strlen(line) == sizeof line - 1 && line[sizeof line - 2] != '\n') {
+      rc = fail(err, errlen, "%s:%d: expected lines of at most %d characters", path, lineno,
+                (int)sizeof line - 2);
+      break;
+    }
     char *s = trim(line);
     if (*s == '#') {
       char *text = trim(s + 1);
-      read_metadata(t, text);
+      if ((rc = read_metadata(t, text, lineno, err, errlen))) break;
       if (t->n_comments < KR_TABLE_MAX_COMMENTS) t->comments[t->n_comments++] = strdup(text);
       continue;
     }

@@ -54,14 +54,22 @@ static int parse(const char *path, int lineno, const char *name, const char *s, 
 /* Sorts the rows by Sw (drainage curves are written by decreasing Sw) and merges rows of equal Sw
  * into one with the largest Pc: a drainage curve holds Sw = 1 over every Pc below the entry
  * pressure, and the entry pressure is the Pc at which that saturation is left. */
-static void sort_rows(pc_curve *c) {
-  for (int i = 1; i < c->n; i++)
-    for (int j = i; j > 0 && c->sw[j] < c->sw[j - 1]; j--) {
-      double t = c->sw[j];
-      c->sw[j] = c->sw[j - 1], c->sw[j - 1] = t;
-      t = c->pc[j];
-      c->pc[j] = c->pc[j - 1], c->pc[j - 1] = t;
-    }
+typedef struct {
+  double sw, pc;
+} pc_row;
+
+static int by_sw(const void *a, const void *b) {
+  const double x = ((const pc_row *)a)->sw, y = ((const pc_row *)b)->sw;
+  return (x > y) - (x < y);
+}
+
+static int sort_rows(pc_curve *c) {
+  pc_row *rows = malloc((size_t)(c->n > 0 ? c->n : 1) * sizeof *rows);
+  if (!rows) return -1;
+  for (int i = 0; i < c->n; i++) rows[i].sw = c->sw[i], rows[i].pc = c->pc[i];
+  qsort(rows, (size_t)c->n, sizeof *rows, by_sw); /* O(n log n): any length of file */
+  for (int i = 0; i < c->n; i++) c->sw[i] = rows[i].sw, c->pc[i] = rows[i].pc;
+  free(rows);
   int m = 0;
   for (int i = 0; i < c->n; i++) {
     if (m > 0 && c->sw[i] == c->sw[m - 1]) {
@@ -72,6 +80,7 @@ static void sort_rows(pc_curve *c) {
     c->sw[m] = c->sw[i], c->pc[m] = c->pc[i], m++;
   }
   c->n = m;
+  return 0;
 }
 
 /* One Pc field: a finite number, or empty (NAN) where allowed (pc_Pa is empty when the image has no
@@ -93,6 +102,11 @@ int pc_curve_read(const char *path, pc_curve *c, char *err, int errlen) {
   double *pa = NULL, *red = NULL;
   while (!rc && fgets(line, sizeof line, f)) {
     lineno++;
+    if (strlen(line) == sizeof line - 1 && line[sizeof line - 2] != '\n') {
+      rc = fail(err, errlen, "%s:%d: expected lines of at most %d characters", path, lineno,
+                (int)sizeof line - 2);
+      break;
+    }
     char *s = trim(line);
     if (*s == '#' || !*s) continue;
     const int nf = split_fields(s, fields);
@@ -117,9 +131,16 @@ int pc_curve_read(const char *path, pc_curve *c, char *err, int errlen) {
     }
     if (c->n == cap) {
       cap = cap ? 2 * cap : 32;
-      c->sw = realloc(c->sw, (size_t)cap * sizeof(double));
-      pa = realloc(pa, (size_t)cap * sizeof(double));
-      red = realloc(red, (size_t)cap * sizeof(double));
+      double *g[3] = {realloc(c->sw, (size_t)cap * sizeof(double)),
+                      realloc(pa, (size_t)cap * sizeof(double)),
+                      realloc(red, (size_t)cap * sizeof(double))};
+      if (g[0]) c->sw = g[0];
+      if (g[1]) pa = g[1];
+      if (g[2]) red = g[2];
+      if (!g[0] || !g[1] || !g[2]) {
+        rc = fail(err, errlen, "%s:%d: out of memory (%d rows)", path, lineno, c->n);
+        break;
+      }
     }
     pa[c->n] = red[c->n] = NAN;
     rc = parse(path, lineno, "Sw", fields[col_sw], &c->sw[c->n], err, errlen);
@@ -151,7 +172,7 @@ int pc_curve_read(const char *path, pc_curve *c, char *err, int errlen) {
                   path);
   c->pc = c->in_pa ? pa : red;
   free(c->in_pa ? red : pa);
-  if (!rc) sort_rows(c);
+  if (!rc && sort_rows(c)) rc = fail(err, errlen, "%s: out of memory sorting the rows", path);
   if (!rc && c->n < 2)
     rc = fail(err, errlen, "%s: expected at least 2 rows of different Sw (got %d)", path, c->n);
   if (rc) {

@@ -31,7 +31,8 @@ def main():
         if law not in curves:
             continue
         c = curves[law]
-        tag = law + (" (chosen)" if law == chosen else "")
+        accepted = [f.get("accepted", True) for f in fit.get("fits", []) if f["law"] == law]
+        tag = law + (" (chosen)" if law == chosen else "" if all(accepted) else " (refused)")
         top.plot(curves["sw"], c["krw"], style[law], color="C0", label=f"krw {tag}")
         top.plot(curves["sw"], c["kro"], style[law], color="C3", label=f"kro {tag}")
     if "swof" in fit:
@@ -39,7 +40,8 @@ def main():
         top.plot(s["sw"], s["krw"], "k.", ms=4, label="SWOF rows")
         top.plot(s["sw"], s["krow"], "k.", ms=4)
     top.set_ylabel("relative permeability")
-    top.set_title(f"{fit['table']}: chosen {chosen}")
+    top.set_title(f"{fit['table']}: chosen {chosen}" if chosen else
+                  f"{fit['table']}: no law accepted (SWOF = the measured points)", fontsize=9)
     top.legend(fontsize=8)
     if chosen in curves:
         c = curves[chosen]
@@ -50,6 +52,9 @@ def main():
         bottom.axhline(0, color="k", lw=0.8)
         bottom.set_ylabel("(data - law) / err")
         bottom.legend(fontsize=8)
+    else:
+        bottom.text(0.5, 0.5, "no accepted law: no residuals", ha="center", va="center",
+                    transform=bottom.transAxes)
     bottom.set_xlabel("Sw")
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=110)

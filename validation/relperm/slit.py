@@ -21,6 +21,9 @@ and Sw by particle counts includes the first layer at the wall that hardly moves
 slip over the water and kro exceeds the layered solution (up to 2x at small Sw, docs/twophase.md
 section 5); --a-wo -20 measures that. --quick (ctest): h = 8, box 4 x 12 x 3, films of 1 and 3
 voxels (Sw 1/4 and 3/4), g = 0.02, 8000 steps: krw within the tolerance, krw increasing with Sw.
+Then `mdpore fit relperm` on the campaign's relperm.csv (no simulation): its SWOF table must be
+valid (4 columns, Sw increasing in [0, 1], krw non-decreasing from 0, krow non-increasing to 0) and
+its krw at the measured Sw within the same tolerance of the layered krw (check_swof).
 
     nice -n 5 /usr/bin/python3 validation/relperm/slit.py [--quick] [--a-wo -30]
 """
@@ -41,6 +44,53 @@ from common import write_raw_image  # noqa: E402
 
 def kr_layered(sw, M=1.0):
     return sw ** 2 * (3 - sw) / 2, (1 - sw) ** 3 + 1.5 * M * sw * (2 - sw) * (1 - sw)
+
+
+def read_swof(path):
+    """The rows of a SWOF file (Sw krw krow Pcow) and its '--' header."""
+    text = open(path).read()
+    head, _, body = text.partition("\nSWOF\n")
+    rows = []
+    for line in body.splitlines():
+        t = line.strip()
+        if t == "/":
+            break
+        if t and not t.startswith("--"):
+            rows.append([float(v) for v in t.split()])
+    return head, rows
+
+
+def check_swof(work, rows, M, args):
+    """`mdpore fit relperm` on the campaign's relperm.csv (no simulation): the SWOF export is valid
+    (4 columns, Sw strictly increasing in [0, 1], krw non-decreasing from 0, krow non-increasing to
+    0, kr in [0, 1]) and at the measured Sw its krw (interpolated as a simulator does) is within
+    the tolerance of the layered-slit krw = Sw^2 (3 - Sw) / 2 (docs/twophase.md section 5)."""
+    fails = []
+    src, swof = os.path.join(work, "relperm.csv"), os.path.join(work, "relperm.swof")
+    p = subprocess.run([mdval.mdpore_binary(), "fit", "relperm", src, "--swof", swof, "--json",
+                        os.path.join(work, "relperm.fit.json"), "--quiet"], env=mdval.mpi_env(),
+                       capture_output=True, text=True)
+    if p.returncode != 0 or not os.path.exists(swof):
+        return [f"mdpore fit relperm {src}: exit {p.returncode}: {(p.stdout + p.stderr)[-600:]}"]
+    head, t = read_swof(swof)
+    sw, krw, krow = (np.array([r[k] for r in t]) for k in range(3))
+    if not (t and all(len(r) == 4 for r in t) and np.all(np.diff(sw) > 0) and sw[0] >= 0
+            and sw[-1] <= 1 and np.all(np.diff(krw) >= 0) and np.all(np.diff(krow) <= 0)
+            and krw[0] == 0 and krow[-1] == 0 and np.all((krw >= 0) & (krw <= 1))
+            and np.all((krow >= 0) & (krow <= 1))):
+        fails.append(f"{swof}: not a valid SWOF table: {t}")
+    measured = "THE MEASURED POINTS" in head
+    for r in rows:
+        if not 0 < r["Sw"] <= 1:
+            fails.append(f"measured Sw {r['Sw']} outside (0, 1]")
+        v = float(np.interp(r["Sw"], sw, krw))
+        ex = kr_layered(r["Sw"], M)[0]
+        ok = abs(v - ex) <= args.rel_tol * ex + args.abs_tol + 2 * r["krw_err"]
+        print(f"SWOF ({'measured points' if measured else 'law'}): krw({r['Sw']:.3f}) = {v:.4f}, "
+              f"layered {ex:.4f}: {'pass' if ok else 'FAIL'}")
+        if not ok:
+            fails.append(f"SWOF krw {v:.3f} at Sw {r['Sw']:.3f}: layered {ex:.3f}")
+    return fails
 
 
 def main():
@@ -119,6 +169,7 @@ def main():
     krw = [r["krw"] for r in rows]
     if any(b <= a for a, b in zip(krw, krw[1:])):
         fails.append(f"krw does not increase with Sw: {krw}")
+    fails += check_swof(work, rows, d["M"], args)
     mdval.write_report(out, tag, ["film (rc)", "Sw", "Snw image", "krw", "krw err", "layered", "ratio", "kro", "kro err",
                                   "layered", "ratio", "Ca", "check"], table,
                        notes=f"`{' '.join(','.join(os.path.basename(x) for x in c.split(',')) if '/' in c else c for c in cmd)}`\n\n"
