@@ -83,7 +83,8 @@ def main():
         print(f"throat H = {H:g}, empty layer {gap:g} rc: H_eq = {t['H_eq']:.3f} +- {t['H_eq_err']:.3f}, "
               f"half-density width {t['H_half']:.3f} (expected {want:g})")
         if abs(t["H_eq"] - want) > 0.1 or abs(t["H_half"] - want) > 0.15:
-            fails.append(f"throat H = {H:g}, gap {gap:g}: H_eq {t['H_eq']:.3f}, half {t['H_half']:.3f}, expected {want:g}")
+            fails.append(f"throat H = {H:g}, gap {gap:g}: H_eq {t['H_eq']:.3f}, half {t['H_half']:.3f}, "
+                         f"expected {want:g}")
     m = meniscus_case(rng, 8.0)
     print(f"meniscus R = 8: fitted R = {m['R']:.3f}, apex {m['apex']:.2f} (1.5), rms {m['rms']:.3f}")
     if not (abs(m["R"] - 8.0) < 0.4 and abs(m["apex"] - 1.5) < 0.2):

@@ -505,9 +505,9 @@ def report(res, out, args):
             held = "oil" if max(r["depth"]) >= args.throat - 0.5 else ("water" if not r["entered"] else "both")
             L.append(f"| {r['dp_over_pc']:.3f} | {held} | {t['n_bulk']:.3f} | {t['H_eq']:.3f} +- {t['H_eq_err']:.3f} | "
                      f"{en['H'] - t['H_eq']:.3f} | {t['H_half']:.3f} | {t['water_width']:.3f} | {t['oil_width']:.3f} |")
-        L += ["", f"H_eff (H_eq of the rungs whose window holds water only) = **{en['H_eff']:.3f} +- {en['H_eff_err']:.3f}** (half-density "
-              f"width {en['H_half']:.3f}); dp_c = 2 gamma_wo cos(theta_wo) / H_eff = **{en['pc_eff']:.3f} +- "
-              f"{en['pc_eff_err']:.3f}**.\n",
+        L += ["", f"H_eff (H_eq of the rungs whose window holds water only) = **{en['H_eff']:.3f} +- "
+              f"{en['H_eff_err']:.3f}** (half-density width {en['H_half']:.3f}); dp_c = 2 gamma_wo cos(theta_wo) / "
+              f"H_eff = **{en['pc_eff']:.3f} +- {en['pc_eff_err']:.3f}**.\n",
               "The resting menisci (rungs not invading): circle through the phi = 0 points more than 1 rc from the "
               "walls; Laplace: dp = gamma_wo / R (gamma_wo = 14.72); cos theta_app = (H_eff / 2) / R.\n",
               "| dp / dp_c | dp | apex past the mouth (rc) | R | rms (rc) | gamma_wo / R | dp R / gamma_wo | "
@@ -515,11 +515,13 @@ def report(res, out, args):
         for r in en["rungs"]:
             mn = r["meniscus"]
             if "laplace_dp" in mn:
-                L.append(f"| {r['dp_over_pc']:.3f} | {r['dp']:.3f} | {mn['apex']:.2f} | {mn['R']:.2f} | {mn['rms']:.2f} | "
+                L.append(f"| {r['dp_over_pc']:.3f} | {r['dp']:.3f} | {mn['apex']:.2f} | {mn['R']:.2f} | "
+                         f"{mn['rms']:.2f} | "
                          f"{mn['laplace_dp']:.3f} | {r['dp'] / mn['laplace_dp']:.3f} | "
                          f"{math.degrees(math.acos(mn['cos_app'])):.1f} |")
         L.append(f"\nBracket (invasion): highest dp not invading {lo:.3f}, lowest invading {hi:.3f} "
-                 f"({lo / en['pc']:.2f}-{hi / en['pc']:.2f} dp_c with H, {lo / en['pc_eff']:.2f}-{hi / en['pc_eff']:.2f} "
+                 f"({lo / en['pc']:.2f}-{hi / en['pc']:.2f} dp_c with H, "
+                 f"{lo / en['pc_eff']:.2f}-{hi / en['pc_eff']:.2f} "
                  f"with H_eff); dp_c(H) {en['pc']:.3f}: {'pass' if en['passed_nominal'] else 'FAIL'}; dp_c(H_eff) "
                  f"{en['pc_eff']:.3f}: {'pass' if en['passed'] else 'FAIL'} (bracket widened by "
                  f"{100 * args.tol_entry:.0f}%; the check uses H_eff).\n")
@@ -608,8 +610,8 @@ def main():
     ap.add_argument("--slit-length", type=float, nargs="+", default=[16.0, 24.0], help="rc; one value or one per width")
     ap.add_argument("--reservoir", type=float, nargs="+", default=[12.0, 16.0], help="rc; one value or one per width")
     ap.add_argument("--prefill", type=float, nargs="+", default=[0.0, 6.0],
-                    help="rc of the slit filled at the start (the fit window must start beyond it); one value or one per "
-                         "width")
+                    help="rc of the slit filled at the start (the fit window must start beyond it); one value or "
+                         "one per width")
     ap.add_argument("--seeds-per-width", nargs="+", default=None,
                     help="comma-separated seeds of each width (instead of --seeds), e.g. 1,2 1")
     ap.add_argument("--steps-w", type=int, nargs="+", default=[22000, 38000], help="steps per width")
@@ -646,9 +648,10 @@ def main():
     for opt in ("steps_w", "slit_length", "reservoir", "prefill", "seeds_per_width"):
         v = getattr(args, opt)
         if v is not None and len(v) not in ((1, len(args.widths)) if opt != "steps_w" else (len(args.widths),)):
+            widths = " ".join(f"{w:g}" for w in args.widths)
+            alt = " or one value" if opt != "steps_w" else ""
             sys.exit(f"capillary.py: option --{opt.replace('_', '-')}: expected one value per width "
-                     f"({len(args.widths)}: {' '.join(f'{w:g}' for w in args.widths)}){' or one value' if opt != 'steps_w' else ''}, "
-                     f"got {len(v)}: {' '.join(str(x) for x in v)}")
+                     f"({len(args.widths)}: {widths}){alt}, got {len(v)}: {' '.join(str(x) for x in v)}")
     out = args.out or mdval.out_dir("twophase")
     os.makedirs(out, exist_ok=True)
     work = os.path.join(base or "/tmp", "capillary_runs")

@@ -242,7 +242,8 @@ def report(res, out, args, fails):
                      f"{r['krn'] / r['krn_exact_hyd']:.3f} | {'pass' if r['pass'] else 'FAIL'} |")
         L += ["", "The interface (profiles symmetrised about the middle; y from the middle): y_i where phi = 0, the "
               "hydraulic film a = (upper hydraulic zero) - y_i, the 10-90 width of phi; the film's velocity at y_i "
-              "against the water-only run's there (1 in the continuum: the film sees the same stress tau = g int n dy); "
+              "against the water-only run's there (1 in the continuum: the film sees the same stress "
+              "tau = g int n dy); "
               "delta = (u_single - u) mu_w / tau(y_i), the layer of no shear that would cost as much; the local "
               "viscosity tau / (-du/dy) over 0.5 rc on each side of y_i (water 5.45).\n",
               "| run | y_i | film a | a / width 10-90 | u(y_i) | u_single(y_i) | ratio | delta (rc) | mu oil side | "
