@@ -352,7 +352,8 @@ def slit(args, out, tag, sw, gamma_oil, s_oil=1.0):
     y = prof["y"]
     dy = y[1] - y[0]
     u, du = prof["vx"], prof["vx_err"]
-    res = {"Sw_nominal": sw, "gamma_oil": gamma_oil, "s_oil": s_oil, "wall_s": wall, "y": y.tolist(), "u": u.tolist()}
+    res = {"Sw_nominal": sw, "gamma_oil": gamma_oil, "s_oil": s_oil, "wall_s": wall, "y": y.tolist(), "u": u.tolist(),
+           "u_err": du.tolist()}
     nw = prof["density_water"]
     no = prof["density_oil"]
     Nw, No = float(np.sum(nw)), float(np.sum(no))

@@ -27,6 +27,7 @@ import math
 import os
 import sys
 
+import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -38,6 +39,50 @@ DEFAULT_SETTINGS = ["4.5,1", "4.5,0.5", "13.5,0.5", "4.5,0.25", "13.5,0.25", "27
 # the documented stable range at dt = 0.01 (gamma 40 and 54 at s 0.25 stop within their first steps: listed to
 # show where the range ends)
 DEFAULT_STABLE = DEFAULT_SETTINGS[:-2]
+
+
+def interface_velocity(single, rr, h, g, mu_w, wt=2.0):
+    """Where a layered run's oil flux is lost: the film's velocity at the interface against the water-only
+    run's at the same place.
+
+    With the stress tau(y) = g int_mid^y n dy fixed by the momentum balance (n: all liquid; the same in
+    both runs within 1-2%), a continuum film of water's viscosity moves exactly as the water-only slit
+    at the same y, whatever the core holds. So r_i = u(y_i) / u_single(y_i) is 1 in the continuum, and
+    the deficit, expressed as a layer of thickness delta = (u_single - u) mu_w / tau(y_i) that does not
+    shear (the extra resistance of the interface zone), measures what the interface costs the film.
+    y_i: where phi = (n_w - n_o) / (n_w + n_o) crosses 0; profiles symmetrised about the slit's middle.
+    Also the local viscosity tau / (-du/dy) averaged over the 0.5 rc on each side of y_i."""
+    y = np.asarray(rr["y"])
+    dy = y[1] - y[0]
+    mid = wt + h / 2
+    up = y > mid
+
+    def sym(a):
+        a = np.asarray(a)
+        return 0.5 * (a[up] + np.interp(2 * mid - y[up], y, a))
+    ys = y[up] - mid
+    u, us = sym(rr["u"]), sym(single["u"])
+    nw, no = sym(rr["n_w"]), sym(rr["n_o"])
+    phi = (nw - no) / np.maximum(nw + no, 1e-12)
+    k = int(np.nonzero(phi > 0)[0][0])
+    yi = float(ys[k - 1] + (0 - phi[k - 1]) / (phi[k] - phi[k - 1]) * dy)
+    n = nw + no
+    tau = g * (np.cumsum(n) - 0.5 * n) * dy
+    ui, usi, taui = (float(np.interp(yi, ys, a)) for a in (u, us, tau))
+    # bin errors of the two velocities at y_i (symmetrised: two bins averaged)
+    e = math.hypot(*(float(np.interp(yi, ys, sym(r["u_err"]))) / math.sqrt(2) for r in (rr, single)))
+    dudy = np.gradient(u, dy)
+
+    def mu_loc(lo, hi):
+        m = (ys >= lo) & (ys < hi)
+        return float(np.sum(tau[m]) / max(-np.sum(dudy[m]), 1e-12))
+    # the interface's 10-90 width of phi
+    w_lo = float(np.interp(-0.8, phi, ys)) if np.all(np.diff(phi) >= -0.2) else float("nan")
+    w_hi = float(np.interp(0.8, phi, ys)) if np.all(np.diff(phi) >= -0.2) else float("nan")
+    return dict(y_i=yi, u_i=ui, u_single_i=usi, r_i=ui / usi, r_i_err=e / usi, tau_i=taui,
+                delta=(usi - ui) * mu_w / taui, delta_err=e * mu_w / taui,
+                mu_oil_side=mu_loc(yi - 0.5, yi), mu_water_side=mu_loc(yi, yi + 0.5), width_10_90=w_hi - w_lo,
+                profile={"y": ys.tolist(), "u": u.tolist(), "u_single": us.tolist(), "phi": phi.tolist()})
 
 
 def pair_list(words):
@@ -134,8 +179,13 @@ def main():
                                  fails)
         for tag, vo in oils.items():
             tp.coflow_analysis({"single": runs["single"], tag: runs[tag]}, args.h, False, w, vo, fails)
+        z1 = hyd["zeros"][1] - (2.0 + args.h / 2)  # the hydraulic zero above the middle
+        for tag, rr in runs.items():
+            if tag != "single":
+                rr["interface"] = interface_velocity(runs["single"], rr, args.h, args.g, w["mu"])
+                rr["interface"]["film_hyd"] = z1 - rr["interface"]["y_i"]
         for rr in runs.values():  # the profiles stay in the raw folders
-            for key in ("y", "u", "n_w", "n_o"):
+            for key in ("y", "u", "u_err", "n_w", "n_o"):
                 rr.pop(key, None)
         res["coflow"] = {"runs": runs, "h": args.h, "a_wo": args.a_wo, "g": args.g, **hyd}
         mdval.write_json(jpath, res)
@@ -144,6 +194,20 @@ def main():
         print("FAIL:", f)
     print("viscosity_ratio:", "all checks pass" if not fails else f"{len(fails)} check(s) failed")
     sys.exit(1 if fails else 0)
+
+
+def shown_args():
+    """The command line's options for the report, less --out and its folder."""
+    shown, skip = [], False
+    for a in sys.argv[1:]:
+        if skip or a.startswith("--out="):
+            skip = False
+            continue
+        if a == "--out":
+            skip = True
+            continue
+        shown.append(a)
+    return shown
 
 
 def report(res, out, args, fails):
@@ -167,18 +231,34 @@ def report(res, out, args, fails):
                   f"g = {co['g']:g}, Sw = 0.5)\n",
               f"Water-only flow Q_1 = {co['runs']['single']['Q_w']:.4f} +- {co['runs']['single']['Q_w_err']:.4f}; "
               f"hydraulic width {co['h_hyd']:.3f}. Exact values at the hydraulic Sw.\n",
-              "| run | oil gamma, s | Sw hyd | M | krw | exact | krn | exact | check |",
-              "|---|---|---|---|---|---|---|---|---|"]
+              "| run | oil gamma, s | Sw hyd | M | krw | exact | krn | exact | krn / exact | check |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
         for tag, r in co["runs"].items():
             if tag == "single":
                 continue
             L.append(f"| {tag} | {r['gamma_oil']:g}, {r.get('s_oil', 1.0):g} | {r['Sw_hyd']:.3f} | "
                      f"{r['M']:.3f} +- {r['M_err']:.3f} | {r['krw']:.3f} +- {r['krw_err']:.3f} | "
                      f"{r['krw_exact_hyd']:.3f} | {r['krn']:.3f} +- {r['krn_err']:.3f} | {r['krn_exact_hyd']:.3f} | "
-                     f"{'pass' if r['pass'] else 'FAIL'} |")
+                     f"{r['krn'] / r['krn_exact_hyd']:.3f} | {'pass' if r['pass'] else 'FAIL'} |")
+        L += ["", "The interface (profiles symmetrised about the middle; y from the middle): y_i where phi = 0, the "
+              "hydraulic film a = (upper hydraulic zero) - y_i, the 10-90 width of phi; the film's velocity at y_i "
+              "against the water-only run's there (1 in the continuum: the film sees the same stress "
+              "tau = g int n dy); "
+              "delta = (u_single - u) mu_w / tau(y_i), the layer of no shear that would cost as much; the local "
+              "viscosity tau / (-du/dy) over 0.5 rc on each side of y_i (water 5.45).\n",
+              "| run | y_i | film a | a / width 10-90 | u(y_i) | u_single(y_i) | ratio | delta (rc) | mu oil side | "
+              "mu water side |", "|---|---|---|---|---|---|---|---|---|---|"]
+        for tag, r in co["runs"].items():
+            f = r.get("interface")
+            if f:
+                L.append(f"| {tag} | {f['y_i']:.2f} | {f['film_hyd']:.2f} | {f['film_hyd'] / f['width_10_90']:.1f} | "
+                         f"{f['u_i']:.4f} | {f['u_single_i']:.4f} | {f['r_i']:.3f} +- {f['r_i_err']:.3f} | "
+                         f"{f['delta']:.2f} +- {f['delta_err']:.2f} | "
+                         f"{f['mu_oil_side']:.1f} | {f['mu_water_side']:.1f} |")
     L += ["", "Checks: " + ("all pass" if not fails else "; ".join(fails)), "",
-          "Command: `/usr/bin/python3 validation/twophase/viscosity_ratio.py" + (" --quick`" if args.quick else
-                                                                                 "` (`--reuse` analyses finished runs again)"), ""]
+          "Command: `/usr/bin/python3 validation/twophase/viscosity_ratio.py"
+          + "".join(" " + a for a in shown_args())
+          + "` (`--reuse` analyses finished runs again; `--out DIR` writes elsewhere)", ""]
     open(os.path.join(out, "viscosity_ratio.md"), "w").write("\n".join(L))
     print("\n".join(L))
     plot(res, out)
@@ -186,7 +266,9 @@ def report(res, out, args, fails):
 
 def plot(res, out):
     plt = mdval.pyplot()
-    fig, axs = plt.subplots(1, 2, figsize=(11, 4))
+    co = res.get("coflow") or {}
+    layered = [(t, r["interface"]) for t, r in co.get("runs", {}).items() if r.get("interface", {}).get("profile")]
+    fig, axs = plt.subplots(1, 3 if layered else 2, figsize=(16.5 if layered else 11, 4))
     for s_exp in sorted({v["s"] for v in res["settings"]}, reverse=True):
         vs = sorted([v for v in res["settings"] if v["s"] == s_exp and not v.get("failed")], key=lambda v: v["gamma"])
         g = [v["gamma"] for v in vs]
@@ -199,6 +281,16 @@ def plot(res, out):
     axs[1].set_xlabel("gamma")
     axs[1].set_ylabel("thermal T (kT = 1; band: 1%)")
     axs[1].legend(fontsize=8)
+    if layered:  # the layered runs' velocity against the water-only run's, across the upper half
+        p0 = layered[0][1]["profile"]
+        axs[2].plot(p0["y"], p0["u_single"], "k-", lw=1, label="water only")
+        for tag, f in layered:
+            axs[2].plot(f["profile"]["y"], f["profile"]["u"], "o-", ms=3, lw=0.8,
+                        label=f"{tag}: u(y_i) / u_single = {f['r_i']:.3f}")
+            axs[2].axvline(f["y_i"], color="0.6", lw=0.8)
+        axs[2].set_xlabel(f"y from the slit's middle (h = {co['h']:g}; grey: phi = 0)")
+        axs[2].set_ylabel("u")
+        axs[2].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "viscosity_ratio.png"), dpi=110)
 
