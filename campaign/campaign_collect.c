@@ -273,7 +273,14 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   flow_table_add_comment(&t, line);
   snprintf(line, sizeof line, "length unit = %s", c->length_source);
   flow_table_add_comment(&t, line);
-  snprintf(line, sizeof line, "run_length = steps run; target relative error %g", c->target_error);
+  if (camp_rounds_done.n_rounds > 0) /* --target-error-k: no run had a target of its own */
+    snprintf(line, sizeof line,
+             "run_length = steps run (over every round); the campaign stopped on the relative "
+             "error of k, target %g (--target-error-k)",
+             camp_rounds_done.target);
+  else
+    snprintf(line, sizeof line, "run_length = steps run; target relative error %g",
+             c->target_error);
   flow_table_add_comment(&t, line);
   /* the runs left out are no rows of the table (nor of the fits): named here with the reason */
   for (int i = 0; i < ar->n_left_out; i++) {

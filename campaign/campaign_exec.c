@@ -314,7 +314,9 @@ int camp_execute(const camp_opts *o, campaign *c) {
       s->run = i;
       s->t0 = camp_now();
       s->from_step = continued ? r->last_step : 0;
-      s->pid = camp_spawn_start(r->dir, argv, continued ? "run_continued.log" : "run.log", env);
+      char log[64] = "run.log"; /* a continuation's: run_from_<S>.log, each its own */
+      if (continued) snprintf(log, sizeof log, "run_from_%lld.log", r->last_step);
+      s->pid = camp_spawn_start(r->dir, argv, log, env);
       if (s->pid < 0) {
         finish(c, i, -1, &failed);
         camp_progress_done(&p, r, 0);

@@ -3,7 +3,9 @@
 
 The slit of test_permeability.py at its depth halved (`mdpore image make slit --width 8 --wall 4
 --length 12 --depth 4`, rc_per_voxel 0.5: h = 4 rc, period H = 8 rc, k = h^3 / (12 H) = 0.667 rc^2
-with the campaign's no-slip walls), 3 body forces, 1 rank, round 1 of ROUND steps per run (450 particles). The pore core of so short a
+with the campaign's no-slip walls), 3 body forces, 1 rank, round 1 of ROUND steps per run (450 particles), --max-steps 1200, so a budget
+of 3 x 1200 steps: E = 5% is out of reach of round 1 (q errors of 10-15%), met within the budget or
+not. The pore core of so short a
 window is noisy (a few hundred particles: +-3% between runs at rest), so --density-tolerance is 0.1
 here: the test is of the stopping rule, not of the density check.
 
@@ -31,7 +33,7 @@ import sys
 MDPORE = os.environ.get("MDPORE", "mdpore")
 OUT = os.path.abspath(os.environ.get("MDPORE_TEST_OUT", "campaign_target_error_k_out"))
 ROUND = "600"
-TARGET = "0.1"
+TARGET = "0.05"
 GRADIENTS = "0.06,0.1,0.14"
 failures = []
 
@@ -55,7 +57,7 @@ def refused(args, needle, what):
 
 def campaign(wd):
     return mdpore("permeability", "slit.h5", "--axis", "x", "--gradients", GRADIENTS, "--np", "1",
-                  "--target-error-k", TARGET, "--round-steps", ROUND, "--max-steps", "2400",
+                  "--target-error-k", TARGET, "--round-steps", ROUND, "--max-steps", "1200",
                   "--density-tolerance", "0.1", "--workdir", wd)
 
 
