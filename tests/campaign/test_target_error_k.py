@@ -12,7 +12,8 @@ here: the test is of the stopping rule, not of the density check.
 Asserted:
  1. refused, naming the options: --target-error-k with --emit-scenes, --target-error, --drive
     pressure, --collect; --round-steps without --target-error-k; a budget below the first round;
- 2. the campaign either reaches the target (the relative error of the Darcy range's k in
+ 2. the campaign, killed (SIGTERM) once it has planned round 2, is run again: round 1's runs are
+    reused (none runs afresh) and the campaign goes on; it either reaches the target (the relative error of the Darcy range's k in
     permeability.json at most E, "target met") or stops at its step budget saying so, having spent
     at most the budget; more than one round ran, and the later rounds continued runs (never
     restarted them: "continued from step" on stderr);
@@ -27,8 +28,10 @@ import glob
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 MDPORE = os.environ.get("MDPORE", "mdpore")
 OUT = os.path.abspath(os.environ.get("MDPORE_TEST_OUT", "campaign_target_error_k_out"))
@@ -55,10 +58,30 @@ def refused(args, needle, what):
           ("" if needle in p.stderr else f" (got: {p.stderr.strip()[:300]})"))
 
 
+def campaign_args(wd):
+    return [MDPORE, "permeability", "slit.h5", "--axis", "x", "--gradients", GRADIENTS, "--np", "1",
+            "--target-error-k", TARGET, "--round-steps", ROUND, "--max-steps", "1200",
+            "--density-tolerance", "0.1", "--workdir", wd]
+
+
 def campaign(wd):
-    return mdpore("permeability", "slit.h5", "--axis", "x", "--gradients", GRADIENTS, "--np", "1",
-                  "--target-error-k", TARGET, "--round-steps", ROUND, "--max-steps", "1200",
-                  "--density-tolerance", "0.1", "--workdir", wd)
+    return subprocess.run(campaign_args(wd), capture_output=True, text=True, cwd=OUT)
+
+
+def campaign_killed_in_round_2(wd):
+    """Starts the campaign and sends it SIGTERM once it has planned round 2 (its runs then go)."""
+    err = open(os.path.join(OUT, "killed.err"), "w")
+    p = subprocess.Popen(campaign_args(wd), stdout=subprocess.PIPE, stderr=err, text=True, cwd=OUT)
+    planned = False
+    for line in p.stdout:
+        if line.startswith("round 2:") and "continued" in line:
+            planned = True
+            time.sleep(0.3)  # round 2's first continuation under way
+            p.send_signal(signal.SIGTERM)
+            break
+    p.wait()
+    err.close()
+    return planned
 
 
 def main():
@@ -86,9 +109,17 @@ def main():
           "usable run" not in p.stderr,
           f"a budget below the first round refused ({p.returncode}: {p.stderr.strip()[-200:]})")
 
-    # 2. the campaign
+    # 2. the campaign, killed once round 1 is done and round 2 planned, then run again: round 1's
+    # runs reused, round 2 brought to its recorded steps, the campaign goes on from there
     wd = os.path.join(OUT, "camp")
+    planned = campaign_killed_in_round_2(wd)
+    ledger = open(os.path.join(wd, "rounds.txt")).read() if os.path.exists(os.path.join(wd, "rounds.txt")) else ""
+    round1 = [l.split()[3] for l in ledger.splitlines() if l.startswith("round 1 ")]
+    check(planned and len(round1) == 3 and "round 2 " in ledger,
+          "the campaign killed after planning round 2: rounds.txt records rounds 1 and 2")
     p = campaign(wd)
+    check(all(f"reused {d}" in p.stderr for d in round1) and p.stderr.count("running in") == 0,
+          "resumed: round 1's runs reused, none run afresh")
     print(p.stdout[-3000:])
     check(p.returncode == 0, f"campaign exit 0 ({p.returncode}; {p.stderr.strip()[-400:]})")
     res = json.load(open(os.path.join(wd, "permeability.json"))) if os.path.exists(
@@ -105,7 +136,8 @@ def main():
         check("step budget is spent" in p.stdout and stop.get("steps", 1e99) <= stop.get("budget_steps", 0),
               f"target not met: stopped at the budget ({stop.get('steps')} of {stop.get('budget_steps')}) saying so")
     rounds = stop.get("rounds", [])
-    check(len(rounds) >= 2 and "continued from step" in p.stderr,
+    killed_err = open(os.path.join(OUT, "killed.err")).read()
+    check(len(rounds) >= 2 and "continued from step" in p.stderr + killed_err,
           f"{len(rounds)} rounds; the later ones continued runs from their checkpoints")
 
     # 3. k against the slit
