@@ -103,7 +103,7 @@ void memory_plan_print(const memory_plan_t *mp, FILE *out) {
             memory_bytes_text(mp->item[k].bytes, b, sizeof b));
   fprintf(out, "  %-48s %s\n", "total (host)", memory_bytes_text(mp->total, b, sizeof b));
   if (mp->device > 0)
-    fprintf(out, "  %-48s %s\n", "GPU (CUDA path, fast mode)",
+    fprintf(out, "  %-48s %s\n", "GPU (CUDA path, one per rank)",
             memory_bytes_text(mp->device, b, sizeof b));
 }
 

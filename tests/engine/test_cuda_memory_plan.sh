@@ -11,7 +11,7 @@ W=cuda_memory_plan_test; rm -rf $W; mkdir -p $W; cd $W || exit 1
 if ! $M run --backend cuda --explain $S > explain.txt 2> probe.txt; then
   echo "skipped: no GPU ($(sed 's/.*available: //' probe.txt))"; exit 77
 fi
-grep -q "GPU (CUDA path, fast mode)" explain.txt || { echo "FAIL: --explain has no device plan"; cat explain.txt; exit 1; }
+grep -q "GPU (CUDA path, one per rank)" explain.txt || { echo "FAIL: --explain has no device plan"; cat explain.txt; exit 1; }
 MDPORE_CUDA_TEST_FREE_BYTES=1000000 MDPORE_GPU_MEMORY_LIMIT=1M $M run --backend cuda --steps 2 $S \
   > out.txt 2> err.txt
 rc=$?
