@@ -80,6 +80,9 @@ typedef struct backend_ops {
    * `axis` lies in the periodic slab [lo, hi) becomes species `to` (of equal mass; velocities
    * kept); *changed: how many on this rank. NULL: the engine changes st->p. 0 or -1. */
   int (*recolor)(sim_state_t *st, int axis, double lo, double hi, int from, int to, long *changed);
+  /* For --explain's memory plan: device bytes per particle of a plan in memory mode gpu_memory
+   * (enum scene_gpu_memory; auto counts as fast), the slot margin included. NULL: no device. */
+  double (*device_bytes_per_particle)(const plan_t *plan, int nranks, int gpu_memory);
 } backend_ops_t;
 
 /* The CPU backend (backend/cpu/cpu_backend.c). */

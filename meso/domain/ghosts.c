@@ -14,6 +14,10 @@ typedef struct {
   double x[3], v[3];
 } ghost_rec_t;
 
+size_t ghosts_record_bytes(void) {
+  return sizeof(ghost_rec_t);
+}
+
 void ghosts_free(ghost_plan_t *g) {
   for (int d = 0; d < 3; d++)
     for (int k = 0; k < 2; k++) free(g->send_idx[d][k]);

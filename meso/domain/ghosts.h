@@ -21,6 +21,8 @@ void ghosts_free(ghost_plan_t *g);
  * velocity (the predicted one, p->vpred when allocated, else p->v). 0, or -1 when out of memory
  * (collective). */
 int ghosts_build(ghost_plan_t *g, const decomp_t *dc, particles_t *p, double rcut, int with_v);
+/* Bytes of one ghost sent or received (the exchange record; the memory plan counts them). */
+size_t ghosts_record_bytes(void);
 /* Forward sync of one per-particle scalar field (e.g. rho) from owners to ghosts. 0 or -1. */
 int ghosts_sync_scalar(ghost_plan_t *g, const decomp_t *dc, double *field);
 

@@ -4,6 +4,8 @@
  * not run. */
 #include "domain/decomp.h"
 #include "effects/effect.h"
+#include "common/memory_limit.h"
+#include "engine/memory_plan.h"
 #include "engine/sim_internal.h"
 
 #include <stddef.h>
@@ -18,6 +20,30 @@ static void list_species(const scene_t *s, FILE *out, int frozen) {
       any = 1;
     }
   if (!any) fprintf(out, "none");
+}
+
+/* The memory plan of the largest rank from the scene alone (engine/memory_plan.h; the run checks
+ * it again with the particles counted) and the memory available now. */
+static void print_memory(const scene_t *s, const plan_t *plan, const backend_ops_t *ops, int nranks,
+                         const int dims[3], FILE *out) {
+  memory_inputs_t in;
+  memory_inputs_from_scene(s, dims, &in);
+  if (ops && ops->device_bytes_per_particle)
+    in.device_bytes_per_particle = ops->device_bytes_per_particle(plan, nranks, s->gpu_memory);
+  memory_plan_t mp;
+  memory_plan_build(s, plan, &in, &mp);
+  memory_plan_print(&mp, out);
+  char from[64], b[32];
+  const double avail = mdp_memory_available(from, sizeof from);
+  fprintf(out, "  %-48s %s (%s)\n", "available now (the node)",
+          memory_bytes_text(avail, b, sizeof b), from);
+  if (s->init.kind == INIT_LAMMPS_DATA || s->init.kind == INIT_SNAPSHOT)
+    fprintf(out,
+            "  (the particles of %s are counted when it is read; the run checks the plan then)\n",
+            s->init.path);
+  else if (s->init.kind == INIT_GEOMETRY)
+    fprintf(out, "  (a geometry at its largest density over the whole box, an upper bound: the run "
+                 "counts the image's particles and checks the plan then)\n");
 }
 
 /* The named effects that need `need` (enum effect_need), comma-separated; then, with describe,
@@ -199,5 +225,6 @@ void sim_explain(const scene_t *s, int nranks, FILE *out) {
             ops && ops->recolor ? "on the device" : "on the host particles", ax, f->sample_lo,
             f->sample_hi, f->every, f->map_every > 0 ? "; saturation maps" : "");
   }
+  print_memory(s, &plan, ops, nranks, dims, out);
   plan_release(&plan);
 }

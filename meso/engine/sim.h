@@ -6,6 +6,7 @@
 #include "effects/effect_list.h"
 #include "scene/scene.h"
 #include "domain/particles.h"
+#include "engine/memory_plan.h"
 
 #include <mpi.h>
 #include <stdio.h>
@@ -40,6 +41,13 @@ void sim_destroy(sim_t *sim);
  * rank may offer any particle; callers generating a global configuration offer every particle on
  * every rank. */
 int sim_add_particle(sim_t *sim, int64_t id, int species, const double x[3], const double v[3]);
+
+/* Collective, before the particles are added: the memory plan (engine/memory_plan.h) of the rank
+ * with the most particles (each rank gives its own inputs: owned particles, geometry build bytes,
+ * ...; extents and backend are the sim's), times the ranks sharing a node, against the memory
+ * available (common/memory_limit.h). 0 when it fits; else -1 on every rank after rank 0 printed
+ * the refusal: the total, the largest items, the memory available and what to try. */
+int sim_memory_check(sim_t *sim, memory_inputs_t *in);
 
 /* After all particles were added (or a checkpoint was loaded): check global count and ids, exchange
  * ghosts and evaluate densities and forces at the current step (unless forces were loaded). */

@@ -293,6 +293,23 @@ int checkpoint_read(const char *path, sim_t *sim) {
   MPI_Bcast(&step, 1, MPI_LONG, 0, comm);
   MPI_Bcast(counts, size, MPI_LONG, 0, comm);
   if (adopt_cuts(path, sim, comm, rank, size, boxes)) {
+    particle_set_free(&set);
+    free(boxes);
+    free(counts);
+    return -1;
+  }
+  /* the memory plan (engine/memory_plan.h) with the checkpoint's counts, rank 0 holding them all */
+  const scene_t *s = sim_scene(sim);
+  memory_inputs_t in = {0};
+  for (int r = 0; r < size; r++) in.total += (double)counts[r];
+  in.owned = (double)counts[rank];
+  in.input_set = rank == 0 ? in.total : 0;
+  in.density = memory_scene_density(s);
+  const double box =
+      (s->box_hi[0] - s->box_lo[0]) * (s->box_hi[1] - s->box_lo[1]) * (s->box_hi[2] - s->box_lo[2]);
+  if (box > 0 && in.total / box > in.density) in.density = in.total / box;
+  if (sim_memory_check(sim, &in)) {
+    particle_set_free(&set);
     free(boxes);
     free(counts);
     return -1;

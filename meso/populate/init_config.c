@@ -70,6 +70,32 @@ static int offer_source(sim_t *sim, const scene_t *s, long n, source_get_fn get,
   return 0;
 }
 
+/* Volume of the overlap of box [alo, ahi) with box [blo, bhi). */
+static double overlap_volume(const double alo[3], const double ahi[3], const double blo[3],
+                             const double bhi[3]) {
+  double v = 1;
+  for (int d = 0; d < 3; d++) {
+    const double lo = alo[d] > blo[d] ? alo[d] : blo[d], hi = ahi[d] < bhi[d] ? ahi[d] : bhi[d];
+    v *= hi > lo ? hi - lo : 0;
+  }
+  return v;
+}
+
+/* The memory plan (engine/memory_plan.h) of n_total particles spread evenly over the box, before
+ * they are added: this rank's share is n_total times its subdomain's share of the box. */
+static int check_memory_even(sim_t *sim, const scene_t *s, double n_total, double input_set) {
+  double lo[3], hi[3];
+  sim_subdomain(sim, lo, hi);
+  const double box = overlap_volume(s->box_lo, s->box_hi, s->box_lo, s->box_hi);
+  memory_inputs_t in = {0};
+  in.total = n_total;
+  in.owned = box > 0 ? n_total * overlap_volume(lo, hi, s->box_lo, s->box_hi) / box : n_total;
+  in.input_set = input_set;
+  in.density = memory_scene_density(s);
+  if (box > 0 && n_total / box > in.density) in.density = n_total / box;
+  return sim_memory_check(sim, &in);
+}
+
 /* Fill regions: global index -> (region, index in region); ids are 1 + global index. */
 typedef struct {
   const scene_t *s;
@@ -112,6 +138,16 @@ static int offer_geometry(sim_t *sim, const scene_t *s) {
   image_walls_t g;
   if (image_walls_build_local(s, comm, sub_lo, sub_hi, &g)) return -1;
   if (rank == 0) image_walls_report(&g, stdout);
+  memory_inputs_t in = {0};
+  in.owned = (double)image_walls_local(&g);
+  in.total = (double)image_walls_total(&g);
+  in.density = memory_scene_density(s);
+  in.voxels = (double)g.n[0] * g.n[1] * g.n[2];
+  in.build_bytes = (double)g.mem_now;
+  if (sim_memory_check(sim, &in)) {
+    image_walls_free(&g);
+    return -1;
+  }
   const double kT = s->init.temperature;
   const int fsp = s->geometry.fluid_species;
   double vcm[3] = {0, 0, 0}, p[3] = {0, 0, 0}, mass = 0;
@@ -184,8 +220,22 @@ int init_configuration(sim_t *sim, const scene_t *s) {
             "%s: warning: initial.fill[%d]: the %s fill realises density %.4g (requested %.4g)\n",
             s->file, k, f->mode == FILL_LATTICE ? "lattice" : "random", got, f->density);
     }
-    const int rc =
-        oom ? -1 : offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
+    /* the memory plan: each fill's particles spread evenly over its region */
+    double lo[3], hi[3];
+    sim_subdomain(sim, lo, hi);
+    memory_inputs_t in = {0};
+    in.total = (double)c.start[s->init.n_fill];
+    in.density = memory_scene_density(s);
+    for (int k = 0; k < s->init.n_fill; k++) {
+      const scene_fill_t *f = &s->init.fill[k];
+      const double vol = overlap_volume(f->lo, f->hi, f->lo, f->hi);
+      const double n = (double)(c.start[k + 1] - c.start[k]);
+      in.owned += vol > 0 ? n * overlap_volume(f->lo, f->hi, lo, hi) / vol : n;
+    }
+    int rc = oom ? -1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &rc, 1, MPI_INT, MPI_MIN, comm); /* (every rank checks, or none) */
+    if (!rc) rc = sim_memory_check(sim, &in);
+    if (!rc) rc = offer_source(sim, s, c.start[s->init.n_fill], fill_get, &c, 0, s->file);
     if (oom && rank == 0)
       fprintf(stderr, "%s: out of memory for the shaped fill regions\n", s->file);
     for (int k = 0; k < s->init.n_fill; k++) free(c.kept[k]);
@@ -196,7 +246,8 @@ int init_configuration(sim_t *sim, const scene_t *s) {
   int rc = s->init.kind == INIT_LAMMPS_DATA ? lammps_data_read_bcast(s->init.path, s, comm, &set)
                                             : snapshot_read_bcast(s->init.path, s, comm, &set);
   if (rc) return -1;
-  rc = init_offer_set(sim, s, &set, s->init.path);
+  rc = check_memory_even(sim, s, (double)set.n, (double)set.n);
+  if (!rc) rc = init_offer_set(sim, s, &set, s->init.path);
   particle_set_free(&set);
   return rc;
 }

@@ -162,6 +162,9 @@ int cuda_sim_overlap(const cuda_sim_t *g);
 const char *cuda_sim_memory_mode(const cuda_sim_t *g);
 /* Bytes of device memory this state holds. */
 size_t cuda_sim_bytes(const cuda_sim_t *g);
+/* The device plan's bytes per particle of a plan on nranks ranks in memory mode gpu_memory (enum
+ * scene_gpu_memory; auto counts as fast), the slot margin included (mdpore run --explain). */
+double cuda_device_bytes_per_particle(const plan_t *plan, int nranks, int gpu_memory);
 /* Whether the plan allows the static tail (static frozen species, no moving ones); the device
  * adds one rank, lists, no skin (cuda_sim_create). */
 int cuda_plan_static_tail(const plan_t *plan);

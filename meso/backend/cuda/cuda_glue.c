@@ -252,4 +252,5 @@ const backend_ops_t cuda_ops_one_rank = {
     .flux_sums = cuda_glue_flux_sums,
     .fault_write = cuda_glue_fault_write,
     .recolor = cuda_glue_recolor,
+    .device_bytes_per_particle = cuda_device_bytes_per_particle,
 };

@@ -78,7 +78,8 @@ char *cuda_pinned(struct cuda_sim *g, size_t bytes) {
   g->pinned = NULL;
   g->pinned_bytes = 0;
   const size_t want = bytes + bytes / 4 + 4096;
-  if (cuda_check(cudaHostAlloc((void **)&g->pinned, want, cudaHostAllocDefault), "pinned buffer"))
+  if (cuda_check_alloc(cudaHostAlloc((void **)&g->pinned, want, cudaHostAllocDefault),
+                       "the halo's pinned buffer", want, "host (pinned)"))
     return NULL;
   g->pinned_bytes = want;
   return g->pinned;

@@ -313,8 +313,8 @@ static char *mig_pinned(struct cuda_sim *g, size_t bytes) {
   g->mig_pinned_dev = NULL;
   g->mig_pinned_bytes = 0;
   const size_t want = cuda_tight_room() ? bytes : bytes + bytes / 4 + 4096;
-  if (cuda_check(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocMapped),
-                 "migration buffer"))
+  if (cuda_check_alloc(cudaHostAlloc((void **)&g->mig_pinned, want, cudaHostAllocMapped),
+                       "the migration buffer", want, "host (pinned)"))
     return NULL;
   g->mig_pinned_bytes = want;
   if (cuda_check(cudaHostGetDevicePointer((void **)&g->mig_pinned_dev, g->mig_pinned, 0),

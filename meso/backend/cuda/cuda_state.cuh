@@ -316,8 +316,16 @@ __device__ __forceinline__ void nbr_for_each(const uint32_t *__restrict__ nbr, i
 }
 
 /* cuda_util.cu */
+/* 0 when e is cudaSuccess; else -1 after "mdpore: CUDA error in WHAT: ..." on stderr (a memory
+ * error with the device's free memory and what to try; the error cleared when it is not sticky). */
 int cuda_check(cudaError_t e, const char *what);
-int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes);
+/* The same for an allocation of `bytes` (where: "GPU" or "host, pinned"): the message names it, its
+ * size, the free memory and what to try. */
+int cuda_check_alloc(cudaError_t e, const char *what, size_t bytes, const char *where);
+/* Device memory of `bytes`, counted in g->bytes; a failure is reported by cuda_check_alloc under
+ * the name of the pointer (cuda_alloc's macro passes its text). 0 or -1. */
+int cuda_alloc_named(struct cuda_sim *g, void **ptr, size_t bytes, const char *what);
+#define cuda_alloc(g, ptr, bytes) cuda_alloc_named((g), (ptr), (bytes), #ptr)
 void cuda_free_ptr(struct cuda_sim *g, void **ptr);
 int cuda_reserve(struct cuda_sim *g, int n);
 int cuda_grow(struct cuda_sim *g, int need);

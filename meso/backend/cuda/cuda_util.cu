@@ -1,21 +1,63 @@
 /* Device memory of the CUDA backend: allocation with byte accounting, growth, error reporting. */
 #include "cuda_select.cuh"
 
+#include "common/memory_limit.h"
+
 #include <cub/device/device_radix_sort.cuh>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* What to try when the GPU has no room (docs/engine-cuda.md "Memory modes"). */
+static const char advice[] =
+    "try --gpu-memory compact (no neighbour lists, <= 200 bytes per particle), fewer particles (a "
+    "coarser geometry.rc_per_voxel, a smaller crop of the image, a smaller box) or more ranks, one "
+    "GPU each";
+
+/* The device's free and total bytes; 0 when cudaMemGetInfo fails (a sticky error). */
+static int device_memory(size_t *free_b, size_t *total_b) {
+  *free_b = *total_b = 0;
+  return cudaMemGetInfo(free_b, total_b) == cudaSuccess;
+}
+
+/* The device memory the plan may count on: the free memory, capped by MDPORE_GPU_MEMORY_LIMIT
+ * (bytes, suffix K/M/G/T allowed; docs/engine-cuda.md "Memory plan"). */
+static double plan_free_bytes(size_t free_b) {
+  const double cap = mdp_parse_bytes(getenv("MDPORE_GPU_MEMORY_LIMIT"));
+  return cap > 0 && cap < (double)free_b ? cap : (double)free_b;
+}
+
+int cuda_check_alloc(cudaError_t e, const char *what, size_t bytes, const char *where) {
+  if (e == cudaSuccess) return 0;
+  if (e == cudaErrorMemoryAllocation) (void)cudaGetLastError(); /* not sticky: clear it */
+  size_t free_b, total_b;
+  fprintf(stderr, "mdpore: CUDA backend: cannot allocate %s", what);
+  if (bytes) fprintf(stderr, " (%.4g MB)", (double)bytes / 1e6);
+  fprintf(stderr, " on the %s: %s; ", where, cudaGetErrorString(e));
+  if (device_memory(&free_b, &total_b))
+    fprintf(stderr, "the GPU has %.4g GB free of %.4g GB; ", (double)free_b / 1e9,
+            (double)total_b / 1e9);
+  fprintf(stderr, "%s\n", advice);
+  return -1;
+}
+
 int cuda_check(cudaError_t e, const char *what) {
   if (e == cudaSuccess) return 0;
+  if (e == cudaErrorMemoryAllocation) return cuda_check_alloc(e, what, 0, "GPU");
   fprintf(stderr, "mdpore: CUDA error in %s: %s\n", what, cudaGetErrorString(e));
   return -1;
 }
 
-int cuda_alloc(struct cuda_sim *g, void **ptr, size_t bytes) {
+int cuda_alloc_named(struct cuda_sim *g, void **ptr, size_t bytes, const char *what) {
   *ptr = NULL;
   if (bytes == 0) return 0;
-  if (cuda_check(cudaMalloc(ptr, bytes), "cudaMalloc")) return -1;
+  const char *amp = strrchr(what, '&'); /* "(void **)&g->rho" names g->rho */
+  char name[96];
+  snprintf(name, sizeof name, "device array %s", amp ? amp + 1 : what);
+  if (cuda_check_alloc(cudaMalloc(ptr, bytes), name, bytes, "GPU")) {
+    *ptr = NULL;
+    return -1;
+  }
   g->bytes += bytes;
   return 0;
 }
@@ -144,7 +186,7 @@ static int room_for(const struct cuda_sim *g, int need) {
 
 /* Bytes per slot of the fast mode's arrays besides the lists (reserve_cap), and the list room a
  * run of mDPD water at rho 6.2-8 ends up with (strides of ~128 entries measured on the porous
- * benchmark: bench/RESULTS.md, 791 bytes per particle). */
+ * benchmark: bench/RESULTS.md, 791 bytes per particle). The auto mode's choice. */
 static size_t fast_bytes_per_slot(const struct cuda_sim *g) {
   const size_t set = 8 + 4 + 3 * 3 * 8 + (g->prm.use_vpred ? 3 * 8 : 0);
   return 2 * set + sizeof(meso_real) + 4 * 4 + sizeof(struct dev_pos) + 4 +
@@ -152,8 +194,43 @@ static size_t fast_bytes_per_slot(const struct cuda_sim *g) {
          128 * 4 /* lists */;
 }
 
+/* The device plan per slot: the arrays reserve_cap makes in a memory mode (compact or not), the
+ * lists of the fast mode at the room fast_bytes_per_slot counts, the wall field and the sort's
+ * temporary storage (~8 bytes). */
+static size_t plan_bytes_per_slot(int use_vpred, int thermostat, int density, int wall_field,
+                                  int terms, int multi, int compact) {
+  const int one_set = compact && !multi;
+  const size_t set = 8 + (one_set ? 8 : 4) + 3 * 3 * 8 + (use_vpred ? 3 * 8 : 0);
+  size_t b = (one_set ? set + 8 /* sort_scratch */ : 2 * set) + 4 * 4 /* keys, iota, perm */ +
+             sizeof(struct dev_pos) + 8 /* sort */;
+  if (density) b += sizeof(meso_real) * (multi ? 2 : 1); /* rho (+ rho_stage) */
+  if (!one_set) b += 4;                                  /* nbr_count */
+  if (thermostat) b += sizeof(struct dev_vel);
+  if (wall_field) b += sizeof(wall_field_t);
+  if (!compact && terms) b += 128 * 4; /* lists */
+  return b;
+}
+
+static size_t sim_plan_bytes_per_slot(const struct cuda_sim *g, int compact) {
+  return plan_bytes_per_slot(g->prm.use_vpred, (g->prm.terms & PAIR_TERM_THERMOSTAT) != 0,
+                             g->prm.density, g->prm.pe.on[EFFECT_WALL_BOUNDARY], g->prm.terms,
+                             g->prm.multi, compact);
+}
+
+extern "C" double cuda_device_bytes_per_particle(const plan_t *plan, int nranks, int gpu_memory) {
+  const int multi = nranks > 1;
+  const double slots = multi ? 1.25 : 1.0625; /* room_for's margin */
+  return slots * (double)plan_bytes_per_slot(
+                     plan->use_vpred, (plan->pair_terms & PAIR_TERM_THERMOSTAT) != 0, plan->density,
+                     plan->named[EFFECT_WALL_BOUNDARY], plan->pair_terms, multi,
+                     gpu_memory == SCENE_GPU_MEMORY_COMPACT);
+}
+
 /* Room for n particles; contents are not kept (called before an upload only). With --gpu-memory
- * auto the fast mode is kept unless its estimate exceeds 92% of the device's free memory. */
+ * auto the fast mode is kept unless its estimate exceeds 92% of the device's free memory. Then the
+ * device plan: the arrays of the mode (with the fast mode's lists) against the free memory (capped
+ * by MDPORE_GPU_MEMORY_LIMIT) and what this run's particle arrays hold now (made again here); over
+ * it, a refusal naming the sizes and what to try, before any allocation. */
 int cuda_reserve(struct cuda_sim *g, int n) {
   if (n <= g->cap) return 0;
   if (!g->compact && g->memory_request == SCENE_GPU_MEMORY_AUTO && g->prm.terms) {
@@ -169,6 +246,26 @@ int cuda_reserve(struct cuda_sim *g, int n) {
                "the fast mode would need ~%.1f GB for %d particles, %.1f GB of %.1f GB are free",
                need / 1e9, n, (double)free_b / 1e9, (double)total_b / 1e9);
       if (cuda_go_compact(g, why)) return -1;
+    }
+  }
+  size_t free_b = 0, total_b = 0;
+  if (device_memory(&free_b, &total_b)) {
+    const double slots = (double)room_for(g, n);
+    const double per_slot = (double)sim_plan_bytes_per_slot(g, g->compact);
+    const double need = slots * per_slot, free_plan = plan_free_bytes(free_b);
+    const double held = g->bytes > g->fixed_bytes ? (double)(g->bytes - g->fixed_bytes) : 0.0;
+    if (need > free_plan + held) {
+      fprintf(stderr,
+              "mdpore: CUDA backend: not enough GPU memory: %d particles need ~%.4g GB in the %s "
+              "mode (%.0f slots x %.0f bytes: particle fields, sort keys, packed positions%s%s) "
+              "but %.4g GB are free (%s; the GPU has %.4g GB, this run holds %.4g GB there); "
+              "%s\n",
+              n, need / 1e9, g->compact ? "compact" : "fast", slots, per_slot,
+              g->compact ? "" : ", neighbour lists of 128 entries",
+              g->prm.pe.on[EFFECT_WALL_BOUNDARY] ? ", wall field" : "", free_plan / 1e9,
+              free_plan < (double)free_b ? "MDPORE_GPU_MEMORY_LIMIT" : "cudaMemGetInfo",
+              (double)total_b / 1e9, (double)g->bytes / 1e9, advice);
+      return -1;
     }
   }
   return reserve_cap(g, n, room_for(g, n));
@@ -307,7 +404,7 @@ int cuda_nbr_reserve(struct cuda_sim *g, int stride) {
              stride, (double)bytes / 1e9);
     return cuda_go_compact(g, why);
   }
-  if (cuda_check(e, "cudaMalloc (neighbour lists)")) {
+  if (cuda_check_alloc(e, "the neighbour lists", bytes, "GPU")) {
     g->nbr = NULL;
     return -1;
   }
