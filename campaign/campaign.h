@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <sys/types.h>
 
+#include "common/json_out.h"
 #include "common/units.h"
 #include "mdpore_image.h"
 
@@ -93,6 +94,10 @@ typedef struct {
   int require_target;           /* --require-target: a run that missed its target error is out */
   int sides_mirror;        /* --sides mirror: the lateral faces mirrored too (default periodic) */
   int boundary_of_axis[3]; /* resolved per flow axis by camp_resolve_boundaries */
+  /* the campaign-level stopping rule (campaign_rounds.c; 0: off, each run stops on its own) */
+  double target_error_k;  /* --target-error-k: the relative error of k to reach (0 < E < 1) */
+  long long round_steps;  /* --round-steps: the first round's steps of every run (0: default) */
+  long long budget_steps; /* --budget-steps: steps of all runs together (0: runs x max steps) */
 } camp_opts;
 
 /* One planned run. */
@@ -114,7 +119,9 @@ typedef struct {
   int reached;           /* 1 met the target, 0 not, -1 no target */
   double target_error;   /* the run's run.target_error (NAN: none) */
   int plateau; /* the blocked error of q reached a plateau (1), not (0: q_err a lower bound), -1 ? */
-  long long steps, particles, steady_from;
+  long long steps, particles, steady_from; /* steps: of the run's last segment (timing.steps) */
+  long long last_step;   /* the step the run has reached (a continued run: its total; -1 ?) */
+  long long target_step; /* --target-error-k: the step this round brings the run to (0: none) */
   double seconds;        /* loop seconds of the run */
   char summary_axis;     /* the summary's flux.axis ('x'..'z'; 0: not in the summary) */
   double fluid_fraction; /* the summary's flux.fluid_fraction (NAN: not in the summary) */
@@ -291,9 +298,65 @@ typedef struct {
   char why[256];     /* the reason, naming the measured value and the bound */
 } camp_flag;
 int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest, camp_flag *flag);
+/* The bounds of the campaign's options (o NULL: the defaults) and liquid. */
+void camp_checks_of(const camp_opts *o, const campaign *c, camp_checks *lim);
+/* rows[0..n) sorted by G: the admissible ones kept in place (G order), their number returned; the
+ * left-out ones copied to out[] with their flag in flags[] (*n_out of them; out may be NULL). The
+ * liquid at rest is the core of the weakest run that passes the other checks. */
+int camp_admit_rows(camp_run **rows, int n, const camp_checks *lim, camp_run **out,
+                    camp_flag *flags, int *n_out);
 /* Exit status of `mdpore permeability` (run or --collect) when its runs define no Darcy range on
  * some axis, so k is not reported there (1: an error, 2: bad usage). */
 #define CAMP_EXIT_NO_DARCY_RANGE 3
+
+/* campaign_rounds.c: the campaign-level stopping rule (--target-error-k; docs/permeability.md,
+ * "Stopping on the error of k"). The runs' scenes carry no target error of their own, run.steps the
+ * first round and a checkpoint written at the end only (CAMP_CHECKPOINT_FILE; every beyond any run):
+ * round 1 runs every run for --round-steps; each later round continues the runs that lower var(k)
+ * most per particle-step (camp_allocate) from their checkpoints, until the relative error of the
+ * Darcy range's k is at most E on every axis or the step budget is spent. The rounds are recorded
+ * in WORKDIR/rounds.txt (a killed campaign replays it, reusing the runs that reached their round's
+ * step) and reported on stdout and in WORKDIR/rounds.json and permeability.json. 0, -1, or
+ * CAMP_ROUNDS_REFUSED (a budget below the first round). */
+#define CAMP_CHECKPOINT_FILE "checkpoint.h5"
+#define CAMP_CHECKPOINT_NEVER 2000000000LL
+#define CAMP_MAX_ROUNDS 64
+#define CAMP_ROUNDS_REFUSED (-2) /* the options refused before any run (bad usage) */
+int camp_rounds(const camp_opts *o, campaign *c);
+/* The rounds as run, for the report and permeability.json (collect): per round the step each
+ * run reached, and per axis the outcome. */
+typedef struct {
+  int n_rounds;
+  long long step[CAMP_MAX_ROUNDS][CAMP_MAX_RUNS]; /* the step run i reached in round r */
+  double wall_seconds[CAMP_MAX_ROUNDS];           /* of each round (NAN: an earlier process's) */
+  double k_rel_err[CAMP_MAX_ROUNDS][3];           /* after each round, per axis (NAN: none) */
+  double share[CAMP_MAX_RUNS];                    /* each run's share of var(k) at the end */
+  double target, budget_steps;
+  int met[3];            /* per axis: the relative error of k reached the target */
+  char stop_why[3][256]; /* per axis: why the rounds stopped */
+} camp_rounds_report;
+extern camp_rounds_report camp_rounds_done; /* n_rounds 0: the rule was not used */
+/* The object "campaign_stop" of permeability.json and rounds.json (nothing when not used). */
+void camp_rounds_json(json_out *j, const campaign *c);
+
+/* campaign_allocate.c: the extension of each run in the next round for one axis (pure, tested).
+ * Rows: the runs in the Darcy range, with G, their q error s, their steady window T (steps), their
+ * particles N and the step they reached. For the weighted least-squares slope through the origin
+ * the information is W = sum_i G_i^2 / s_i^2 and var(k) = mu^2 / W (times chi2/dof where the rows
+ * scatter); s_i^2 falls as 1 / T_i, so dT more steps of run i add (G_i^2 / (s_i^2 T_i)) dT to W at
+ * a cost of N_i dT particle-steps. The relative error e of k falls as 1 / sqrt(W), so E needs
+ * W_need = 1.1 W (e / E)^2 (10% over: the errors of short windows are themselves uncertain). The
+ * deficit W_need - W goes to the runs in decreasing order of G_i^2 / (s_i^2 T_i N_i), the gain per
+ * particle-step, each at most doubling its steps in a round (its error is measured again before it
+ * grows further) and within *budget steps (decreased). ext[i]: the steps added to row i, a
+ * multiple of quantum. Returns the part of W_need / W - 1 left uncovered (0: covered). */
+typedef struct {
+  double G, s, T, N;
+  long long steps; /* the step the run has reached */
+} camp_alloc_row;
+#define CAMP_ALLOC_MARGIN 1.1
+double camp_allocate(const camp_alloc_row *rows, int n, double rel_err, double target,
+                     long long quantum, long long *budget, long long *ext);
 
 /* campaign_exec.c: runs argv (execvp) in dir (NULL: here) with stdout + stderr to log (NULL: ours),
  * in the environment this process started with. Returns the exit status or -1. */

@@ -28,6 +28,16 @@ const char *camp_usage =
     "  --target-error E    run.target_error of every run (0 < E < 1, default 0.05)\n"
     "  --max-steps N       run.steps, the step budget of every run (default 20000; a scene: its "
     "own)\n"
+    "  --target-error-k E  stop the campaign, not each run, on the relative error of k (0 < E < "
+    "1):\n"
+    "                      every run for --round-steps, then in rounds the runs that lower the\n"
+    "                      error of k most per particle-step continued from their checkpoints,\n"
+    "                      until E or --budget-steps (replaces --target-error; "
+    "docs/permeability.md)\n"
+    "  --round-steps N     --target-error-k: the first round's steps of every run (default\n"
+    "                      --max-steps / 20, at least 100 flux samples)\n"
+    "  --budget-steps N    --target-error-k: the steps of all runs together (default: runs x\n"
+    "                      --max-steps, the most the per-run rule could spend)\n"
     "  --dt DT             run.dt of every run (default: the template's, 0.01 for an image)\n"
     "  --accuracy P        fast | balanced | precise: dt, target error and step budget from the\n"
     "                      measured accuracy table (docs/accuracy.md); explicit options win\n"
@@ -139,6 +149,58 @@ static int parse_ll(const char *opt, const char *s, long long lo, const char *wh
   return 0;
 }
 
+/* --target-error-k and the options that go with it (campaign_rounds.c): what it cannot be combined
+ * with refused, naming both options and why; the first round's length and the budget's defaults. */
+static int check_rounds(camp_opts *o, int error_given) {
+  const char *k_opt = "mdpore permeability: --target-error-k";
+  if (!(o->target_error_k > 0)) {
+    if (o->round_steps || o->budget_steps) {
+      fprintf(stderr, "mdpore permeability: %s: applies with --target-error-k E only\n",
+              o->round_steps ? "--round-steps" : "--budget-steps");
+      return -1;
+    }
+    return 0;
+  }
+  const char *with = o->collect_dir[0]                 ? "--collect"
+                     : o->emit_dir[0]                  ? "--emit-scenes"
+                     : error_given                     ? "--target-error"
+                     : o->require_target               ? "--require-target"
+                     : o->drive == CAMP_DRIVE_PRESSURE ? "--drive pressure"
+                                                       : NULL;
+  if (with) {
+    static const char *const why[] = {
+        "--collect reads a campaign folder as it is: run the campaign with the option, or collect "
+        "without it",
+        "the campaign runs in rounds that continue runs from their checkpoints, which one command "
+        "per run (commands.txt) cannot do: use --target-error for emitted scenes",
+        "each run's own stop would end it before its round does: the campaign sets every run's "
+        "length; give one or the other",
+        "the runs have no target error of their own",
+        "a continued run does not carry its measured pressure drop across the continuation: use "
+        "the body drive"};
+    const int w = !strcmp(with, "--collect")          ? 0
+                  : !strcmp(with, "--emit-scenes")    ? 1
+                  : !strcmp(with, "--target-error")   ? 2
+                  : !strcmp(with, "--require-target") ? 3
+                                                      : 4;
+    fprintf(stderr, "%s: not supported with %s: %s\n", k_opt, with, why[w]);
+    return -1;
+  }
+  if (!(o->max_steps > 0)) o->max_steps = 20000; /* the budget's unit, for a scene too */
+  if (!o->round_steps) { /* a twentieth of a run's budget, >= 100 flux samples */
+    o->round_steps = o->max_steps / 20 / o->flux_every * o->flux_every;
+    if (o->round_steps < 100LL * o->flux_every) o->round_steps = 100LL * o->flux_every;
+  }
+  if (o->round_steps > o->max_steps) {
+    fprintf(stderr,
+            "mdpore permeability: --round-steps %lld: expected at most --max-steps (%lld): the "
+            "first round is a part of a run's budget\n",
+            o->round_steps, o->max_steps);
+    return -1;
+  }
+  return 0;
+}
+
 static int ends_with(const char *s, const char *suffix) {
   size_t n = strlen(s), m = strlen(suffix);
   return n >= m && !strcmp(s + n - m, suffix);
@@ -238,6 +300,13 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     } else if (!strcmp(s, "--target-error")) {
       if (parse_double(s, v, 0, 1, "a relative error 0 < E < 1", &o->target_error)) return -1;
       error_given = 1;
+    } else if (!strcmp(s, "--target-error-k")) {
+      if (parse_double(s, v, 0, 1, "a relative error of k 0 < E < 1", &o->target_error_k))
+        return -1;
+    } else if (!strcmp(s, "--round-steps")) {
+      if (parse_ll(s, v, 1, "a positive number of steps", &o->round_steps)) return -1;
+    } else if (!strcmp(s, "--budget-steps")) {
+      if (parse_ll(s, v, 1, "a positive number of steps", &o->budget_steps)) return -1;
     } else if (!strcmp(s, "--max-steps")) {
       if (parse_ll(s, v, 1, "a positive number of steps", &o->max_steps)) return -1;
       steps_given = 1;
@@ -355,6 +424,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
             camp_boundary_name(o->boundary));
     return -1;
   }
+  if (o->collect_dir[0] && check_rounds(o, error_given)) return -1;
   if (o->collect_dir[0]) {
     if (input || o->emit_dir[0]) {
       fprintf(stderr, "mdpore permeability: --collect DIR reads a campaign folder: give no "
@@ -372,6 +442,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
     return -1;
   }
   if (accuracy && camp_accuracy_preset(accuracy, o, dt_given, error_given, steps_given)) return -1;
+  if (check_rounds(o, error_given)) return -1;
   if (access(input, R_OK)) {
     fprintf(stderr,
             "mdpore permeability: %s: cannot read the input (%s): expected a segmented "

@@ -89,3 +89,36 @@ int camp_run_admissible(const camp_run *r, const camp_checks *lim, double n_rest
   }
   return 1;
 }
+
+void camp_checks_of(const camp_opts *o, const campaign *c, camp_checks *lim) {
+  *lim = (camp_checks){
+      .fill_density = c->fluid_density,
+      .kT = c->kT,
+      .density_tol = o ? o->density_tolerance : CAMP_DEFAULT_DENSITY_TOLERANCE,
+      .cavitation_tol = o ? o->cavitation_tolerance : CAMP_DEFAULT_CAVITATION_TOLERANCE,
+      .temperature_tol = o ? o->temperature_tolerance : CAMP_DEFAULT_TEMPERATURE_TOLERANCE,
+      .require_target = o ? o->require_target : 0};
+}
+
+int camp_admit_rows(camp_run **rows, int n, const camp_checks *lim, camp_run **out,
+                    camp_flag *flags, int *n_out) {
+  double n_rest = 0; /* the liquid at rest: the core of the weakest run that passes the others */
+  camp_flag flag;
+  for (int i = 0; i < n && !(n_rest > 0); i++)
+    if (camp_run_admissible(rows[i], lim, 0, &flag) && isfinite(rows[i]->core_density))
+      n_rest = rows[i]->core_density;
+  int kept = 0;
+  *n_out = 0;
+  for (int i = 0; i < n; i++) {
+    if (camp_run_admissible(rows[i], lim, n_rest, &flag)) {
+      rows[kept++] = rows[i];
+      continue;
+    }
+    if (out && *n_out < CAMP_MAX_GRADIENTS) {
+      out[*n_out] = rows[i];
+      flags[*n_out] = flag;
+      (*n_out)++;
+    }
+  }
+  return kept;
+}

@@ -47,6 +47,11 @@ typedef struct {
   char left_out_why[CAMP_MAX_GRADIENTS][256];
 } axis_result;
 
+/* The steps a run ran: all of its segments for a run continued from its checkpoint. */
+static long long run_steps(const camp_run *r) {
+  return r->last_step > 0 ? r->last_step : r->steps;
+}
+
 static int by_g(const void *a, const void *b) {
   const camp_run *x = *(camp_run *const *)a, *y = *(camp_run *const *)b;
   return (x->G > y->G) - (x->G < y->G);
@@ -192,34 +197,19 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   memset(ar, 0, sizeof *ar);
   ar->k = ar->k_err = ar->k_all = ar->k_all_err = ar->chi2_dof = NAN;
   ar->n_missing = missing;
-  const camp_checks lim = {
-      .fill_density = c->fluid_density,
-      .kT = c->kT,
-      .density_tol = o ? o->density_tolerance : CAMP_DEFAULT_DENSITY_TOLERANCE,
-      .cavitation_tol = o ? o->cavitation_tolerance : CAMP_DEFAULT_CAVITATION_TOLERANCE,
-      .temperature_tol = o ? o->temperature_tolerance : CAMP_DEFAULT_TEMPERATURE_TOLERANCE,
-      .require_target = o ? o->require_target : 0};
+  camp_checks lim;
+  camp_checks_of(o, c, &lim);
   qsort(rows, n, sizeof rows[0], by_g);
-  /* the liquid at rest: the core of the weakest run that passes the other checks */
-  double n_rest = 0;
-  camp_flag flag;
-  for (int i = 0; i < n && !(n_rest > 0); i++)
-    if (camp_run_admissible(rows[i], &lim, 0, &flag) && isfinite(rows[i]->core_density))
-      n_rest = rows[i]->core_density;
-  int kept = 0;
-  for (int i = 0; i < n; i++) { /* runs whose liquid is not the linear response's are left out */
-    if (camp_run_admissible(rows[i], &lim, n_rest, &flag)) {
-      rows[kept++] = rows[i];
-      continue;
-    }
-    if (ar->n_left_out < CAMP_MAX_GRADIENTS) {
-      ar->left_out_G[ar->n_left_out] = rows[i]->G;
-      snprintf(ar->left_out_dir[ar->n_left_out], 1024, "%.1023s", rows[i]->dir);
-      ar->left_out_check[ar->n_left_out] = flag.check;
-      ar->left_out_measured[ar->n_left_out] = flag.measured;
-      snprintf(ar->left_out_why[ar->n_left_out], 256, "%s", flag.why);
-      ar->n_left_out++;
-    }
+  /* runs whose liquid is not the linear response's are left out */
+  camp_run *out[CAMP_MAX_GRADIENTS];
+  camp_flag flags[CAMP_MAX_GRADIENTS];
+  const int kept = camp_admit_rows(rows, n, &lim, out, flags, &ar->n_left_out);
+  for (int i = 0; i < ar->n_left_out; i++) {
+    ar->left_out_G[i] = out[i]->G;
+    snprintf(ar->left_out_dir[i], 1024, "%.1023s", out[i]->dir);
+    ar->left_out_check[i] = flags[i].check;
+    ar->left_out_measured[i] = flags[i].measured;
+    snprintf(ar->left_out_why[i], 256, "%s", flags[i].why);
   }
   for (int i = 0; i < kept; i++) {
     ar->n_no_temperature += !isfinite(rows[i]->temperature);
@@ -283,7 +273,14 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   flow_table_add_comment(&t, line);
   snprintf(line, sizeof line, "length unit = %s", c->length_source);
   flow_table_add_comment(&t, line);
-  snprintf(line, sizeof line, "run_length = steps run; target relative error %g", c->target_error);
+  if (camp_rounds_done.n_rounds > 0) /* --target-error-k: no run had a target of its own */
+    snprintf(line, sizeof line,
+             "run_length = steps run (over every round); the campaign stopped on the relative "
+             "error of k, target %g (--target-error-k)",
+             camp_rounds_done.target);
+  else
+    snprintf(line, sizeof line, "run_length = steps run; target relative error %g",
+             c->target_error);
   flow_table_add_comment(&t, line);
   /* the runs left out are no rows of the table (nor of the fits): named here with the reason */
   for (int i = 0; i < ar->n_left_out; i++) {
@@ -310,7 +307,7 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
                              : 0.0;
     const double sigma =
         sqrt(rows[i]->q_err * rows[i]->q_err + rows[i]->q * rows[i]->q * rel_G * rel_G);
-    flow_table_add_row(&t, rows[i]->G, rows[i]->q, sigma, (double)rows[i]->steps);
+    flow_table_add_row(&t, rows[i]->G, rows[i]->q, sigma, (double)run_steps(rows[i]));
   }
   /* the Darcy range decides whether these rows define k at all, before any law is fitted to them */
   const camp_linear *L = &ar->linear;
@@ -337,7 +334,7 @@ static int collect_axis(const camp_opts *o, const campaign *c, const char *workd
   for (int i = 0; i < n; i++)
     printf("  %-12.5g %-12.5g %-12.4g %-12.5g %-12.3g %-10.3g %lld%s%s\n", rows[i]->g, rows[i]->G,
            rows[i]->G * u->G_Pa_per_m, rows[i]->q, rows[i]->q_err, rows[i]->q * u->q_m_per_s,
-           rows[i]->steps, rows[i]->reached == 0 ? " (target not reached)" : "",
+           run_steps(rows[i]), rows[i]->reached == 0 ? " (target not reached)" : "",
            rows[i]->reused ? " (reused)" : "");
   if (c->drive == CAMP_DRIVE_PRESSURE) {
     printf("  pressure drive (reservoir %g rc): G measured, g = the equivalent body force of the "
@@ -540,6 +537,7 @@ static void write_json(const char *workdir, const campaign *c, const camp_units 
     json_object_end(&j);
   }
   json_object_end(&j);
+  camp_rounds_json(&j, c); /* --target-error-k: the rounds, the steps and the error budget */
   json_end(&j);
   atomic_commit(f, tmp, path);
 }

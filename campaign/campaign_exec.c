@@ -205,11 +205,51 @@ static int run_argv(const camp_opts *o, char *buf, char **argv, int max) {
   return n;
 }
 
+/* --target-error-k (campaign_rounds.c): the argv that brings run r to its round's step. A run
+ * without a summary starts afresh for target_step steps; one whose summary is at step S continues
+ * from the checkpoint of S for target_step - S more (`mdpore run --restart FILE --steps N`, which
+ * the engine continues bitwise as one uninterrupted run, its flux log cut back to S and read back
+ * for the analysis). The checkpoint of S is hard-linked to checkpoint_<S>.h5 before the
+ * continuation writes its own checkpoint.h5: a continuation killed after writing it, but before
+ * its summary, leaves the summary at S, and the next attempt continues from that link again. The
+ * buffers are static: the child has its copy once spawned. -1 (message) when the link fails. */
+static int round_argv(const camp_opts *o, const camp_run *r, char **argv, int *continued) {
+  static char buf[512], steps_text[32], ckpt[CAMP_PATH + 64];
+  static char steps_flag[] = "--steps", restart_flag[] = "--restart";
+  const int n = run_argv(o, buf, argv, 56) - 1; /* ... run | scene.yaml */
+  int a = n;
+  *continued = r->last_step > 0 && r->last_step < r->target_step;
+  snprintf(steps_text, sizeof steps_text, "%lld",
+           *continued ? r->target_step - r->last_step : r->target_step);
+  argv[a++] = steps_flag;
+  argv[a++] = steps_text;
+  if (*continued) {
+    char from[CAMP_PATH + 96], at[CAMP_PATH + 96];
+    snprintf(ckpt, sizeof ckpt, "checkpoint_%lld.h5", r->last_step);
+    snprintf(from, sizeof from, "%s/%s", r->dir, CAMP_CHECKPOINT_FILE);
+    snprintf(at, sizeof at, "%s/%s", r->dir, ckpt);
+    if (access(at, R_OK) && link(from, at)) {
+      fprintf(stderr,
+              "mdpore permeability: %s: cannot keep the checkpoint of step %lld to continue the "
+              "run from (%s)\n",
+              from, r->last_step, strerror(errno));
+      return -1;
+    }
+    argv[a++] = restart_flag;
+    argv[a++] = ckpt;
+  }
+  static char scene[] = "scene.yaml";
+  argv[a++] = scene;
+  argv[a] = NULL;
+  return 0;
+}
+
 /* One slot of the pool: the run it executes and when it started. */
 typedef struct {
   pid_t pid;
   int run;
   double t0;
+  long long from_step; /* --target-error-k: the step a continuation started from (0: fresh) */
 } slot_t;
 
 /* The run's summary read back, or the failure counted. */
@@ -232,7 +272,8 @@ int camp_execute(const camp_opts *o, campaign *c) {
   char *const *env = camp_jobs_env(o, jobs);
   camp_progress p;
   camp_progress_start(&p, c->n_runs, jobs);
-  char buf[512], *argv[64], why[CAMP_PATH + 256], path[CAMP_PATH + 32];
+  char buf[512], *argv[64], why[CAMP_PATH + 256], path[CAMP_PATH + 64];
+  const int rounds = o->target_error_k > 0; /* each run brought to its target_step */
   run_argv(o, buf, argv, 64);
   slot_t slot[CAMP_MAX_JOBS];
   int failed = 0, next = 0, ended = -1; /* ended: a run that ended, its progress line not printed */
@@ -244,7 +285,8 @@ int camp_execute(const camp_opts *o, campaign *c) {
       const int i = next++;
       camp_run *r = &c->runs[i];
       snprintf(path, sizeof path, "%s/summary.json", r->dir);
-      if (access(path, R_OK) == 0) {
+      if (rounds && access(path, R_OK) == 0) camp_read_summary(r, why, sizeof why);
+      if (access(path, R_OK) == 0 && (!rounds || r->last_step >= r->target_step)) {
         r->reused = 1;
         camp_read_summary(r, why, sizeof why);
         fprintf(stderr, "mdpore permeability: run %d/%d (axis %c, g = %g): reused %s\n", i + 1,
@@ -253,13 +295,28 @@ int camp_execute(const camp_opts *o, campaign *c) {
         camp_progress_done(&p, r, 0);
         continue;
       }
-      fprintf(stderr, "mdpore permeability: run %d/%d (axis %c, g = %g): running in %s\n", i + 1,
-              c->n_runs, 'x' + r->axis, r->g, r->dir);
-      unlink(path);
+      int continued = 0;
+      if (rounds && round_argv(o, r, argv, &continued)) {
+        finish(c, i, -1, &failed);
+        camp_progress_done(&p, r, 0);
+        continue;
+      }
+      if (continued)
+        fprintf(stderr,
+                "mdpore permeability: run %d/%d (axis %c, g = %g): continued from step %lld to "
+                "%lld in %s\n",
+                i + 1, c->n_runs, 'x' + r->axis, r->g, r->last_step, r->target_step, r->dir);
+      else
+        fprintf(stderr, "mdpore permeability: run %d/%d (axis %c, g = %g): running in %s\n", i + 1,
+                c->n_runs, 'x' + r->axis, r->g, r->dir);
+      if (!continued) unlink(path); /* a continued run keeps the summary of its checkpoint */
       slot_t *s = &slot[p.running];
       s->run = i;
       s->t0 = camp_now();
-      s->pid = camp_spawn_start(r->dir, argv, "run.log", env);
+      s->from_step = continued ? r->last_step : 0;
+      char log[64] = "run.log"; /* a continuation's: run_from_<S>.log, each its own */
+      if (continued) snprintf(log, sizeof log, "run_from_%lld.log", r->last_step);
+      s->pid = camp_spawn_start(r->dir, argv, log, env);
       if (s->pid < 0) {
         finish(c, i, -1, &failed);
         camp_progress_done(&p, r, 0);
@@ -291,6 +348,11 @@ int camp_execute(const camp_opts *o, campaign *c) {
     p.run_t0[k] = p.run_t0[p.running - 1];
     p.running--;
     finish(c, done.run, WIFEXITED(st) ? WEXITSTATUS(st) : -1, &failed);
+    if (done.from_step > 0 && c->runs[done.run].last_step == c->runs[done.run].target_step) {
+      /* continued to its step: the link of the checkpoint it started from is not needed again */
+      snprintf(path, sizeof path, "%s/checkpoint_%lld.h5", c->runs[done.run].dir, done.from_step);
+      unlink(path);
+    }
     ended = done.run;
     ended_wall = camp_now() - done.t0;
   }

@@ -8,6 +8,8 @@
  *   run.target_error     --target-error; run.steps --max-steps (when given); run.dt --dt (when
  *                        given, or from --accuracy); run.seed base + a hash
  *                        of g (independent noise per gradient)
+ *                        --target-error-k: no run.target_error, run.steps --round-steps and
+ *                        output.checkpoint at the end of the run (campaign_rounds.c continues it)
  *   geometry.image, geometry.patches.file, initial.lammps_data, initial.snapshot: absolute.
  * --drive pressure: box and image grow by the reservoir, effects.inlet_force replaces body_force
  * (pressure_drive below); the same rewrite for an IMAGE's template and a SCENE with a geometry
@@ -351,8 +353,19 @@ char *camp_scene_text(const char *template_path, const camp_opts *o, int axis, d
   set(d, output, "progress", scalar(d, "false"));
 
   int run = child_map(d, root, "run");
-  set(d, run, "target_error", number(d, o->target_error));
-  if (o->max_steps > 0) set(d, run, "steps", number(d, (double)o->max_steps));
+  if (o->target_error_k > 0) {
+    /* the campaign-level rule (campaign_rounds.c): no stop of the run's own; the first round's
+     * length, and a checkpoint at the end only (every beyond any run), from which the campaign
+     * continues the run */
+    unset(d, run, "target_error");
+    set(d, run, "steps", number(d, (double)o->round_steps));
+    int checkpoint = child_map(d, output, "checkpoint");
+    set(d, checkpoint, "every", number(d, (double)CAMP_CHECKPOINT_NEVER));
+    set(d, checkpoint, "file", scalar(d, CAMP_CHECKPOINT_FILE));
+  } else {
+    set(d, run, "target_error", number(d, o->target_error));
+    if (o->max_steps > 0) set(d, run, "steps", number(d, (double)o->max_steps));
+  }
   if (o->dt > 0) set(d, run, "dt", number(d, o->dt));
   char gtext[64];
   snprintf(gtext, sizeof gtext, "%.15g", g);

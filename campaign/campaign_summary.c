@@ -20,6 +20,7 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   char path[CAMP_PATH + 32];
   snprintf(path, sizeof path, "%s/summary.json", r->dir);
   r->have = 0;
+  r->last_step = -1;
   if (access(path, R_OK)) {
     snprintf(why, whylen, "%s: no summary (the run has not finished)", path);
     return 0;
@@ -87,6 +88,8 @@ int camp_read_summary(camp_run *r, char *why, int whylen) {
   double steps = num(&t, timing, "steps"), parts = num(&t, timing, "particles");
   r->seconds = num(&t, timing, "loop_seconds");
   r->steps = isfinite(steps) ? (long long)steps : 0;
+  const double last = num(&t, root, "last_step"); /* a run continued from a checkpoint: its total */
+  r->last_step = isfinite(last) ? (long long)last : -1;
   r->particles = isfinite(parts) ? (long long)parts : 0;
   yt_free(&t);
   if (!isfinite(r->q) || !(r->q_err > 0) || !isfinite(r->q_err) || !isfinite(r->G)) {

@@ -34,8 +34,10 @@ static int run(camp_opts *o) {
            c.n_runs, o->workdir, o->workdir, o->workdir, o->workdir);
     return 0;
   }
-  if (camp_write_commands(o->workdir, o, &c)) return 1;
-  int rc = camp_execute(o, &c);
+  /* --target-error-k: the runs go in rounds (campaign_rounds.c), which commands.txt cannot say */
+  if (!(o->target_error_k > 0) && camp_write_commands(o->workdir, o, &c)) return 1;
+  int rc = o->target_error_k > 0 ? camp_rounds(o, &c) : camp_execute(o, &c);
+  if (rc == CAMP_ROUNDS_REFUSED) return 2;
   int rc2 = camp_collect(o, &c, o->workdir);
   if (!rc && rc2 == CAMP_EXIT_NO_DARCY_RANGE) return rc2; /* the runs define no k on some axis */
   return rc || rc2 ? 1 : 0;

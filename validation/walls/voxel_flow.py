@@ -8,7 +8,8 @@ u = 0 on the voxel faces. So Q = (G / mu) Qhat with Qhat the integral of the sol
 Each voxel is cut into m x m cells (finite volumes; a wall face holds u = 0 half a cell away), the
 system solved by conjugate gradients (numpy, matrix-free), for m = 4, 8, 16, and Qhat extrapolated
 with the order the three levels show (a staircase's re-entrant corners make it less than 2). The
-square duct checks it: the series solution is reproduced to 1e-3 (test in __main__ --check).
+viscosity may vary from voxel to voxel (solve_field: layers of two liquids, validation/relperm/tube.py).
+The square duct checks it: the series solution is reproduced to 1e-3 (test in __main__ --check).
 
   voxel_flow.py --check                      the square duct against its series solution
   voxel_flow.py [--rc-per-voxel H] CSV ...   for tube_duct.py result tables made at H rc per voxel:
@@ -24,41 +25,65 @@ import sys
 import numpy as np
 
 
-def _solve(fine, h, tol=1e-10, maxit=20000):
-    """Integral of u over the cells of mask `fine` (cell size h) with -lap u = 1, u = 0 on faces to
-    cells outside (half a cell away)."""
+def solve_field(fine, h, mu=None, tol=1e-10, maxit=20000):
+    """u on the cells of mask `fine` (cell size h) with -div(mu grad u) = 1, u = 0 on faces to cells
+    outside (half a cell away); mu per cell (default 1). A face between two cells takes the harmonic
+    mean 2 mu_i mu_j / (mu_i + mu_j) (the flux through two half cells in series: continuity of u and
+    of the shear stress mu du/dn at an interface on the face, exact for layers), a wall face 2 mu_i.
+    Conjugate gradients with the diagonal as preconditioner (numpy, matrix-free)."""
     f = np.pad(fine, 1)
     inner = f[1:-1, 1:-1]
-    nb = (f[2:, 1:-1].astype(int) + f[:-2, 1:-1] + f[1:-1, 2:] + f[1:-1, :-2])
-    diag = np.where(inner, nb + 2.0 * (4 - nb), 1.0)  # a wall face counts twice (half a cell)
+    m = np.where(inner, 1.0 if mu is None else mu, 0.0)
+    mp = np.pad(m, 1)
+    faces = []  # (neighbour slice, coefficient) for the four faces of every cell
+    for sl in ((slice(2, None), slice(1, -1)), (slice(None, -2), slice(1, -1)),
+               (slice(1, -1), slice(2, None)), (slice(1, -1), slice(None, -2))):
+        mn = mp[sl]
+        k = np.where(mn > 0, 2.0 * m * mn / np.where(mn > 0, m + mn, 1.0), 2.0 * m)
+        faces.append((sl, np.where(inner, k, 0.0)))
+    diag = np.where(inner, sum(k for _, k in faces), 1.0)
 
     def apply(u):
         p = np.pad(u, 1)
-        out = diag * u - (p[2:, 1:-1] + p[:-2, 1:-1] + p[1:-1, 2:] + p[1:-1, :-2])
+        out = diag * u
+        for sl, k in faces:
+            out = out - k * p[sl]
         return np.where(inner, out, 0.0)
 
     b = np.where(inner, h * h, 0.0)
     u = np.zeros_like(b)
     r = b.copy()
-    p = r.copy()
-    rr = float((r * r).sum())
-    b2 = rr
+    z = r / diag
+    p = z.copy()
+    rz = float((r * z).sum())
+    b2 = float((b * b).sum())
     for _ in range(maxit):
         Ap = apply(p)
-        alpha = rr / float((p * Ap).sum())
+        alpha = rz / float((p * Ap).sum())
         u += alpha * p
         r -= alpha * Ap
-        rr_new = float((r * r).sum())
-        if rr_new <= tol * tol * b2:
+        if float((r * r).sum()) <= tol * tol * b2:
             break
-        p = r + (rr_new / rr) * p
-        rr = rr_new
-    return float(u.sum()) * h * h
+        z = r / diag
+        rz_new = float((r * z).sum())
+        p = z + (rz_new / rz) * p
+        rz = rz_new
+    return u
+
+
+def _solve(fine, h):
+    """Integral of u over the cells of mask `fine` (cell size h) with -lap u = 1 (solve_field)."""
+    return float(solve_field(fine, h).sum()) * h * h
 
 
 def qhat_voxels(pore, levels=(4, 8, 16)):
     """Qhat (voxel units: voxel edge 1) of the 2D pore mask, extrapolated in the cell size."""
-    q = [_solve(np.kron(pore, np.ones((m, m), bool)), 1.0 / m) for m in levels]
+    return extrapolate([_solve(np.kron(pore, np.ones((m, m), bool)), 1.0 / m) for m in levels], levels)
+
+
+def extrapolate(q, levels):
+    """Richardson extrapolation of q at three cell sizes 1/levels (levels in a constant ratio) with the
+    order the three show; the correction is returned as its own uncertainty."""
     d1, d2 = q[0] - q[1], q[1] - q[2]
     if d1 * d2 <= 0 or abs(d2) < 1e-15:
         return q[-1], 0.0
