@@ -1,9 +1,9 @@
 #!/bin/sh
 # The CUDA path's memory plan: with the device memory counted on capped at 100 kB
 # (MDPORE_GPU_MEMORY_LIMIT; the scene's ~1400 slots need ~0.24 MB in the compact mode), the run
-# must stop with exit 1 before its device arrays are made, with a message naming the particles, the bytes, the memory free and what to try; with --gpu-memory auto
-# it first takes the compact mode (the fast one does not fit either). Skipped (exit 77) without a
-# GPU.
+# must stop with exit 1 before its device arrays are made, with a message naming the particles,
+# the bytes, the memory free and what to try; with --gpu-memory auto it first takes the compact
+# mode (the fast one does not fit either). Skipped (exit 77) without a GPU.
 # Usage: test_cuda_memory_plan.sh MDPORE SCENE
 set -u
 M=$1; S=$2
