@@ -210,6 +210,19 @@ static void shares(const campaign *c, const axis_state *ax, camp_rounds_report *
   }
 }
 
+/* Round r's totals over the runs: how many it advanced, their steps and particle-steps. */
+static void round_totals(const campaign *c, const camp_rounds_report *rep, int r, int *runs,
+                         double *steps, double *psteps) {
+  *runs = 0;
+  *steps = *psteps = 0;
+  for (int i = 0; i < c->n_runs; i++) {
+    const long long s = steps_of_round(rep, r, i);
+    *runs += s > 0;
+    *steps += (double)s;
+    *psteps += (double)s * (double)c->runs[i].particles;
+  }
+}
+
 static void print_report(const campaign *c, const camp_rounds_report *rep) {
   printf("\n== stopping on the error of k: target %g ==\n", rep->target);
   double ps_all = 0, steps_all = 0;
@@ -219,14 +232,9 @@ static void print_report(const campaign *c, const camp_rounds_report *rep) {
       printf(" k_%c%c rel err", 'x' + d, 'x' + d);
   printf("\n");
   for (int r = 0; r < rep->n_rounds; r++) {
-    double ps = 0, st = 0;
-    int runs = 0;
-    for (int i = 0; i < c->n_runs; i++) {
-      const long long s = steps_of_round(rep, r, i);
-      runs += s > 0;
-      st += (double)s;
-      ps += (double)s * (double)c->runs[i].particles;
-    }
+    double ps, st;
+    int runs;
+    round_totals(c, rep, r, &runs, &st, &ps);
     ps_all += ps;
     steps_all += st;
     char wall[32] = "(reused)";
@@ -272,14 +280,9 @@ void camp_rounds_json(json_out *j, const campaign *c) {
   double steps_all = 0, ps_all = 0;
   json_array(j, "rounds");
   for (int r = 0; r < rep->n_rounds; r++) {
-    double st = 0, ps = 0;
-    int runs = 0;
-    for (int i = 0; i < c->n_runs; i++) {
-      const long long s = steps_of_round(rep, r, i);
-      runs += s > 0;
-      st += (double)s;
-      ps += (double)s * (double)c->runs[i].particles;
-    }
+    double st, ps;
+    int runs;
+    round_totals(c, rep, r, &runs, &st, &ps);
     steps_all += st;
     ps_all += ps;
     json_object(j, NULL);
