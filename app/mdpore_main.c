@@ -1,4 +1,5 @@
 /* mdpore: command-line entry point. Dispatches to one subcommand. */
+#include "common/mpi_singleton.h"
 #include "commands.h"
 
 #include <mpi.h>
@@ -51,6 +52,7 @@ static void usage(FILE *to) {
 
 int main(int argc, char **argv) {
   int provided = 0;
+  mpi_singleton_prepare();
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

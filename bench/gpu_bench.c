@@ -18,6 +18,7 @@
  * Particles start at random positions (fixed seed); the warm-up steps relax the overlaps.
  * MDPORE_BENCH_RNG=philox|philox2x32|fast: the generator of the pair random numbers
  * (dpd_thermostat's rng; default philox), printed as rng=... */
+#include "common/mpi_singleton.h"
 #include "bench_scene.h"
 #include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
@@ -195,6 +196,7 @@ static int run_one(scene_t *s, int porous, int k, int nranks, int grow, int rank
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   if (argc < 3) {
     fprintf(stderr, "usage: gpu_bench bulk|porous K [steps] [warmup] [cpu|cuda]\n");

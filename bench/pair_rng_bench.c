@@ -8,6 +8,7 @@
  *     random positions in a periodic box of side L, 1 rank): ms per pass and ns per particle, the
  *     best of `passes` calls of the backend's pair-force phase on the same configuration.
  * usage: pair_rng_bench [L (12)] [passes (20)]   (OMP_NUM_THREADS sets the force pass's threads) */
+#include "common/mpi_singleton.h"
 #include "backend/backend.h"
 #include "bench_scene.h"
 #include "effects/dpd_thermostat.h"
@@ -87,6 +88,7 @@ static double force_pass_ms(int rng, double L, int passes, long *n_out) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   const double L = argc > 1 ? atof(argv[1]) : 12.0;
   const int passes = argc > 2 ? atoi(argv[2]) : 20;

@@ -8,6 +8,7 @@
  *  - without it (same start): the penetration count becomes > 0 (the counter is not blind).
  * With the argument "cuda" the same on the CUDA backend (the solid map is a device copy of the
  * plan's array); skipped (77) without a GPU. */
+#include "common/mpi_singleton.h"
 #include "test_cuda_common.h"
 
 #include "analysis/penetration.h"
@@ -64,6 +65,7 @@ static sim_t *build(const scene_t *s) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -17,6 +17,7 @@
  * steps: the same force bounds, dx <= 2e-5 after 5 steps (s < 1: see the check), and the same
  * number recoloured on both. Skipped (exit 77) without a
  * GPU. */
+#include "common/mpi_singleton.h"
 #include "test_cuda_common.h"
 
 #include "backend/cuda/cuda_backend.h"
@@ -229,6 +230,7 @@ static int run_case(int wall_boundary, int rng, int uniform, int liquids2, doubl
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   test_cuda_require_gpu();
   static double f_default[2]; /* a force component of the philox runs, by wall_boundary */

@@ -4,6 +4,7 @@
  * test_cuda_forces.c; the ghost order differs, so sums differ in the last bits). The scene is
  * test_cuda_forces.c's: mDPD + thermostat + frozen species + walls + reverse body force, lambda
  * 0.65. Skipped (exit 77) without a GPU. Run under mpiexec with 2 ranks (nvidia-h200-x2). */
+#include "common/mpi_singleton.h"
 #include "test_cuda_common.h"
 
 static void scene_of(scene_t *s) {
@@ -39,6 +40,7 @@ static int collect(sim_t *sim, int n, MPI_Comm comm, test_state_t *st) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   test_cuda_require_gpu();
   int rank, size;

@@ -2,6 +2,7 @@
  * diverge (chaos, float rounding), but the time averages of temperature and pressure must agree
  * within their error bars (block averages, 4 combined standard errors), and the GPU run conserves
  * the momentum along the periodic axes to float rounding. Skipped (exit 77) without a GPU. */
+#include "common/mpi_singleton.h"
 #include "test_cuda_common.h"
 
 enum { N = 3000, EQUIL = 1000, STEPS = 3000, BLOCKS = 15 };
@@ -51,6 +52,7 @@ static int run(scene_t *s, int backend, uint64_t seed, stat_t *T, stat_t *P, dou
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   test_cuda_require_gpu();
   scene_t s;

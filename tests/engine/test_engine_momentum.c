@@ -1,9 +1,11 @@
 /* Momentum is conserved to rounding in an mDPD + thermostat run without body force (pair forces are
  * antisymmetric, F_ij = -F_ji), on however many ranks this runs; particle count is conserved
  * (sim_step checks it every step) and the temperature stays near kT = 1. */
+#include "common/mpi_singleton.h"
 #include "test_engine_common.h"
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

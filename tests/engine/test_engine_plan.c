@@ -5,6 +5,7 @@
  *  - box_walls printed with its faces; body_force as a particle-force pass;
  * and scenes the engine cannot run are refused at sim_create with a message: a non-periodic axis
  * without box_walls, a subdomain thinner than the cutoff, both users of the pair amplitude A. */
+#include "common/mpi_singleton.h"
 #include "test_engine_common.h"
 
 static char *explain(const scene_t *s, int nranks) {
@@ -17,6 +18,7 @@ static char *explain(const scene_t *s, int nranks) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s;
   test_scene_mdpd(&s, 10, 10, 10);

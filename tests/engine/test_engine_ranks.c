@@ -3,6 +3,7 @@
  * and the same positions after a few steps. The random forces are keyed on (seed, step, ids), so
  * they are included. Scenes: mDPD (attraction + repulsion + thermostat) with a frozen species, with
  * lambda = 0.5 and lambda = 0.65. Run under mpiexec -n 1, 2, 4. */
+#include "common/mpi_singleton.h"
 #include "test_engine_common.h"
 
 typedef struct {
@@ -99,6 +100,7 @@ static int compare_scene(const scene_t *s, int n, int steps, const char *label) 
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s;
   /* 7.4 x 6.2 x 5 box at density ~5: subdomains stay >= rc on up to 4 ranks (2 x 2 x 1); their

@@ -3,9 +3,11 @@
  *    returns non-zero and names the cause;
  *  - a non-periodic box with reflecting box_walls keeps every particle inside over a driven run
  *    (count conserved, all positions within the box). */
+#include "common/mpi_singleton.h"
 #include "test_engine_common.h"
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s;
   test_scene_mdpd(&s, 5, 5, 5);

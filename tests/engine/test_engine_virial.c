@@ -2,6 +2,7 @@
  * thermo pressure tensor: sum_i W_i,ab = P_ab V - sum_i m v_a v_b. And forces do not depend on the
  * number of OpenMP threads: each particle's sum is done by one thread in a fixed order, so 1 and 3
  * threads give bitwise identical forces (needed for bitwise restarts). */
+#include "common/mpi_singleton.h"
 #include "test_engine_common.h"
 
 #ifdef _OPENMP
@@ -17,6 +18,7 @@ static sim_t *build(const scene_t *s) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s;
   test_scene_mdpd(&s, 5, 5, 5);

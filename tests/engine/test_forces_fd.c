@@ -3,6 +3,7 @@
  *   U = sum_pairs (A rc / 2) (1 - r/rc)^2 + sum_i (pi rd^4 B / 30) rho_i^2
  * Engine forces on a random periodic configuration (200 particles in 4^3) are compared with central
  * finite differences of U computed here by brute force; the relative error must be < 1e-6. */
+#include "common/mpi_singleton.h"
 #include "test_engine_common.h"
 
 typedef struct {
@@ -39,6 +40,7 @@ static double potential(const config_t *c) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s;
   const double L = 4.0;

@@ -16,6 +16,7 @@
  *    error.
  * Run on 2 ranks. With one argument SCENE.yaml it only builds that scene's geometry and exits 1
  * when that fails (the checker of tests/engine/bad_scenes/geometry). */
+#include "common/mpi_singleton.h"
 #include "populate/image_walls.h"
 #include "populate/init_config.h"
 #include "analysis/penetration.h"
@@ -115,6 +116,7 @@ static int check_scene(const char *path) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   if (argc == 2) {
     const int rc = check_scene(argv[1]);

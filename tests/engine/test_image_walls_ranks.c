@@ -10,6 +10,7 @@
  *  - a dead-end pocket across the periodic y face (y 0 and y 14, x 4..5, z 2..3: two clusters).
  * The voxel counts are asserted against the image by brute force (the same numbers on 1 rank).
  * Run on 4 ranks. */
+#include "common/mpi_singleton.h"
 #include "populate/image_walls.h"
 #include "populate/init_config.h"
 #include "effects/scene_load.h"
@@ -179,6 +180,7 @@ static int run(const scene_t *s, MPI_Comm comm, result_t *out) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int rank, size;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -6,6 +6,7 @@
  * force evaluations; particles of species "tracer" (force 0) and particles outside the slab get
  * nothing. A slab that wraps the periodic face (positions of any image) counts the same way.
  * Asserted to rounding per step, on however many ranks this runs. */
+#include "common/mpi_singleton.h"
 #include "effects/inlet_force.h"
 #include "test_engine_common.h"
 
@@ -79,6 +80,7 @@ static int run_case(double lo, double hi, const double g[3], int rank) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -2,6 +2,7 @@
  * zero total momentum and a temperature near the requested one; the configuration generated on the
  * parallel decomposition is bitwise the same as on one rank (keyed on ids, not on ranks). Frozen
  * species are at rest; a lattice fill realises the density within 5%. Run on 2 ranks. */
+#include "common/mpi_singleton.h"
 #include "effects/scene_load.h"
 #include "engine/sim.h"
 #include "io/gather.h"
@@ -34,6 +35,7 @@ static int build(const scene_t *s, MPI_Comm comm, particle_set_t *out) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -1,6 +1,7 @@
 /* Round trips through the file formats: a particle set written as a LAMMPS data file and as an HDF5
  * snapshot reads back identically (ids, species, positions, velocities to the last bit); a data
  * file whose atom type has no species is rejected with a message naming the file and line. */
+#include "common/mpi_singleton.h"
 #include "populate/lammps_data.h"
 #include "io/snapshot.h"
 
@@ -22,6 +23,7 @@ static int same(const particle_set_t *a, const particle_set_t *b) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s;
   memset(&s, 0, sizeof s);

@@ -4,6 +4,7 @@
  * particle gained or lost. Leavers: out below and above along the cut axis x (across the periodic
  * box faces too), out only along the uncut y (wrapped back: they stay), out along both, and one
  * non-finite position (noted as lost, kept, by both). Run under mpiexec -n 2 and -n 3. */
+#include "common/mpi_singleton.h"
 #include "domain/decomp.h"
 #include "domain/migrate.h"
 #include "domain/particle_store.h"
@@ -50,6 +51,7 @@ static int same_record(const migrant_t *a, const particles_t *p, int i) {
 int main(int argc, char **argv) {
   (void)argc;
   (void)argv;
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int nranks = 1, rank = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &nranks);

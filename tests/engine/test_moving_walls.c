@@ -18,6 +18,7 @@
  *  - the reflections relative to a moving wall: bounce_back gives v' = 2u - v, wall_boundary's
  *    reflection keeps the wall's velocity and reverses the relative one (unit checks).
  * With the argument "cuda" the run part on the CUDA backend (one rank; skipped without a GPU). */
+#include "common/mpi_singleton.h"
 #include "test_cuda_common.h"
 
 #include "populate/init_config.h"
@@ -199,6 +200,7 @@ static void unit_checks(void) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   use_cuda = argc > 1 && !strcmp(argv[1], "cuda");
   if (use_cuda) test_cuda_require_gpu();

@@ -10,11 +10,13 @@
  *  - the keyed form the CUDA force pass draws with (round keys once per step,
  * pair_random_bits_keyed) gives every generator's bits exactly, over random seeds, steps and ids
  * (the full 64-bit range for philox, below 2^32 for the 2x32 generators). */
+#include "common/mpi_singleton.h"
 #include "effects/dpd_thermostat.h"
 #include "physics/pair_random.h"
 #include "test_engine_common.h"
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   const long n = 2000000;
   double sum = 0, sum2 = 0, corr = 0;

@@ -1,6 +1,7 @@
 /* Parse scene files and report: exit 0 when every file given parses and validates, 1 otherwise.
  * Used by the tests that every scene in cases/ loads and that bad scenes fail with a clear message.
  */
+#include "common/mpi_singleton.h"
 #include "effects/plan.h"
 #include "effects/scene_load.h"
 #include "scene/scene.h"
@@ -9,6 +10,7 @@
 #include <stdio.h>
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int bad = 0;
   for (int i = 1; i < argc; i++) {

@@ -1,5 +1,6 @@
 /* The scene parser turns a full scene into the right numbers: defaults, pair overrides applied
  * symmetrically, effect options, fill regions, outputs, paths relative to the scene file. */
+#include "common/mpi_singleton.h"
 #include "effects/dpd_thermostat.h"
 #include "effects/effect.h"
 #include "effects/scene_load.h"
@@ -42,6 +43,7 @@ static const char *text =
     "  progress: false\n";
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   const char *path = "scene_parse_test.yaml";
   FILE *f = fopen(path, "w");

@@ -2,6 +2,7 @@
  * factors that physics.md section 4's definitions give when recomputed here from scratch (water
  * molecule 18.01528 u, rho_water 997 kg/m^3, kB), the fluid density comes from the scene, and the
  * block is not part of the physics hash (outputs only). */
+#include "common/mpi_singleton.h"
 #include "effects/scene_load.h"
 #include "scene/scene.h"
 
@@ -53,6 +54,7 @@ static void check_factors(const units_si_t *u, double rc, double e, double m) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   scene_t s, plain;
   const char *fill = "initial: {fill: [{species: wall, density: 8, lo: [0, 0, 0], hi: [6, 1, 6]},"

@@ -8,6 +8,7 @@
  *    floor of the mean or one more, less the particles dropped near walls;
  *  - the same species per id on 1 rank and on all ranks (the rank-local build).
  * Run on 2 ranks. */
+#include "common/mpi_singleton.h"
 #include "effects/scene_load.h"
 #include "engine/sim.h"
 #include "io/gather.h"
@@ -102,6 +103,7 @@ static long *id_order(const particle_set_t *p) {
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -3,6 +3,7 @@
  * (count, bounds, density, no overlapping particles), determinism, the file round trip, the cache
  * (into this test's working directory, never $HOME) and its in-memory fallback, the refusal of
  * mismatching or corrupt files, and the 24 cube rotations. */
+#include "common/mpi_singleton.h"
 #include "populate/wall_patches.h"
 
 #include <math.h>
@@ -144,6 +145,7 @@ static int check_refused(const char *path, double edge, double density, uint64_t
 }
 
 int main(int argc, char **argv) {
+  mpi_singleton_prepare();
   MPI_Init(&argc, &argv);
   char cwd[1024], cache[1100], path[1200], other[1300];
   if (!getcwd(cwd, sizeof cwd)) return 1;
