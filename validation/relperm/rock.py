@@ -213,7 +213,9 @@ def report(res, cont, fails, outdir):
         x = "-" if c["crossover"] is None else f"{c['crossover']:.3f}"
         lines.append(f"| {name} | {x} | {c['q_water_single']:.5g} | {c['q_oil_single']:.5g} |")
     for c in cont:
-        lines += ["", f"Continuum: {c['name']} fitted ({c['law']}), exported to SWOF "
+        how = (f"fitted ({c['law']})" if c["law"] else
+               "no law supported by the data (mdpore fit relperm): its measured points")
+        lines += ["", f"Continuum: {c['name']} {how}, exported to SWOF "
                   f"({'Pcow from the morphological imbibition Pc' if c['wetting'] == 'water' else 'Pcow 0'}), "
                   f"`mdpore darcy` two-phase at M = {c['M']:.3g}: Welge shock S_f = {c['s_f']:.4f} from "
                   f"S_i = {c['s_i']:.4f}"]
