@@ -15,6 +15,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 mdpore, work, commands = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3:]
@@ -31,9 +32,13 @@ failures = []
 
 
 def run(args, timeout=20):
+    """(exit, output) of one call, with a TMPDIR of its own: Open MPI singletons started at once
+    race on a shared session directory (open-mpi/ompi#8510: "A call to mkdir was unable to create
+    the desired directory", an exit 1 that names no option)."""
     try:
-        p = subprocess.run([mdpore, *args], capture_output=True, text=True, timeout=timeout,
-                           cwd=work)
+        with tempfile.TemporaryDirectory() as tmp:
+            p = subprocess.run([mdpore, *args], capture_output=True, text=True, timeout=timeout,
+                               cwd=work, env=dict(os.environ, TMPDIR=tmp))
         return p.returncode, p.stdout + p.stderr
     except subprocess.TimeoutExpired:
         return "timeout", ""
