@@ -14,6 +14,7 @@
 #include <stdint.h>
 #include <sys/types.h>
 
+#include "common/cli_help.h"
 #include "common/json_out.h"
 #include "common/units.h"
 #include "mdpore_image.h"
@@ -170,9 +171,10 @@ typedef struct {
 /* cmd_permeability.c: the subcommand. */
 int cmd_permeability(int argc, char **argv);
 
-/* campaign_args.c: options. Returns 0, 1 (help printed) or -1 (message printed). */
+/* campaign_args.c: options. Returns 0, CLI_HELP_SHORT or CLI_HELP_ALL (--help, --help-all asked)
+ * or -1 (message printed). */
 int camp_parse_args(int argc, char **argv, camp_opts *o);
-extern const char *camp_usage;
+extern const cli_help_page_t camp_help;
 
 /* campaign_template.c: the scene template (written to WORKDIR/template.yaml for an image) and the
  * campaign metadata from the image; pressure drive: the padded images (an IMAGE input's, or a

@@ -9,98 +9,129 @@
 
 #include "campaign.h"
 
-const char *camp_usage =
-    "usage: mdpore permeability IMAGE|SCENE --axis x|y|z|all [options]\n"
-    "       mdpore permeability IMAGE|SCENE --axis ... --emit-scenes DIR [options]\n"
-    "       mdpore permeability --collect DIR [--models LIST] [--*-tolerance F] "
-    "[--require-target]\n"
-    "A ladder of body-force runs (one `mdpore run` each, cached by a hash of its inputs), the "
-    "flow\n"
-    "table (docs/flow-table.md), `mdpore fit` on it, k in rc^2, m^2 and nD, a PNG "
-    "(docs/permeability.md).\n"
-    "  --axis A            x, y, z or all (the diagonal of the permeability tensor)\n"
-    "  --gradients G       auto (default: --n-gradients points, mean pore velocity log-spaced "
-    "over\n"
-    "                      --velocity-range) or a list of body forces per particle g, e.g. "
-    "0.05,0.1,0.2\n"
-    "  --n-gradients N     auto: number of gradients (>= 5, default 5)\n"
-    "  --velocity-range L,H  auto: mean pore velocity range (default 0.02,0.2)\n"
-    "  --target-error E    run.target_error of every run (0 < E < 1, default 0.05)\n"
-    "  --max-steps N       run.steps, the step budget of every run (default 20000; a scene: its "
-    "own)\n"
-    "  --target-error-k E  stop the campaign, not each run, on the relative error of k (0 < E < "
-    "1):\n"
-    "                      every run for --round-steps, then in rounds the runs that lower the\n"
-    "                      error of k most per particle-step continued from their checkpoints,\n"
-    "                      until E or --budget-steps (replaces --target-error; "
-    "docs/permeability.md)\n"
-    "  --round-steps N     --target-error-k: the first round's steps of every run (default\n"
-    "                      --max-steps / 20, at least 100 flux samples)\n"
-    "  --budget-steps N    --target-error-k: the steps of all runs together (default: runs x\n"
-    "                      --max-steps, the most the per-run rule could spend)\n"
-    "  --dt DT             run.dt of every run (default: the template's, 0.01 for an image)\n"
-    "  --accuracy P        fast | balanced | precise: dt, target error and step budget from the\n"
-    "                      measured accuracy table (docs/accuracy.md); explicit options win\n"
-    "  --np N              ranks per run: mpiexec -n N mdpore run (default 1: plain mdpore run)\n"
-    "  --mpiexec CMD       launcher and its flags (default: mpiexec)\n"
-    "  --jobs N|auto       runs executed at once, each its own process (default 1: one after\n"
-    "                      another, as on a CPU CI machine). auto: on a CUDA build with a GPU,\n"
-    "                      as many as fit in its free memory (at most 8); else cores / --np.\n"
-    "                      Every run's result is the same at any N\n"
-    "  --workdir DIR       campaign folder (default permeability-SAMPLE)\n"
-    "  --emit-scenes DIR   write the scenes, the manifest and commands.txt, run nothing\n"
-    "  --collect DIR       read a campaign folder back: tables, fits, report\n"
-    "  --rc-per-voxel R    image: voxel edge in rc (default: the critical throat along the flow\n"
-    "                      axes made --min-throat wide; refused below that unless --force)\n"
-    "  --min-throat RC     image: least critical throat along a flow axis, in rc (default 4)\n"
-    "  --force             image: run a --rc-per-voxel below --min-throat (with a warning)\n"
-    "  --voxel-size M      voxel edge in metres (default: the image's own, else the mDPD water\n"
-    "                      mapping rc = 0.82 nm)\n"
-    "  --viscosity MU      fluid viscosity in reduced units (default 5.41: mDPD A=-40 B=25\n"
-    "                      gamma=4.5 rd=0.75, validation/engine/viscosity.py)\n"
-    "  --wall-density W    image: wall patch density, particles per rc^3 "
-    "(default " CAMP_WALL_DENSITY_TEXT ": no slip on slits, docs/walls.md section 16)\n"
-    "  --wall-adsorption G  image: particles per rc^2 of wall face that the walls hold beyond\n"
-    "                      the core's density; the pores are filled at 6.2 + G S / V so that the\n"
-    "                      core is at 6.2 (default " CAMP_WALL_ADSORPTION_TEXT
-    ", measured at wall density " CAMP_WALL_DENSITY_TEXT "; 0 at\n"
-    "                      another --wall-density unless given; 0: a uniform fill at 6.2)\n"
-    "  --rng R             image: generator of the pair random numbers, philox (default),\n"
-    "                      philox2x32 or fast (dpd_thermostat rng; the same statistics, a cheaper\n"
-    "                      step: docs/accuracy.md)\n"
-    "  --temperature K     temperature of kT for the SI units (default 298.15)\n"
-    "  --seed S            base seed (default 12345; each gradient gets its own)\n"
-    "  --flux-every N      flux sample interval in steps (default 10)\n"
-    "  --models LIST       laws passed to mdpore fit (default: its default set)\n"
-    "  --sample NAME       sample name in the tables (default: the input's file name)\n"
-    "  --drive body|pressure  body: a body force on every fluid particle (default); pressure:\n"
-    "                      the image padded along the axis with an open reservoir, an inlet force\n"
-    "                      in it, G measured from the pressure drop across the sample (an IMAGE,\n"
-    "                      or a SCENE whose particles come from geometry.image)\n"
-    "  --reservoir R       pressure drive: reservoir length along the axis in rc (default 4, >= "
-    "3)\n"
-    "  --boundary B        the faces normal to the flow: auto (default: periodic where the "
-    "image's\n"
-    "                      end slices continue each other, else mirror), periodic (the image is "
-    "one\n"
-    "                      period), mirror (the image and its reflection: each face meets itself)\n"
-    "                      or reservoir (= --drive pressure)\n"
-    "  --cavitation-tolerance F  a run whose pore-core density departs from the fill by more\n"
-    "                      than F (the liquid cavitated or is compressed) is left out of the\n"
-    "                      Darcy range and the fits (default 0.08; an IMAGE's fill adds what\n"
-    "                      the walls adsorb, a scene's uniform fill leaves the core 2-3% below)\n"
-    "  --density-tolerance F  a run whose pore-core density departs by more than F from the\n"
-    "                      liquid at rest (the core of the weakest admissible run) is left out\n"
-    "                      (the forcing compressed or expanded it; default 0.03)\n"
-    "  --temperature-tolerance F  a run whose temperature departs from kT by more than F\n"
-    "                      (viscous heating) is left out (default 0.05)\n"
-    "  --require-target    a run that missed its target error is left out too (default: kept,\n"
-    "                      its larger error bar weighting it less; an unsteady run is out)\n"
-    "  --sides S           the lateral faces: periodic (default) or mirror (symmetry planes, as\n"
-    "                      mdpore foam --sides symmetry; four times the particles)\n"
-    "Exit status: 0 k reported on every axis; 3 the runs define no Darcy range on some axis (k is\n"
-    "not reported there: the report says why and what to try); 1 an error; 2 bad usage.\n"
-    "More: docs/permeability.md, docs/tutorial.md (mdpore --help lists every command)\n";
+static const cli_help_option_t camp_options[] = {
+    {"--axis A", "x, y, z or all (the diagonal of the permeability tensor)", 1},
+    {"--gradients G",
+     "auto (default: --n-gradients points, mean pore velocity log-spaced over --velocity-range) "
+     "or a list of body forces per particle g, e.g. 0.05,0.1,0.2",
+     0},
+    {"--n-gradients N", "auto: number of gradients (>= 5, default 5)", 0},
+    {"--velocity-range L,H", "auto: mean pore velocity range (default 0.02,0.2)", 0},
+    {"--target-error E", "run.target_error of every run (0 < E < 1, default 0.05)", 1},
+    {"--max-steps N", "run.steps, the step budget of every run (default 20000; a scene: its own)",
+     1},
+    {"--target-error-k E",
+     "stop the campaign, not each run, on the relative error of k (0 < E < 1): every run for "
+     "--round-steps, then in rounds the runs that lower the error of k most per particle-step "
+     "continued from their checkpoints, until E or --budget-steps (replaces --target-error; "
+     "docs/permeability.md)",
+     0},
+    {"--round-steps N",
+     "--target-error-k: the first round's steps of every run (default --max-steps / 20, at least "
+     "100 flux samples)",
+     0},
+    {"--budget-steps N",
+     "--target-error-k: the steps of all runs together (default: runs x --max-steps, the most "
+     "the per-run rule could spend)",
+     0},
+    {"--dt DT", "run.dt of every run (default: the template's, 0.01 for an image)", 0},
+    {"--accuracy P",
+     "fast | balanced | precise: dt, target error and step budget from the measured accuracy "
+     "table (docs/accuracy.md); explicit options win",
+     1},
+    {"--np N", "ranks per run: mpiexec -n N mdpore run (default 1: plain mdpore run)", 1},
+    {"--mpiexec CMD", "launcher and its flags (default: mpiexec)", 0},
+    {"--jobs N|auto",
+     "runs executed at once, each its own process (default 1: one after another, as on a CPU CI "
+     "machine). auto: on a CUDA build with a GPU, as many as fit in its free memory (at most 8); "
+     "else cores / --np. Every run's result is the same at any N",
+     0},
+    {"--workdir DIR", "campaign folder (default permeability-SAMPLE)", 1},
+    {"--emit-scenes DIR", "write the scenes, the manifest and commands.txt, run nothing", 1},
+    {"--collect DIR", "read a campaign folder back: tables, fits, report", 1},
+    {"--rc-per-voxel R",
+     "image: voxel edge in rc (default: the critical throat along the flow axes made "
+     "--min-throat wide; refused below that unless --force)",
+     1},
+    {"--min-throat RC", "image: least critical throat along a flow axis, in rc (default 4)", 0},
+    {"--force", "image: run a --rc-per-voxel below --min-throat (with a warning)", 0},
+    {"--voxel-size M",
+     "voxel edge in metres (default: the image's own, else the mDPD water mapping rc = 0.82 nm)",
+     0},
+    {"--viscosity MU",
+     "fluid viscosity in reduced units (default 5.41: mDPD A=-40 B=25 gamma=4.5 rd=0.75, "
+     "validation/engine/viscosity.py)",
+     0},
+    {"--wall-density W",
+     "image: wall patch density, particles per rc^3 (default " CAMP_WALL_DENSITY_TEXT
+     ": no slip on slits, docs/walls.md section 16)",
+     0},
+    {"--wall-adsorption G",
+     "image: particles per rc^2 of wall face that the walls hold beyond the core's density; the "
+     "pores are filled at 6.2 + G S / V so that the core is at 6.2 "
+     "(default " CAMP_WALL_ADSORPTION_TEXT ", measured at wall density " CAMP_WALL_DENSITY_TEXT
+     "; 0 at another --wall-density unless given; 0: a uniform fill at 6.2)",
+     0},
+    {"--rng R",
+     "image: generator of the pair random numbers, philox (default), philox2x32 or fast "
+     "(dpd_thermostat rng; the same statistics, a cheaper step: docs/accuracy.md)",
+     0},
+    {"--temperature K", "temperature of kT for the SI units (default 298.15)", 0},
+    {"--seed S", "base seed (default 12345; each gradient gets its own)", 0},
+    {"--flux-every N", "flux sample interval in steps (default 10)", 0},
+    {"--models LIST", "laws passed to mdpore fit (default: its default set)", 0},
+    {"--sample NAME", "sample name in the tables (default: the input's file name)", 0},
+    {"--drive body|pressure",
+     "body: a body force on every fluid particle (default); pressure: the image padded along the "
+     "axis with an open reservoir, an inlet force in it, G measured from the pressure drop across "
+     "the sample (an IMAGE, or a SCENE whose particles come from geometry.image)",
+     0},
+    {"--reservoir R", "pressure drive: reservoir length along the axis in rc (default 4, >= 3)", 0},
+    {"--boundary B",
+     "the faces normal to the flow: auto (default: periodic where the image's end slices "
+     "continue each other, else mirror), periodic (the image is one period), mirror (the image "
+     "and its reflection: each face meets itself) or reservoir (= --drive pressure)",
+     0},
+    {"--cavitation-tolerance F",
+     "a run whose pore-core density departs from the fill by more than F (the liquid cavitated "
+     "or is compressed) is left out of the Darcy range and the fits (default 0.08; an IMAGE's "
+     "fill adds what the walls adsorb, a scene's uniform fill leaves the core 2-3% below)",
+     0},
+    {"--density-tolerance F",
+     "a run whose pore-core density departs by more than F from the liquid at rest (the core of "
+     "the weakest admissible run) is left out (the forcing compressed or expanded it; default "
+     "0.03)",
+     0},
+    {"--temperature-tolerance F",
+     "a run whose temperature departs from kT by more than F (viscous heating) is left out "
+     "(default 0.05)",
+     0},
+    {"--require-target",
+     "a run that missed its target error is left out too (default: kept, its larger error bar "
+     "weighting it less; an unsteady run is out)",
+     0},
+    {"--sides S",
+     "the lateral faces: periodic (default) or mirror (symmetry planes, as mdpore foam --sides "
+     "symmetry; four times the particles)",
+     0},
+    {NULL, NULL, 0}};
+
+const cli_help_page_t camp_help = {
+    .command = "permeability",
+    .usage = "usage: mdpore permeability IMAGE|SCENE --axis x|y|z|all [options]\n"
+             "       mdpore permeability IMAGE|SCENE --axis ... --emit-scenes DIR [options]\n"
+             "       mdpore permeability --collect DIR [--models LIST] [--*-tolerance F]\n"
+             "                           [--require-target]\n",
+    .purpose = "The permeability k of an image or scene from a ladder of mdpore runs and a fit.",
+    .about = "A ladder of body-force runs (one `mdpore run` each, cached by a hash of its "
+             "inputs), the flow table (docs/flow-table.md), `mdpore fit` on it, k in rc^2, m^2 "
+             "and nD, a PNG (docs/permeability.md).",
+    .options = camp_options,
+    .notes = "Exit status: 0 k reported on every axis; 3 the runs define no Darcy range on some "
+             "axis (k is not reported there: the report says why and what to try); 1 an error; 2 "
+             "bad usage.",
+    .more = "docs/permeability.md, docs/tutorial.md",
+};
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore permeability: %s: expected %s, got '%s'\n", opt, expected, got);
@@ -259,7 +290,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   int have_axis = 0, dt_given = 0, error_given = 0, steps_given = 0;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
-    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (cli_help_flag(s)) return cli_help_flag(s);
     if (!strcmp(s, "--force")) { /* no value */
       o->force = 1;
       continue;

@@ -56,7 +56,7 @@ int cmd_permeability(int argc, char **argv) {
   static camp_opts o;
   int p = camp_parse_args(argc, argv, &o);
   if (p) {
-    fputs(camp_usage, p > 0 ? stdout : stderr);
+    cli_help_print(p > 0 ? stdout : stderr, &camp_help, p > 0 ? p : CLI_HELP_SHORT);
     return p > 0 ? 0 : 2;
   }
   return run(&o);

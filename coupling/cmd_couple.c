@@ -18,16 +18,22 @@
 #include <unistd.h>
 
 #include "common/atomic_file.h"
+#include "common/cli_help.h"
 #include "couple.h"
 
-static const char *usage =
-    "usage: mdpore couple CONFIG.yaml\n"
-    "The pore-scale <-> continuum loop (docs/coupling.md): a permeability campaign per block of a\n"
-    "segmented image, the fitted laws into the continuum solve, block gradients fed back as new\n"
-    "pore-scale runs until the block fluxes of two passes agree within their errors.\n"
-    "Exit status: 0 converged, 4 stopped at loop.max_passes without agreement, 3 runs pending\n"
-    "(launcher: slurm: submit the job array it wrote, then run it again), 1 error, 2 usage.\n"
-    "More: docs/coupling.md (mdpore --help lists every command)\n";
+static const cli_help_page_t couple_help = {
+    .command = "couple",
+    .usage = "usage: mdpore couple CONFIG.yaml\n",
+    .purpose = "The pore-scale <-> continuum loop: campaigns per block, fitted laws, feedback.",
+    .about = "The pore-scale <-> continuum loop (docs/coupling.md): a permeability campaign per "
+             "block of a segmented image, the fitted laws into the continuum solve, block "
+             "gradients fed back as new pore-scale runs until the block fluxes of two passes "
+             "agree within their errors.",
+    .notes = "Exit status: 0 converged, 4 stopped at loop.max_passes without agreement, 3 runs "
+             "pending (launcher: slurm: submit the job array it wrote, then run it again), 1 "
+             "error, 2 usage.",
+    .more = "docs/coupling.md",
+};
 
 /* The gradient the sample is driven at, in reduced units. */
 static double drive_gradient(const couple_config *c, const couple_block *blocks, int n) {
@@ -227,12 +233,12 @@ out:
 int cmd_couple(int argc, char **argv) {
   int size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-    fputs(usage, stdout);
+  if (argc == 2 && cli_help_flag(argv[1])) {
+    cli_help_print(stdout, &couple_help, cli_help_flag(argv[1]));
     return 0;
   }
   if (argc != 2 || argv[1][0] == '-') {
-    fputs(usage, stderr);
+    cli_help_print(stderr, &couple_help, CLI_HELP_SHORT);
     return 2;
   }
   if (size > 1) {

@@ -47,7 +47,7 @@ int cmd_relperm(int argc, char **argv) {
   static rp_opts o;
   const int p = rp_parse_args(argc, argv, &o);
   if (p) {
-    fputs(rp_usage, p > 0 ? stdout : stderr);
+    cli_help_print(p > 0 ? stdout : stderr, &rp_help, p > 0 ? p : CLI_HELP_SHORT);
     return p > 0 ? 0 : 2;
   }
   return run(&o);

@@ -81,8 +81,9 @@ typedef struct {
   char boundary[32];
 } relperm;
 
-extern const char *rp_usage;
-/* relperm_args.c: 0, 1 (help) or -1 (message printed). */
+extern const cli_help_page_t rp_help;
+/* relperm_args.c: 0, CLI_HELP_SHORT or CLI_HELP_ALL (--help, --help-all asked) or -1 (message
+ * printed). */
 int rp_parse_args(int argc, char **argv, rp_opts *o);
 
 /* relperm_liquids.c: the liquids of a viscosity ratio (1, 2 or 5); -1 for another. */

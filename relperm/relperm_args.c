@@ -9,47 +9,67 @@
 
 #include "relperm.h"
 
-const char *rp_usage =
-    "usage: mdpore relperm IMAGE --axis x|y|z [options] WORKDIR\n"
-    "       mdpore relperm IMAGE --axis x|y|z [options] --emit-scenes DIR\n"
-    "       mdpore relperm --collect DIR\n"
-    "Steady co-current relative permeability of water and oil in an image (docs/relperm.md): per\n"
-    "target water saturation the phase distribution of the image's morphological drainage (or\n"
-    "imbibition), both liquids driven by the same body force along the axis; two single-phase\n"
-    "runs (all water, all oil) as references; kr_i = q_i / q_i^(1). Writes WORKDIR/relperm.csv,\n"
-    "relperm.json, relperm.png and relperm.txt.\n"
-    "  --axis A              flow axis x, y or z\n"
-    "  --saturations LIST    target water saturations in (0, 1) (default 0.2,0.35,0.5,0.65,0.8)\n"
-    "  --mode M              drainage (default: the non-wetting liquid invades from the inlet\n"
-    "                        face) or imbibition\n"
-    "  --no-trapping         the morphology without trapping of the defending phase (with it a\n"
-    "                        small crop keeps the wetting clusters cut off from the outlet face)\n"
-    "  --phase-images LIST   labelled images of the phase distributions instead of the\n"
-    "                        morphology (the IMAGE's pore space, the non-wetting voxels labelled\n"
-    "                        --nw-label; e.g. from mdpore image drainage --write-image)\n"
-    "  --nw-label L          the non-wetting label of --phase-images (default: the one pore\n"
-    "                        label they add to the IMAGE's)\n"
-    "  --force G             body force per particle on both liquids (default: auto from the\n"
-    "                        image's hydraulic size)\n"
-    "  --wetting W           water (default: water-wall A -40, oil-wall A -20) or oil (swapped)\n"
-    "  --viscosity-ratio M   1 (default), 2 or 5: the oil's thermostat (docs/twophase.md)\n"
-    "  --cross-attraction A  water-oil A (default -20; -30 removes the interfacial slip of the\n"
-    "                        layered slit, docs/twophase.md section 5)\n"
-    "  --template SCENE      a scene whose pairs block (with species water and oil) replaces the\n"
-    "                        standard liquids'\n"
-    "  --rc-per-voxel R      voxel edge in rc (default: from the critical throat, as mdpore\n"
-    "                        permeability; refused below --min-throat unless --allow-coarse)\n"
-    "  --min-throat RC       least critical throat in rc (default 4)\n"
-    "  --allow-coarse        run a --rc-per-voxel below --min-throat (with a warning)\n"
-    "  --boundary B          auto (default), mirror or periodic (docs/permeability.md)\n"
-    "  --steps N             run.steps of every run (default 20000)\n"
-    "  --target-error E      run.target_error of every run (default 0.05)\n"
-    "  --seed S              base seed (default 12345)\n"
-    "  --jobs N|auto         runs at once (default 1)\n"
-    "  --emit-scenes DIR     write the phase images, scenes and commands.txt, run nothing\n"
-    "  --collect DIR         read a campaign folder back: relperm.csv, .json, .png, .txt\n"
-    "Exit: 0 every run used; 1 runs left out (the report says why) or an error; 2 bad usage.\n"
-    "More: docs/relperm.md (mdpore --help lists every command)\n";
+static const cli_help_option_t rp_options[] = {
+    {"--axis A", "flow axis x, y or z", 1},
+    {"--saturations LIST", "target water saturations in (0, 1) (default 0.2,0.35,0.5,0.65,0.8)", 1},
+    {"--mode M",
+     "drainage (default: the non-wetting liquid invades from the inlet face) or imbibition", 1},
+    {"--no-trapping",
+     "the morphology without trapping of the defending phase (with it a small crop keeps the "
+     "wetting clusters cut off from the outlet face)",
+     0},
+    {"--phase-images LIST",
+     "labelled images of the phase distributions instead of the morphology (the IMAGE's pore "
+     "space, the non-wetting voxels labelled --nw-label; e.g. from mdpore image drainage "
+     "--write-image)",
+     0},
+    {"--nw-label L",
+     "the non-wetting label of --phase-images (default: the one pore label they add to the "
+     "IMAGE's)",
+     0},
+    {"--force G",
+     "body force per particle on both liquids (default: auto from the image's hydraulic size)", 1},
+    {"--wetting W", "water (default: water-wall A -40, oil-wall A -20) or oil (swapped)", 0},
+    {"--viscosity-ratio M", "1 (default), 2 or 5: the oil's thermostat (docs/twophase.md)", 1},
+    {"--cross-attraction A",
+     "water-oil A (default -20; -30 removes the interfacial slip of the layered slit, "
+     "docs/twophase.md section 5)",
+     0},
+    {"--template SCENE",
+     "a scene whose pairs block (with species water and oil) replaces the standard liquids'", 0},
+    {"--rc-per-voxel R",
+     "voxel edge in rc (default: from the critical throat, as mdpore permeability; refused below "
+     "--min-throat unless --allow-coarse)",
+     0},
+    {"--min-throat RC", "least critical throat in rc (default 4)", 0},
+    {"--allow-coarse", "run a --rc-per-voxel below --min-throat (with a warning)", 0},
+    {"--boundary B", "auto (default), mirror or periodic (docs/permeability.md)", 0},
+    {"--steps N", "run.steps of every run (default 20000)", 1},
+    {"--target-error E", "run.target_error of every run (default 0.05)", 1},
+    {"--seed S", "base seed (default 12345)", 0},
+    {"--jobs N|auto", "runs at once (default 1)", 1},
+    {"--emit-scenes DIR", "write the phase images, scenes and commands.txt, run nothing", 1},
+    {"--collect DIR", "read a campaign folder back: relperm.csv, .json, .png, .txt", 1},
+    {NULL, NULL, 0}};
+
+const cli_help_page_t rp_help = {
+    .command = "relperm",
+    .usage = "usage: mdpore relperm IMAGE --axis x|y|z [options] WORKDIR\n"
+             "       mdpore relperm IMAGE --axis x|y|z [options] --emit-scenes DIR\n"
+             "       mdpore relperm --collect DIR\n",
+    .purpose = "Relative permeabilities kr of water and oil in an image, per water saturation.",
+    .about = "Steady co-current relative permeability of water and oil in an image "
+             "(docs/relperm.md): per target water saturation the phase distribution of the "
+             "image's morphological drainage (or imbibition), both liquids driven by the same "
+             "body force along the axis; two single-phase runs (all water, all oil) as "
+             "references; kr_i = q_i / q_i^(1). Writes WORKDIR/relperm.csv, relperm.json, "
+             "relperm.png and relperm.txt.",
+    .options = rp_options,
+    .notes = "Exit: 0 every run used; 1 runs left out (the report says why) or an error; 2 bad "
+             "usage.",
+    .more = "docs/relperm.md",
+    .name_width = 20,
+};
 
 static int bad(const char *opt, const char *expected, const char *got) {
   fprintf(stderr, "mdpore relperm: %s: expected %s (got '%s')\n", opt, expected, got);
@@ -163,7 +183,7 @@ int rp_parse_args(int argc, char **argv, rp_opts *o) {
   int n_pos = 0;
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
-    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (cli_help_flag(s)) return cli_help_flag(s);
     if (!strcmp(s, "--no-trapping")) {
       o->trapping = 0;
       continue;

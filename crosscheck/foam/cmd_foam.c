@@ -17,50 +17,64 @@
 #define EXIT_NOT_CONVERGED 3
 #define EXIT_NO_OPENFOAM 4
 
-static void usage(FILE *to) {
-  fprintf(
-      to,
-      "usage: mdpore foam IMAGE --axis x|y|z [options]\n"
-      "Stokes flow through the pore voxels with OpenFOAM (laminar, nu = 1 in voxel units) and\n"
-      "the permeability k = mu q L / dp with q = Q / A_total: the superficial velocity over the\n"
-      "whole cross-section, solid included. Prints JSON.\n"
-      "  --axis x|y|z          flow direction (required)\n"
-      "  --refine R            R^3 hex cells per voxel (default 1)\n"
-      "  --walls staircase|smooth  voxel faces as walls (default), or sub-voxel walls: the wall\n"
-      "                        points move onto the 0.5 iso-surface of the solid fraction\n"
-      "                        averaged over the 2x2x2 voxels at each corner (flat walls stay)\n"
-      "  --drive pressure|periodic  pressure drop between inlet and outlet faces (default), or\n"
-      "                        cyclic inlet/outlet with a body force: the image is one period\n"
-      "                        along the axis; where the first and last slices meet pore to\n"
-      "                        solid, the face is a wall (smooth walls need matching slices)\n"
-      "  --boundary faces|mirror|periodic  the faces normal to the flow: inlet and outlet at\n"
-      "                        fixed pressures (faces, the default; = --drive pressure), the same\n"
-      "                        with no tangential velocity on them (mirror: the planes of a\n"
-      "                        mirrored periodic sample, as mdpore permeability --boundary\n"
-      "                        mirror), or cyclic (periodic; = --drive periodic)\n"
-      "  --sides symmetry|wall|periodic  the four box faces parallel to the flow (default\n"
-      "                        symmetry; periodic: cyclic pairs, pore meeting solid across the\n"
-      "                        wrap is a wall, as the lateral wrap of mdpore permeability)\n"
-      "  --solver pimple|simple  pimpleFoam marched in pseudo-time to the steady state (default;\n"
-      "                        converges in far fewer steps) or simpleFoam (SIMPLEC)\n"
-      "  --dt DT               pimple: pseudo time step in voxel units (nu = 1; default 20 / R^2,\n"
-      "                        divided by 4 automatically while the march diverges)\n"
-      "  --np N                run OpenFOAM on N ranks (decomposePar, mpirun)\n"
-      "  --tol-residual T      initial residuals of p and U along the axis (default 1e-6)\n"
-      "  --tol-flux T          relative flow-rate change between checks, and its estimated "
-      "distance\n"
-      "                        from convergence (geometric extrapolation) (default 1e-5)\n"
-      "  --check-every N       steps between flow-rate checks (default 5; simple: 10)\n"
-      "  --max-iter N          give up after N steps (default 5000; simple: 50000; exit 3)\n"
-      "  --gradient G          kinematic pressure gradient, voxel units (default 1e-5)\n"
-      "  --case DIR            build the case in DIR (new or empty) and keep it\n"
-      "  --keep                keep the temporary case folder\n"
-      "  --output FILE         also write the JSON to FILE\n"
-      "  --verbose             report each tool and convergence check on stderr\n"
-      "exit: 0 converged, 1 error, 2 usage, 3 not converged, 4 OpenFOAM not installed\n");
-  mdp_image_cli_help(to);
-  fputs("More: docs/foam.md (mdpore --help lists every command)\n", to);
-}
+static const cli_help_option_t foam_options[] = {
+    {"--axis x|y|z", "flow direction (required)", 1},
+    {"--refine R", "R^3 hex cells per voxel (default 1)", 1},
+    {"--walls staircase|smooth",
+     "voxel faces as walls (default), or sub-voxel walls: the wall points move onto the 0.5 "
+     "iso-surface of the solid fraction averaged over the 2x2x2 voxels at each corner (flat walls "
+     "stay)",
+     0},
+    {"--drive pressure|periodic",
+     "pressure drop between inlet and outlet faces (default), or cyclic inlet/outlet with a body "
+     "force: the image is one period along the axis; where the first and last slices meet pore "
+     "to solid, the face is a wall (smooth walls need matching slices)",
+     0},
+    {"--boundary faces|mirror|periodic",
+     "the faces normal to the flow: inlet and outlet at fixed pressures (faces, the default; = "
+     "--drive pressure), the same with no tangential velocity on them (mirror: the planes of a "
+     "mirrored periodic sample, as mdpore permeability --boundary mirror), or cyclic (periodic; = "
+     "--drive periodic)",
+     0},
+    {"--sides symmetry|wall|periodic",
+     "the four box faces parallel to the flow (default symmetry; periodic: cyclic pairs, pore "
+     "meeting solid across the wrap is a wall, as the lateral wrap of mdpore permeability)",
+     0},
+    {"--solver pimple|simple",
+     "pimpleFoam marched in pseudo-time to the steady state (default; converges in far fewer "
+     "steps) or simpleFoam (SIMPLEC)",
+     0},
+    {"--dt DT",
+     "pimple: pseudo time step in voxel units (nu = 1; default 20 / R^2, divided by 4 "
+     "automatically while the march diverges)",
+     0},
+    {"--np N", "run OpenFOAM on N ranks (decomposePar, mpirun)", 1},
+    {"--tol-residual T", "initial residuals of p and U along the axis (default 1e-6)", 0},
+    {"--tol-flux T",
+     "relative flow-rate change between checks, and its estimated distance from convergence "
+     "(geometric extrapolation) (default 1e-5)",
+     0},
+    {"--check-every N", "steps between flow-rate checks (default 5; simple: 10)", 0},
+    {"--max-iter N", "give up after N steps (default 5000; simple: 50000; exit 3)", 1},
+    {"--gradient G", "kinematic pressure gradient, voxel units (default 1e-5)", 0},
+    {"--case DIR", "build the case in DIR (new or empty) and keep it", 1},
+    {"--keep", "keep the temporary case folder", 0},
+    {"--output FILE", "also write the JSON to FILE", 1},
+    {"--verbose", "report each tool and convergence check on stderr", 1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t foam_help = {
+    .command = "foam",
+    .usage = "usage: mdpore foam IMAGE --axis x|y|z [options]\n",
+    .purpose = "Stokes-flow permeability of an image with OpenFOAM (the continuum cross-check).",
+    .about = "Stokes flow through the pore voxels with OpenFOAM (laminar, nu = 1 in voxel units) "
+             "and the permeability k = mu q L / dp with q = Q / A_total: the superficial "
+             "velocity over the whole cross-section, solid included. Prints JSON.",
+    .options = foam_options,
+    .options2 = mdp_image_cli_options,
+    .notes = "exit: 0 converged, 1 error, 2 usage, 3 not converged, 4 OpenFOAM not installed",
+    .more = "docs/foam.md",
+};
 
 static int rm_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
   (void)sb, (void)flag, (void)ftw;
@@ -126,8 +140,8 @@ int cmd_foam(int argc, char **argv) {
     if (r) continue;
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0, takes = 1;
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      usage(stdout);
+    if (cli_help_flag(a)) {
+      cli_help_print(stdout, &foam_help, cli_help_flag(a));
       return 0;
     } else if (!strcmp(a, "--keep"))
       keep = 1, takes = 0;
@@ -191,7 +205,7 @@ int cmd_foam(int argc, char **argv) {
     i += 1 + takes;
   }
   if (!path || o.axis < 0) {
-    usage(stderr);
+    cli_help_print(stderr, &foam_help, CLI_HELP_SHORT);
     return 2;
   }
   if (o.side_periodic && o.smooth_walls) {

@@ -12,29 +12,42 @@
 #include <strings.h>
 #include <time.h>
 
-static void usage(FILE *to) {
-  fprintf(
-      to,
-      "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--sizes [--periodic]] [--json]\n"
-      "       mdpore image convert IMAGE -o OUT.h5|OUT.raw|OUT.tif [options]\n"
-      "       mdpore image stack IMAGE IMAGE [...] --axis x|y|z -o OUT   (one after another)\n"
-      "       mdpore image drainage IMAGE --axis x|y|z|none [...]   (morphological Pc(Sw); see\n"
-      "                                     mdpore image drainage --help)\n"
-      "       mdpore image make slit --width N [--wall W] [--length L] [--depth D] -o OUT\n"
-      "       mdpore image make cylinders --cell L --c C [--cells N] [--depth D] -o OUT\n"
-      "       mdpore image make spheres --cell L --c C [--cells N] -o OUT\n"
-      "       mdpore image make random-spheres --size N --radius R --porosity P [--seed S] -o OUT\n"
-      "       mdpore image make sphere-file --centres FILE (--box LX,LY,LZ | --box-file FILE)\n"
-      "                                     --radius R --dx DX -o OUT\n"
-      "info prints porosity, connected porosity per axis, isolated pores and how periodic the\n"
-      "image is per axis (end-slice pore overlap, percolation with and without the wrap); with\n"
-      "--axis it fails when that axis does not percolate. --sizes adds the pore-size distribution\n"
-      "and the critical throat per axis (distances measured across the faces with --periodic, as\n"
-      "a periodic run sees them). make labels pore 0 and solid 1; --voxel-size sets the voxel\n"
-      "size of made images.\n");
-  mdp_image_cli_help(to);
-  fputs("More: docs/images.md (mdpore --help lists every command)\n", to);
-}
+static const cli_help_option_t image_options[] = {
+    {"--axis x|y|z",
+     "info: fail when that axis does not percolate; stack: the images one after another along it",
+     1},
+    {"--sizes", "info: add the pore-size distribution and the critical throat per axis", 1},
+    {"--periodic", "info --sizes: distances measured across the faces, as a periodic run sees them",
+     0},
+    {"--json", "info: the report as JSON", 1},
+    {"-o OUT", "convert, stack, make: the output image (.h5, .raw or .tif)", 1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t image_help = {
+    .command = "image",
+    .usage = "usage: mdpore image info IMAGE [options] [--axis x|y|z] [--sizes [--periodic]]\n"
+             "                         [--json]\n"
+             "       mdpore image convert IMAGE -o OUT.h5|OUT.raw|OUT.tif [options]\n"
+             "       mdpore image stack IMAGE IMAGE [...] --axis x|y|z -o OUT\n"
+             "       mdpore image drainage IMAGE --axis x|y|z|none [...]  (its own --help)\n"
+             "       mdpore image make slit --width N [--wall W] [--length L] [--depth D]\n"
+             "                              -o OUT\n"
+             "       mdpore image make cylinders --cell L --c C [--cells N] [--depth D] -o OUT\n"
+             "       mdpore image make spheres --cell L --c C [--cells N] -o OUT\n"
+             "       mdpore image make random-spheres --size N --radius R --porosity P -o OUT\n"
+             "                                        [--seed S]\n"
+             "       mdpore image make sphere-file (--box LX,LY,LZ | --box-file FILE) --dx DX\n"
+             "                                     --centres FILE --radius R -o OUT\n",
+    .purpose = "Segmented 3D images: report, convert, stack, drain and make them.",
+    .about = "drainage: the morphological Pc(Sw) curve (see mdpore image drainage --help).\n"
+             "info prints porosity, connected porosity per axis, isolated pores and how periodic "
+             "the image is per axis (end-slice pore overlap, percolation with and without the "
+             "wrap). make labels pore 0 and solid 1; --voxel-size sets the voxel size of made "
+             "images.",
+    .options = image_options,
+    .options2 = mdp_image_cli_options,
+    .more = "docs/images.md",
+};
 
 static double now_seconds(void) {
   struct timespec t;
@@ -205,7 +218,7 @@ static int cmd_info_or_convert(int argc, char **argv, int convert) {
     i++;
   }
   if (!path || (convert && !out)) {
-    usage(stderr);
+    cli_help_print(stderr, &image_help, CLI_HELP_SHORT);
     return 2;
   }
   mdp_image_t img;
@@ -303,7 +316,7 @@ static int make_num(const char *opt, const char *v, double *out) {
 static int cmd_make(int argc, char **argv) {
   char err[MDP_IMAGE_ERR_LEN];
   if (argc < 2) {
-    usage(stderr);
+    cli_help_print(stderr, &image_help, CLI_HELP_SHORT);
     return 2;
   }
   const char *kind = argv[1], *out = NULL, *centres = NULL, *box_file = NULL;
@@ -486,10 +499,18 @@ static int cmd_stack(int argc, char **argv) {
 }
 
 int cmd_image(int argc, char **argv) {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    usage(argc < 2 ? stderr : stdout);
+  if (argc < 2 || cli_help_flag(argv[1])) {
+    cli_help_print(argc < 2 ? stderr : stdout, &image_help,
+                   argc < 2 ? CLI_HELP_SHORT : cli_help_flag(argv[1]));
     return argc < 2 ? 2 : 0;
   }
+  /* info, convert, make and stack share this page (drainage has its own) */
+  if (strcmp(argv[1], "drainage"))
+    for (int i = 2; i < argc; i++)
+      if (cli_help_flag(argv[i])) {
+        cli_help_print(stdout, &image_help, cli_help_flag(argv[i]));
+        return 0;
+      }
   if (!strcmp(argv[1], "info")) return cmd_info_or_convert(argc - 1, argv + 1, 0);
   if (!strcmp(argv[1], "convert")) return cmd_info_or_convert(argc - 1, argv + 1, 1);
   if (!strcmp(argv[1], "make")) return cmd_make(argc - 1, argv + 1);

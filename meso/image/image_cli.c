@@ -13,29 +13,32 @@ void mdp_image_cli_init(mdp_image_cli_t *c) {
   c->pad_label = -1;
 }
 
-void mdp_image_cli_help(FILE *to) {
-  fprintf(
-      to,
-      "reading (raw files also take these from a sidecar IMAGE.hdr; HDF5 from attributes):\n"
-      "  --dims NXxNYxNZ        raw: dimensions\n"
-      "  --type T               raw: uint8 (default), int8, uint16, int16, uint32, int32\n"
-      "  --byte-order little|big  raw: byte order of multi-byte types (default little)\n"
-      "  --order xyz            raw: axes fastest first (default xyz = x fastest; zyx = z "
-      "fastest)\n"
-      "  --header-bytes N       raw: bytes to skip before the data\n"
-      "  --format raw|hdf5|tiff override the format guessed from the name (folder = TIFF slices)\n"
-      "  --dataset PATH         HDF5 dataset (default /labels)\n"
-      "  --labels MAP           e.g. pore=0,organic=2,inorganic=1,3-5 (default %s)\n"
-      "  --voxel-size SIZE      e.g. 10um, 5nm, 1e-5m\n"
-      "transforming (applied in this order):\n"
-      "  --crop X0:X1,Y0:Y1,Z0:Z1  keep voxels X0 <= i < X1 etc. (':' keeps a whole axis)\n"
-      "  --downsample F         majority label over F^3 blocks\n"
-      "  --pad [AXIS=]W[:LABEL] add W layers of LABEL (default the smallest pore label) on both\n"
-      "                         faces of AXIS (x, y or z; all axes when omitted); repeatable\n"
-      "  --mirror AXES          follow the image by its reflection along each axis given (e.g. x\n"
-      "                         or x,y,z): a periodic image in which each face meets itself\n",
-      MDP_IMAGE_DEFAULT_LABELS);
-}
+const cli_help_option_t mdp_image_cli_options[] = {
+    {NULL,
+     "reading (raw files also take these from a sidecar IMAGE.hdr; HDF5 from attributes):", 0},
+    {"--dims NXxNYxNZ", "raw: dimensions", 0},
+    {"--type T", "raw: uint8 (default), int8, uint16, int16, uint32, int32", 0},
+    {"--byte-order little|big", "raw: byte order of multi-byte types (default little)", 0},
+    {"--order xyz", "raw: axes fastest first (default xyz = x fastest; zyx = z fastest)", 0},
+    {"--header-bytes N", "raw: bytes to skip before the data", 0},
+    {"--format raw|hdf5|tiff", "override the format guessed from the name (folder = TIFF slices)",
+     0},
+    {"--dataset PATH", "HDF5 dataset (default /labels)", 0},
+    {"--labels MAP", "e.g. pore=0,organic=2,inorganic=1,3-5 (default " MDP_IMAGE_DEFAULT_LABELS ")",
+     0},
+    {"--voxel-size SIZE", "e.g. 10um, 5nm, 1e-5m", 0},
+    {NULL, "transforming (applied in this order):", 0},
+    {"--crop X0:X1,Y0:Y1,Z0:Z1", "keep voxels X0 <= i < X1 etc. (':' keeps a whole axis)", 0},
+    {"--downsample F", "majority label over F^3 blocks", 0},
+    {"--pad [AXIS=]W[:LABEL]",
+     "add W layers of LABEL (default the smallest pore label) on both faces of AXIS (x, y or z; "
+     "all axes when omitted); repeatable",
+     0},
+    {"--mirror AXES",
+     "follow the image by its reflection along each axis given (e.g. x or x,y,z): a periodic "
+     "image in which each face meets itself",
+     0},
+    {NULL, NULL, 0}};
 
 static int parse_int(const char *s, int *v) {
   char *end;

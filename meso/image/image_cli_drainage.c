@@ -30,33 +30,44 @@
 /* Room temperature of the energy unit kT when converting to Pa (as mdpore permeability). */
 #define MORPH_TEMPERATURE_K UNITS_DEFAULT_TEMPERATURE
 
-static void usage(FILE *to) {
-  fputs(
-      "usage: mdpore image drainage IMAGE --axis x|y|z|none [options]\n"
-      "The morphological (Hilpert-Miller) drainage or imbibition curve of a segmented image:\n"
-      "at sphere radius R the non-wetting phase holds the balls of radius R that fit in the pore\n"
-      "space (and, in drainage, reach them from the low face of --axis). Pc = 2 gamma cos(theta) "
-      "/ r.\n"
-      "  --axis A            x, y, z (inlet: the low face, outlet: the high face) or none (no\n"
-      "                      connectivity rule, no trapping)\n"
-      "  --imbibition        R ascending from a pore space full of non-wetting phase\n"
-      "  --no-trapping       the defending phase leaves even when cut off from the outlet\n"
-      "  --periodic          distances measured across the faces of the axes other than --axis\n"
-      "  --gamma-cos V       gamma cos(theta), reduced units kT/rc^2 (default 8.67, the standard\n"
-      "                      water/oil pair set, docs/twophase.md)\n"
-      "  --rc-per-voxel R    voxel edge in rc (default 0.5, as mdpore permeability)\n"
-      "  --k K --phi PHI     permeability and porosity for the Leverett J column; K in rc^2, or\n"
-      "                      with a unit: 2.5vox2, 1e-12m2, 150mD, 0.2D, 500nD\n"
-      "  -o DIR              output folder (default .): DIR/pc_morph.csv and DIR/pc_morph.png\n"
-      "  --no-plot           no PNG\n"
-      "  --at SNW --write-image FILE   the phase distribution nearest non-wetting saturation SNW,\n"
-      "                      its non-wetting voxels labelled --nw-label (default 3, pore)\n"
-      "Pa columns when the voxel size is known (the image's or --voxel-size): rc = voxel size /\n"
-      "rc-per-voxel, pressure unit kT/rc^3 at 298.15 K.\n",
-      to);
-  mdp_image_cli_help(to);
-  fputs("More: docs/relperm.md (mdpore --help lists every command)\n", to);
-}
+static const cli_help_option_t drainage_options[] = {
+    {"--axis A",
+     "x, y, z (inlet: the low face, outlet: the high face) or none (no connectivity rule, no "
+     "trapping)",
+     1},
+    {"--imbibition", "R ascending from a pore space full of non-wetting phase", 1},
+    {"--no-trapping", "the defending phase leaves even when cut off from the outlet", 1},
+    {"--periodic", "distances measured across the faces of the axes other than --axis", 0},
+    {"--gamma-cos V",
+     "gamma cos(theta), reduced units kT/rc^2 (default 8.67, the standard water/oil pair set, "
+     "docs/twophase.md)",
+     0},
+    {"--rc-per-voxel R", "voxel edge in rc (default 0.5, as mdpore permeability)", 1},
+    {"--k K --phi PHI",
+     "permeability and porosity for the Leverett J column; K in rc^2, or with a unit: 2.5vox2, "
+     "1e-12m2, 150mD, 0.2D, 500nD",
+     0},
+    {"-o DIR", "output folder (default .): DIR/pc_morph.csv and DIR/pc_morph.png", 1},
+    {"--no-plot", "no PNG", 0},
+    {"--at SNW --write-image FILE",
+     "the phase distribution nearest non-wetting saturation SNW, its non-wetting voxels labelled "
+     "--nw-label (default 3, pore)",
+     1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t drainage_help = {
+    .command = "image drainage",
+    .usage = "usage: mdpore image drainage IMAGE --axis x|y|z|none [options]\n",
+    .purpose = "The morphological (Hilpert-Miller) drainage or imbibition curve of an image.",
+    .about = "At sphere radius R the non-wetting phase holds the balls of radius R that fit in "
+             "the pore space (and, in drainage, reach them from the low face of --axis). Pc = 2 "
+             "gamma cos(theta) / r.",
+    .options = drainage_options,
+    .options2 = mdp_image_cli_options,
+    .notes = "Pa columns when the voxel size is known (the image's or --voxel-size): rc = voxel "
+             "size / rc-per-voxel, pressure unit kT/rc^3 at 298.15 K.",
+    .more = "docs/relperm.md",
+};
 
 typedef struct {
   const char *path, *out_dir, *write_image, *k_text;
@@ -321,8 +332,8 @@ static int make_dirs(const char *path) {
 
 int cmd_image_drainage(int argc, char **argv) {
   for (int i = 1; i < argc; i++)
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      usage(stdout);
+    if (cli_help_flag(argv[i])) {
+      cli_help_print(stdout, &drainage_help, cli_help_flag(argv[i]));
       return 0;
     }
   mdp_image_cli_t cli;
@@ -330,7 +341,7 @@ int cmd_image_drainage(int argc, char **argv) {
   drain_args_t a;
   int rc = parse_args(argc, argv, &cli, &a);
   if (rc) {
-    if (rc == 2 && argc < 2) usage(stderr);
+    if (rc == 2 && argc < 2) cli_help_print(stderr, &drainage_help, CLI_HELP_SHORT);
     return rc;
   }
   char err[MDP_IMAGE_ERR_LEN];

@@ -4,6 +4,7 @@
 #ifndef MDPORE_IMAGE_CLI_H
 #define MDPORE_IMAGE_CLI_H
 
+#include "common/cli_help.h"
 #include "mdpore_image.h"
 
 #include <stdio.h>
@@ -22,7 +23,8 @@ void mdp_image_cli_init(mdp_image_cli_t *c);
 int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char *err);
 /* Read path and apply crop, then downsample, then pad. */
 int mdp_image_cli_load(const char *path, const mdp_image_cli_t *c, mdp_image_t *img, char *err);
-void mdp_image_cli_help(FILE *to);
+/* The shared options' rows for a command's help (cli_help_page_t.options2). */
+extern const cli_help_option_t mdp_image_cli_options[];
 
 /* mdpore image drainage (image_cli_drainage.c): argv[0] = "drainage". */
 int cmd_image_drainage(int argc, char **argv);

@@ -1,5 +1,6 @@
 /* mdpore build patches [--edge E] [--density D] [--seed S] [--out FILE]: build (or find) the wall
  * patch database (populate/wall_patches.h) and print one line about it. */
+#include "common/cli_help.h"
 #include "populate/wall_patches.h"
 
 #include <errno.h>
@@ -13,20 +14,31 @@
 
 int cmd_build(int argc, char **argv); /* the dispatcher declares it in app/commands.h */
 
-static void usage(FILE *to) {
-  fprintf(to,
-          "usage: mdpore build patches [--edge E] [--density D] [--seed S] [--out FILE]\n"
-          "  Build the database of pre-equilibrated wall patches (docs/walls.md): cubes of edge E\n"
-          "  cut from an equilibrated mDPD liquid at density D, which the image wall builder\n"
-          "  copies into the solid voxels near the pore space. Reuses FILE when it exists.\n"
-          "  --edge E     patch edge = voxel edge, in rc (default 1; %g to %g)\n"
-          "  --density D  wall particles per rc^3 (default 8; > 0, <= %g)\n"
-          "  --seed S     seed of the equilibration run (default 1; an integer >= 0)\n"
-          "  --out FILE   the HDF5 file (default: the cache, $MDPORE_CACHE_DIR, else\n"
-          "               $XDG_CACHE_HOME/mdpore, else ~/.cache/mdpore)\n"
-          "More: docs/walls.md (mdpore --help lists every command)\n",
-          WALL_PATCHES_EDGE_MIN, WALL_PATCHES_EDGE_MAX, WALL_PATCHES_DENSITY_MAX);
-}
+static const cli_help_option_t patches_options[] = {
+    {"--edge E",
+     "patch edge = voxel edge, in rc (default 1; " CLI_HELP_STR(
+         WALL_PATCHES_EDGE_MIN) " to " CLI_HELP_STR(WALL_PATCHES_EDGE_MAX) ")",
+     1},
+    {"--density D",
+     "wall particles per rc^3 (default 8; > 0, <= " CLI_HELP_STR(WALL_PATCHES_DENSITY_MAX) ")", 1},
+    {"--seed S", "seed of the equilibration run (default 1; an integer >= 0)", 1},
+    {"--out FILE",
+     "the HDF5 file (default: the cache, $MDPORE_CACHE_DIR, else $XDG_CACHE_HOME/mdpore, else "
+     "~/.cache/mdpore)",
+     1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t patches_help = {
+    .command = "build patches",
+    .usage = "usage: mdpore build patches [--edge E] [--density D] [--seed S] [--out FILE]\n",
+    .purpose = "Build the database of pre-equilibrated wall patches (docs/walls.md).",
+    .about = "Cubes of edge E cut from an equilibrated mDPD liquid at density D, which the image "
+             "wall builder copies into the solid voxels near the pore space. Reuses FILE when it "
+             "exists.",
+    .options = patches_options,
+    .more = "docs/walls.md",
+    .name_width = 11,
+};
 
 static int parse_double(const char *opt, const char *s, double lo, int lo_open, double hi,
                         double *v, int rank) {
@@ -42,10 +54,13 @@ static int parse_double(const char *opt, const char *s, double lo, int lo_open, 
 }
 
 static int cmd_patches(int argc, char **argv, int rank) {
-  static const struct option opts[] = {
-      {"edge", required_argument, NULL, 'e'}, {"density", required_argument, NULL, 'd'},
-      {"seed", required_argument, NULL, 's'}, {"out", required_argument, NULL, 'o'},
-      {"help", no_argument, NULL, 'h'},       {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {{"edge", required_argument, NULL, 'e'},
+                                       {"density", required_argument, NULL, 'd'},
+                                       {"seed", required_argument, NULL, 's'},
+                                       {"out", required_argument, NULL, 'o'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {"help-all", no_argument, NULL, 'H'},
+                                       {NULL, 0, NULL, 0}};
   double edge = 1.0, density = 8.0;
   unsigned long long seed = 1;
   const char *out = "";
@@ -84,17 +99,19 @@ static int cmd_patches(int argc, char **argv, int rank) {
       out = optarg;
       break;
     case 'h':
-      if (rank == 0) usage(stdout);
+    case 'H':
+      if (rank == 0)
+        cli_help_print(stdout, &patches_help, c == 'H' ? CLI_HELP_ALL : CLI_HELP_SHORT);
       return 0;
     default:
-      if (rank == 0) usage(stderr);
+      if (rank == 0) cli_help_print(stderr, &patches_help, CLI_HELP_SHORT);
       return 2;
     }
   }
   if (optind < argc) {
     if (rank == 0) {
       fprintf(stderr, "mdpore build patches: unexpected argument '%s'\n", argv[optind]);
-      usage(stderr);
+      cli_help_print(stderr, &patches_help, CLI_HELP_SHORT);
     }
     return 2;
   }
@@ -132,8 +149,10 @@ static int cmd_patches(int argc, char **argv, int rank) {
 int cmd_build(int argc, char **argv) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    if (rank == 0) usage(argc < 2 ? stderr : stdout);
+  if (argc < 2 || cli_help_flag(argv[1])) {
+    if (rank == 0)
+      cli_help_print(argc < 2 ? stderr : stdout, &patches_help,
+                     argc < 2 ? CLI_HELP_SHORT : cli_help_flag(argv[1]));
     return argc < 2 ? 2 : 0;
   }
   if (!strcmp(argv[1], "patches")) return cmd_patches(argc - 1, argv + 1, rank);

@@ -3,6 +3,7 @@
  * vz fx fy fz rho) for cross-checks with LAMMPS (pair mdpd + mdpd/rhosum, or pair dpd). */
 #include "effects/scene_load.h"
 #include "commands.h"
+#include "common/cli_help.h"
 #include "engine/sim.h"
 #include "io/dump_lammps.h"
 #include "populate/init_config.h"
@@ -13,12 +14,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+static const cli_help_option_t forces_options[] = {
+    {"--dump FILE", "the LAMMPS-style dump (default forces.lammpstrj)", 1},
+    {"--backend B", "cpu, cuda or auto (default auto, as mdpore run)", 1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t forces_help = {
+    .command = "forces",
+    .usage = "usage: mdpore forces SCENE.yaml [--dump FILE] [--backend cpu|cuda|auto]\n",
+    .purpose = "Evaluate densities and forces on the initial configuration; write a LAMMPS dump.",
+    .options = forces_options,
+    .more = "docs/scene-format.md",
+    .name_width = 12,
+};
+
 int cmd_forces(int argc, char **argv) {
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   static const struct option opts[] = {{"dump", required_argument, NULL, 'd'},
                                        {"backend", required_argument, NULL, 'b'},
                                        {"help", no_argument, NULL, 'h'},
+                                       {"help-all", no_argument, NULL, 'H'},
                                        {NULL, 0, NULL, 0}};
   const char *backend = "auto";
   const char *dump = "forces.lammpstrj";
@@ -31,16 +47,14 @@ int cmd_forces(int argc, char **argv) {
     } else if (c == 'b') {
       backend = optarg;
     } else {
+      const int asked = c == 'h' ? CLI_HELP_SHORT : c == 'H' ? CLI_HELP_ALL : CLI_HELP_NONE;
       if (rank == 0)
-        fprintf(c == 'h' ? stdout : stderr,
-                "usage: mdpore forces SCENE.yaml [--dump FILE] [--backend cpu|cuda|auto]\n"
-                "  evaluate densities and forces on the initial configuration and "
-                "write them as a LAMMPS-style dump (default forces.lammpstrj)\n");
-      return c == 'h' ? 0 : 2;
+        cli_help_print(asked ? stdout : stderr, &forces_help, asked ? asked : CLI_HELP_SHORT);
+      return asked ? 0 : 2;
     }
   }
   if (optind != argc - 1) {
-    if (rank == 0) fprintf(stderr, "usage: mdpore forces SCENE.yaml [--dump FILE]\n");
+    if (rank == 0) cli_help_print(stderr, &forces_help, CLI_HELP_SHORT);
     return 2;
   }
   scene_t *scene = malloc(sizeof *scene);

@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "engine/sim.h"
 #include "common/atomic_file.h"
+#include "common/cli_help.h"
 #include "run/run_loop.h"
 
 #include <getopt.h>
@@ -11,42 +12,44 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void usage(FILE *to) {
-  fprintf(
-      to,
-      "usage: mdpore run [--explain] [--steps N] [--output-dir DIR] [--restart FILE] SCENE.yaml\n"
-      "  Run a scene (format: docs/scene-format.md) on all MPI ranks.\n"
-      "  --explain         print the per-step plan the scene's effects produce, and exit\n"
-      "  --steps N         run N steps instead of run.steps (after a restart: N more steps)\n"
-      "  --output-dir DIR  write the outputs (relative paths) into DIR (created if needed)\n"
-      "  --restart FILE    continue from a checkpoint (overrides the scene's 'restart')\n"
-      "  --backend B       cpu, cuda or auto (default: cuda when every rank sees a GPU; one GPU\n"
-      "                    per rank)\n"
-      "  --skin S          Verlet skin of the CUDA path's neighbour lists on one GPU, in rc units\n"
-      "                    (default 0: rebuilt every step, the fastest at dt = 0.01; the physics "
-      "is the\n"
-      "                    same)\n"
-      "  --gpu-memory M    auto, fast or compact: the CUDA path with per-step neighbour lists\n"
-      "                    (fast, ~790 bytes per particle) or without (compact, <= 200 bytes per\n"
-      "                    particle, slower; the same forces). auto (default): compact only when\n"
-      "                    the fast mode would not fit in the GPU's memory\n"
-      "More: docs/scene-format.md, docs/engine-core.md, docs/engine-cuda.md (mdpore --help lists "
-      "every command)\n");
-}
+static const cli_help_option_t run_options[] = {
+    {"--explain", "print the per-step plan the scene's effects produce, and exit", 1},
+    {"--steps N", "run N steps instead of run.steps (after a restart: N more steps)", 1},
+    {"--output-dir DIR", "write the outputs (relative paths) into DIR (created if needed)", 1},
+    {"--restart FILE", "continue from a checkpoint (overrides the scene's 'restart')", 1},
+    {"--backend B",
+     "cpu, cuda or auto (default: cuda when every rank sees a GPU; one GPU per rank)", 1},
+    {"--skin S",
+     "Verlet skin of the CUDA path's neighbour lists on one GPU, in rc units (default 0: rebuilt "
+     "every step, the fastest at dt = 0.01; the physics is the same)",
+     0},
+    {"--gpu-memory M",
+     "auto, fast or compact: the CUDA path with per-step neighbour lists (fast, ~790 bytes per "
+     "particle) or without (compact, <= 200 bytes per particle, slower; the same forces). auto "
+     "(default): compact only when the fast mode would not fit in the GPU's memory",
+     0},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t run_help = {
+    .command = "run",
+    .usage = "usage: mdpore run [--explain] [--steps N] [--output-dir DIR] [--restart FILE]\n"
+             "                  SCENE.yaml\n",
+    .purpose = "Run a scene (format: docs/scene-format.md) on all MPI ranks.",
+    .options = run_options,
+    .more = "docs/scene-format.md, docs/engine-core.md, docs/engine-cuda.md",
+    .name_width = 16,
+};
 
 int cmd_run(int argc, char **argv) {
   int rank, size;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  static const struct option opts[] = {{"explain", no_argument, NULL, 'e'},
-                                       {"steps", required_argument, NULL, 's'},
-                                       {"output-dir", required_argument, NULL, 'o'},
-                                       {"restart", required_argument, NULL, 'r'},
-                                       {"backend", required_argument, NULL, 'b'},
-                                       {"skin", required_argument, NULL, 'k'},
-                                       {"gpu-memory", required_argument, NULL, 'm'},
-                                       {"help", no_argument, NULL, 'h'},
-                                       {NULL, 0, NULL, 0}};
+  static const struct option opts[] = {
+      {"explain", no_argument, NULL, 'e'},          {"steps", required_argument, NULL, 's'},
+      {"output-dir", required_argument, NULL, 'o'}, {"restart", required_argument, NULL, 'r'},
+      {"backend", required_argument, NULL, 'b'},    {"skin", required_argument, NULL, 'k'},
+      {"gpu-memory", required_argument, NULL, 'm'}, {"help", no_argument, NULL, 'h'},
+      {"help-all", no_argument, NULL, 'H'},         {NULL, 0, NULL, 0}};
   int explain = 0, c;
   long steps = -1;
   const char *outdir = NULL, *restart = NULL, *backend = "auto";
@@ -104,15 +107,16 @@ int cmd_run(int argc, char **argv) {
       }
       break;
     case 'h':
-      if (rank == 0) usage(stdout);
+    case 'H':
+      if (rank == 0) cli_help_print(stdout, &run_help, c == 'H' ? CLI_HELP_ALL : CLI_HELP_SHORT);
       return 0;
     default:
-      if (rank == 0) usage(stderr);
+      if (rank == 0) cli_help_print(stderr, &run_help, CLI_HELP_SHORT);
       return 2;
     }
   }
   if (optind != argc - 1) {
-    if (rank == 0) usage(stderr);
+    if (rank == 0) cli_help_print(stderr, &run_help, CLI_HELP_SHORT);
     return 2;
   }
   scene_t *scene = malloc(sizeof *scene);

@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """ctest cli_numeric_options: every option of a command that takes a value, read from the command's
-own --help (its option table and usage lines), gets nan, inf and 1e400 (as one element of a list
-value: --gradients 0.1,nan, --box 10,nan,10, ...). The options of `image make` are read by one
+own --help-all (its option table and usage lines), gets nan, inf and 1e400 (as one element of a
+list value: --gradients 0.1,nan, --box 10,nan,10, ...). The options of `image make` are read by one
 parser for every kind: each is tried once, on a slit. Each must be refused: a non-zero exit within
 20 s (no crash: exit < 128) and a message that names the option. Options whose value is a path, a
 folder, a name or a command line (TEXT below) are left out: there any text is a valid value. An
-option the table below names but --help no longer lists fails the test (the table went stale).
+option the table below names but --help-all no longer lists fails the test (the table went
+stale).
 
 usage: check_numeric_options.py MDPORE WORKDIR [COMMAND ...]   (COMMAND as in `mdpore COMMAND`;
        "image make" stands for each kind of its usage lines)"""
@@ -14,6 +15,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 mdpore, work, commands = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3:]
@@ -30,18 +32,22 @@ failures = []
 
 
 def run(args, timeout=20):
+    """(exit, output) of one call, with a TMPDIR of its own: Open MPI singletons started at once
+    race on a shared session directory (open-mpi/ompi#8510: "A call to mkdir was unable to create
+    the desired directory", an exit 1 that names no option)."""
     try:
-        p = subprocess.run([mdpore, *args], capture_output=True, text=True, timeout=timeout,
-                           cwd=work)
+        with tempfile.TemporaryDirectory() as tmp:
+            p = subprocess.run([mdpore, *args], capture_output=True, text=True, timeout=timeout,
+                               cwd=work, env=dict(os.environ, TMPDIR=tmp))
         return p.returncode, p.stdout + p.stderr
     except subprocess.TimeoutExpired:
         return "timeout", ""
 
 
 def help_options(cmd):
-    """(option, metavar) pairs of `mdpore CMD --help`: option-table lines and usage lines."""
-    rc, text = run([*cmd.split(), "--help"])
-    assert rc == 0, "mdpore %s --help: exit %s" % (cmd, rc)
+    """(option, metavar) pairs of `mdpore CMD --help-all`: option-table lines and usage lines."""
+    rc, text = run([*cmd.split(), "--help-all"])
+    assert rc == 0, "mdpore %s --help-all: exit %s" % (cmd, rc)
     pairs = {}
     for line in text.splitlines():
         # an option table line: "  --opt VALUE   meaning" (a flag has two spaces or more after it)
@@ -136,7 +142,7 @@ def main():
                     make_opts[o] = m
             numeric_make = [o for o in make_opts if o not in TEXT]
             for kind in MAKE:
-                assert "make " + kind in text, "mdpore image --help: no 'make %s'" % kind
+                assert "make " + kind in text, "mdpore image --help-all: no 'make %s'" % kind
             valid = MAKE["slit"]
             for o in numeric_make + ["--voxel-size", "--seed"]:
                 base = ["image", "make", "slit", *valid, "-o", "m_slit.h5"]
@@ -159,7 +165,7 @@ def main():
     run_tries()
     stale = [o for o in LIST if o not in seen_list and o not in ("--box",)]
     if stale:
-        failures.append("LIST names options no --help lists: %s" % stale)
+        failures.append("LIST names options no --help-all lists: %s" % stale)
     print("%d failure(s)%s" % (len(failures), "".join("\n  " + f for f in failures)))
     return 1 if failures else 0
 

@@ -22,9 +22,10 @@ Checks, each failure naming the key:
   2. every accepted key is mentioned in its page: in backticks (alone, dotted or in a {...} list)
      in the section of its top-level block (scene-format.md: the "### `BLOCK`" section; the other
      pages: anywhere), or as a key of one of its ```yaml blocks;
-  3. every option of each subcommand's --help is mentioned in docs/ or README.md (in backticks or
-     a code block), and every `mdpore CMD ... --opt` written in docs/ and README.md is an
-     option of CMD's --help.
+  3. every option of each subcommand's --help-all (the complete option reference; --help shows
+     the common ones) is mentioned in docs/ or README.md (in backticks or a code block), and
+     every `mdpore CMD ... --opt` written in docs/ and README.md is an option of CMD's
+     --help-all.
 usage: check_keys_docs.py MDPORE BIN_DIR ROOT WORKDIR [COMMAND ...]"""
 import glob
 import os
@@ -361,23 +362,26 @@ def main():
         os.path.relpath(f, root) for f in glob.glob(os.path.join(root, "docs", "*.md"))))
     helps = {}
     for cmd in commands:
-        p = subprocess.run([mdpore, *cmd.split(), "--help"], capture_output=True, text=True)
+        p = subprocess.run([mdpore, *cmd.split(), "--help-all"], capture_output=True, text=True)
         text = p.stdout + p.stderr
-        helps[cmd] = set(re.findall(r"(?<![\w-])(--[a-z][\w-]*)", text)) - {"--help"}
+        helps[cmd] = set(re.findall(r"(?<![\w-])(--[a-z][\w-]*)", text)) - {"--help",
+                                                                             "--help-all"}
         pages = re.findall(r"docs/[\w.-]+\.md", text.rstrip().splitlines()[-1])
         own = "".join(read(pg) for pg in pages if os.path.exists(os.path.join(root, pg)))
         code = "\n".join(re.findall(r"```.*?```", own + all_docs, re.S) + spans(own + all_docs) +
                          re.findall(r"^(?: {4}|\t).*$", own + all_docs, re.M))  # indented code
         for opt in sorted(helps[cmd]):
             if not re.search(r"(?<![\w-])%s(?![\w-])" % re.escape(opt), code):
-                fail("mdpore %s: option %s of --help is not documented (no `%s` in %s or docs/)"
+                fail("mdpore %s: option %s of --help-all is not documented (no `%s` in %s or "
+                     "docs/)"
                      % (cmd, opt, opt, ", ".join(pages)))
     sub_helps = {}
 
     def sub_options(cmd, sub):
-        """Options of `mdpore CMD SUB --help` (a subcommand with a help of its own), else none."""
+        """Options of `mdpore CMD SUB --help-all` (a subcommand with a help of its own), else
+        none."""
         if (cmd, sub) not in sub_helps:
-            p = subprocess.run([mdpore, *cmd.split(), sub, "--help"], capture_output=True,
+            p = subprocess.run([mdpore, *cmd.split(), sub, "--help-all"], capture_output=True,
                                text=True)
             sub_helps[cmd, sub] = set(re.findall(r"(?<![\w-])(--[a-z][\w-]*)", p.stdout + p.stderr)) \
                 if p.returncode == 0 else set()
@@ -390,8 +394,8 @@ def main():
         sub = re.match(r"\s+([a-z][\w-]*)(?=\s|$)", rest)  # a word, not a file name
         known = helps[cmd] | (sub_options(cmd, sub.group(1)) if sub else set())
         for opt in re.findall(r"(?<![\w-])(--[a-z][\w-]*)", rest.split("|")[0]):
-            if opt not in known and opt != "--help":
-                fail("docs: `mdpore %s ... %s`: %s is not an option of mdpore %s --help"
+            if opt not in known and opt not in ("--help", "--help-all"):
+                fail("docs: `mdpore %s ... %s`: %s is not an option of mdpore %s --help-all"
                      % (cmd, opt, opt, cmd))
     print("%d failure(s)" % len(failures))
     return 1 if failures else 0

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "common/cli_help.h"
 #include "darcy_config.h"
 #include "darcy_output.h"
 #include "darcy_post.h"
@@ -15,24 +16,30 @@
 #include "darcy_upscale.h"
 #include "twophase_impes.h"
 
-static const char *usage_text =
-    "usage: mdpore darcy CONFIG.yaml [--upscale] [--quiet] [PETSc options with prefix -darcy_, "
-    "e.g.\n"
-    "       -darcy_snes_monitor]\n"
-    "Solves steady single-phase flow on a 2D/3D grid of blocks (two-point flux finite volumes, one "
-    "flow\n"
-    "law per block; docs/darcy-config.md) and writes pressures, face fluxes, per-block pressure "
-    "drops\n"
-    "and gradients (HDF5) and a JSON summary with the effective permeability.\n"
-    "--upscale: the effective permeability tensor of the grid instead, with fixed, linear and "
-    "periodic\n"
-    "boundary conditions (OPM upscale_perm's families; the config's `upscale:` key may pick "
-    "some),\n"
-    "in the config's permeability unit and, under SI, in mD.\n"
-    "A `twophase:` block in the config: water displacing oil over time instead (IMPES; CSV "
-    "saturation\n"
-    "profiles, water cut and recovery; docs/twophase-darcy.md).\n"
-    "More: docs/darcy-config.md (mdpore --help lists every command)\n";
+static const cli_help_option_t darcy_options[] = {
+    {"--upscale",
+     "the effective permeability tensor of the grid instead, with fixed, linear and periodic "
+     "boundary conditions (OPM upscale_perm's families; the config's `upscale:` key may pick "
+     "some), in the config's permeability unit and, under SI, in mD",
+     1},
+    {"--quiet", "no summary or 'wrote' lines on stdout", 1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t darcy_help = {
+    .command = "darcy",
+    .usage = "usage: mdpore darcy CONFIG.yaml [--upscale] [--quiet]\n"
+             "       [PETSc options with prefix -darcy_, e.g. -darcy_snes_monitor]\n",
+    .purpose = "Continuum Darcy/non-Darcy flow on a grid of rock blocks, each with its own law.",
+    .about = "Solves steady single-phase flow on a 2D/3D grid of blocks (two-point flux finite "
+             "volumes, one flow law per block; docs/darcy-config.md) and writes pressures, face "
+             "fluxes, per-block pressure drops and gradients (HDF5) and a JSON summary with the "
+             "effective permeability.\n"
+             "A `twophase:` block in the config: water displacing oil over time instead (IMPES; "
+             "CSV saturation profiles, water cut and recovery; docs/twophase-darcy.md).",
+    .options = darcy_options,
+    .more = "docs/darcy-config.md",
+    .name_width = 10,
+};
 
 /* One family's tensor, rows i (flow) by columns j (driving gradient), in m^2 (or rc^2) and mD. */
 static void print_tensor(const darcy_config *c, const darcy_upscale_result *r, int f) {
@@ -113,8 +120,8 @@ int cmd_darcy(int argc, char **argv) {
   int pargc = 0;
   pargv[pargc++] = argv[0];
   for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      if (rank == 0) fputs(usage_text, stdout);
+    if (cli_help_flag(argv[i])) {
+      if (rank == 0) cli_help_print(stdout, &darcy_help, cli_help_flag(argv[i]));
       free(pargv);
       return 0;
     }
@@ -129,14 +136,19 @@ int cmd_darcy(int argc, char **argv) {
     else if (argv[i][0] != '-' && pargc > 1)
       pargv[pargc++] = argv[i]; /* a PETSc option's value */
     else {
-      if (rank == 0)
-        fprintf(stderr, "mdpore darcy: unexpected argument '%s'\n%s", argv[i], usage_text);
+      if (rank == 0) {
+        fprintf(stderr, "mdpore darcy: unexpected argument '%s'\n", argv[i]);
+        cli_help_print(stderr, &darcy_help, CLI_HELP_SHORT);
+      }
       free(pargv);
       return 2;
     }
   }
   if (!config) {
-    if (rank == 0) fprintf(stderr, "mdpore darcy: no CONFIG given\n%s", usage_text);
+    if (rank == 0) {
+      fprintf(stderr, "mdpore darcy: no CONFIG given\n");
+      cli_help_print(stderr, &darcy_help, CLI_HELP_SHORT);
+    }
     free(pargv);
     return 2;
   }

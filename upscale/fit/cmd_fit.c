@@ -8,27 +8,36 @@
 
 #include "cmd_fit_relperm.h"
 #include "commands.h"
+#include "common/cli_help.h"
 #include "common/same_file.h"
 #include "fit_check.h"
 #include "fit_report.h"
 #include "fit_tao.h"
 #include "flowdata/flow_table.h"
 
-static const char *usage_text =
-    "usage: mdpore fit TABLE [--json OUT.json] [--plot OUT.png] [--models LIST] [--criterion "
-    "bic|aic]\n"
-    "                        [--quiet] [PETSc/TAO options with prefix -fit_, e.g. "
-    "-fit_tao_monitor]\n"
-    "Fits Darcy, threshold (Darcy with intercept), Forchheimer and power laws to TABLE "
-    "(docs/flow-table.md)\n"
-    "by weighted least squares (TAO), prints a table and writes JSON (default: TABLE with "
-    ".fit.json).\n"
-    "  --models LIST     comma-separated subset of darcy,threshold,forchheimer,power\n"
-    "  --criterion C     model selection by bic (default) or aic\n"
-    "  --plot PNG        plot data, fits and residuals (python3 + matplotlib)\n"
-    "mdpore fit relperm TABLE ...: Corey/LET fits of a relative-permeability table and the SWOF\n"
-    "export (mdpore fit relperm --help; docs/relperm.md section 5)\n"
-    "More: docs/flow-table.md (mdpore --help lists every command)\n";
+static const cli_help_option_t fit_options[] = {
+    {"--json OUT.json", "the JSON report (default: TABLE with .fit.json)", 1},
+    {"--models LIST", "comma-separated subset of darcy,threshold,forchheimer,power", 1},
+    {"--criterion C", "model selection by bic (default) or aic", 1},
+    {"--plot PNG", "plot data, fits and residuals (python3 + matplotlib)", 1},
+    {"--quiet", "no table or 'wrote' lines on stdout", 1},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t fit_help = {
+    .command = "fit",
+    .usage = "usage: mdpore fit TABLE [--json OUT.json] [--plot OUT.png] [--models LIST]\n"
+             "                        [--criterion bic|aic] [--quiet]\n"
+             "       [PETSc/TAO options with prefix -fit_, e.g. -fit_tao_monitor]\n"
+             "       mdpore fit relperm TABLE ...   (see mdpore fit relperm --help)\n",
+    .purpose = "Fit Darcy and non-Darcy flow laws to a flow-data table and choose one.",
+    .about = "Fits Darcy, threshold (Darcy with intercept), Forchheimer and power laws to TABLE "
+             "(docs/flow-table.md) by weighted least squares (TAO), prints a table and writes "
+             "JSON (default: TABLE with .fit.json).",
+    .options = fit_options,
+    .notes = "mdpore fit relperm TABLE ...: Corey/LET fits of a relative-permeability table and "
+             "the SWOF export (mdpore fit relperm --help; docs/relperm.md section 5)",
+    .more = "docs/flow-table.md",
+};
 
 #ifndef MDPORE_PYTHON_EXE
 #define MDPORE_PYTHON_EXE "/usr/bin/python3"
@@ -77,7 +86,7 @@ static int parse_args(int argc, char **argv, fit_args *a) {
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     int has_val = i + 1 < argc;
-    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (cli_help_flag(s)) return cli_help_flag(s);
     if (!strcmp(s, "--json") && has_val)
       a->json = argv[++i];
     else if (!strcmp(s, "--plot") && has_val)
@@ -173,7 +182,7 @@ int cmd_fit(int argc, char **argv) {
   fit_args a;
   int p = parse_args(argc, argv, &a);
   if (p != 0) {
-    if (rank == 0) fputs(usage_text, p > 0 ? stdout : stderr);
+    if (rank == 0) cli_help_print(p > 0 ? stdout : stderr, &fit_help, p > 0 ? p : CLI_HELP_SHORT);
     free(a.petsc_argv);
     return p > 0 ? 0 : 2;
   }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/cli_help.h"
 #include "common/same_file.h"
 #include "kr_outcome.h"
 #include "kr_report.h"
@@ -15,31 +16,46 @@
 #include "kr_swof.h"
 #include "pc_curve.h"
 
-const char *const fit_relperm_usage =
-    "usage: mdpore fit relperm TABLE [--law auto|corey|let [--force]] [--swc V] [--sor V]\n"
-    "                                [--swof FILE] [--swof-rows N] [--swof-points law|measured]\n"
-    "                                [--pc-morph pc_morph.csv] [--json FILE] [--png FILE] "
-    "[--quiet]\n"
-    "Fits Corey and LET relative-permeability laws to TABLE (the relperm.csv of mdpore relperm:\n"
-    "Sw,Sw_err,krw,krw_err,kro,kro_err,...) by weighted least squares (TAO), chooses LET only "
-    "when\n"
-    "it is significantly better (chi2-drop test at 0.27 %% and a lower BIC), writes JSON (default\n"
-    "TABLE.fit.json) and optionally an Eclipse/OPM SWOF table (Sw krw krow Pcow, METRIC).\n"
-    "A law is a result only when each phase follows it within its errors: chi2/dof <= 1 + 3\n"
-    "sqrt(2/dof) for krw and for kro. When no law passes (or the kr have no errors, so chi2\n"
-    "cannot be judged), the report says why with the numbers, prints no law parameters, and the\n"
-    "SWOF table is the measured points (monotone), said so in its header; exit 0.\n"
-    "  --law L           auto (default: the test decides), corey (Corey only), let (LET, forced);\n"
-    "                    L refused by the check (or not fitted): no SWOF, exit 3\n"
-    "  --force           with --law: take L even when the check refuses it (flagged)\n"
-    "  --swc V, --sor V  fix the end-point saturations (default: fitted within the data's bounds)\n"
-    "  --swof FILE       write the SWOF table of the accepted law, else of the measured points\n"
-    "                    (kr > 1 clipped to 1, listed)\n"
-    "  --swof-rows N     law grid points from swc to 1 - sor (default %d)\n"
-    "  --swof-points P   law (default) or measured (the points, made monotone)\n"
-    "  --pc-morph FILE   Pcow from the morphological Pc(Sw) curve (else Pcow = 0)\n"
-    "  --png FILE        plot data, fits and residuals (python3 + matplotlib); --plot is the same\n"
-    "More: docs/relperm.md section 5\n";
+static const cli_help_option_t fit_relperm_options[] = {
+    {"--law L",
+     "auto (default: the test decides), corey (Corey only), let (LET, forced); L refused by the "
+     "check (or not fitted): no SWOF, exit 3",
+     1},
+    {"--force", "with --law: take L even when the check refuses it (flagged)", 0},
+    {"--swc V, --sor V", "fix the end-point saturations (default: fitted within the data's bounds)",
+     1},
+    {"--swof FILE",
+     "write the SWOF table of the accepted law, else of the measured points (kr > 1 clipped to 1, "
+     "listed)",
+     1},
+    {"--swof-rows N",
+     "law grid points from swc to 1 - sor (default " CLI_HELP_STR(KR_SWOF_DEFAULT_ROWS) ")", 0},
+    {"--swof-points P", "law (default) or measured (the points, made monotone)", 0},
+    {"--pc-morph FILE", "Pcow from the morphological Pc(Sw) curve (else Pcow = 0)", 0},
+    {"--json FILE", "the JSON report (default TABLE.fit.json)", 1},
+    {"--png FILE", "plot data, fits and residuals (python3 + matplotlib); --plot is the same", 1},
+    {"--quiet", "no report or 'wrote' lines on stdout", 0},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t fit_relperm_help = {
+    .command = "fit relperm",
+    .usage = "usage: mdpore fit relperm TABLE [--law auto|corey|let [--force]] [--swc V]\n"
+             "         [--sor V] [--swof FILE] [--swof-rows N] [--swof-points law|measured]\n"
+             "         [--pc-morph pc_morph.csv] [--json FILE] [--png FILE] [--quiet]\n",
+    .purpose = "Corey/LET fits of a relative-permeability table: the law choice, SWOF export.",
+    .about = "Fits Corey and LET relative-permeability laws to TABLE (the relperm.csv of mdpore "
+             "relperm: Sw,Sw_err,krw,krw_err,kro,kro_err,...) by weighted least squares (TAO), "
+             "chooses LET only when it is significantly better (chi2-drop test at 0.27 % and a "
+             "lower BIC), writes JSON (default TABLE.fit.json) and optionally an Eclipse/OPM SWOF "
+             "table (Sw krw krow Pcow, METRIC).\n"
+             "A law is a result only when each phase follows it within its errors: chi2/dof <= 1 "
+             "+ 3 sqrt(2/dof) for krw and for kro. When no law passes (or the kr have no errors, "
+             "so chi2 cannot be judged), the report says why with the numbers, prints no law "
+             "parameters, and the SWOF table is the measured points (monotone), said so in its "
+             "header; exit 0.",
+    .options = fit_relperm_options,
+    .more = "docs/relperm.md section 5",
+};
 
 #ifndef MDPORE_PYTHON_EXE
 #define MDPORE_PYTHON_EXE "/usr/bin/python3"
@@ -68,7 +84,7 @@ static int parse_number(const char *opt, const char *s, double lo, double hi, do
   return 0;
 }
 
-/* Returns 0, 1 (help) or -1. */
+/* Returns 0, CLI_HELP_SHORT or CLI_HELP_ALL (help asked) or -1. */
 static int parse_args(int argc, char **argv, relperm_args *a) {
   memset(a, 0, sizeof *a);
   a->law = -1;
@@ -79,7 +95,7 @@ static int parse_args(int argc, char **argv, relperm_args *a) {
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];
     const int has_val = i + 1 < argc;
-    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (cli_help_flag(s)) return cli_help_flag(s);
     if (!strcmp(s, "--json") && has_val)
       a->json = argv[++i];
     else if ((!strcmp(s, "--png") || !strcmp(s, "--plot")) && has_val)
@@ -266,7 +282,8 @@ int cmd_fit_relperm(int argc, char **argv) {
   relperm_args a;
   const int p = parse_args(argc, argv, &a);
   if (p != 0) {
-    if (rank == 0) fprintf(p > 0 ? stdout : stderr, fit_relperm_usage, KR_SWOF_DEFAULT_ROWS);
+    if (rank == 0)
+      cli_help_print(p > 0 ? stdout : stderr, &fit_relperm_help, p > 0 ? p : CLI_HELP_SHORT);
     free(a.petsc_argv);
     return p > 0 ? 0 : 2;
   }

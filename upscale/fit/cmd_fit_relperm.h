@@ -4,7 +4,6 @@
 #ifndef MDPORE_UPSCALE_CMD_FIT_RELPERM_H
 #define MDPORE_UPSCALE_CMD_FIT_RELPERM_H
 
-extern const char *const fit_relperm_usage;
 int cmd_fit_relperm(int argc, char **argv);
 
 #endif

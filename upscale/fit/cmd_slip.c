@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "common/cli_help.h"
 #include "common/same_file.h"
 #include "slip_fit.h"
 #include "slip_input.h"
@@ -20,31 +21,45 @@
 #define MDPORE_SLIP_PLOT_SCRIPT "plot_slip.py"
 #endif
 
-static const char *usage_text =
-    "usage: mdpore slip INPUT... [--shape slit|tube] [--model navier|shift] [--free-scale]\n"
-    "                  [--axis x|y|z] [--out PREFIX] [--rc-m M] [--no-plot] [--quiet]\n"
-    "Fits the wall slip length b to permeabilities of one pore shape at several sizes by weighted\n"
-    "least squares of k = a k_noslip (1 + c b / h) (docs/permeability.md, \"Slip and apparent\n"
-    "permeability\"): slit k_noslip = phi h^2/12, c = 6 (h = width); tube phi R^2/8, c = 4 (R =\n"
-    "radius); phi the porosity (k superficial, q over the whole cross-section).\n"
-    "  INPUT           a CSV with columns h,k,k_err (optional shape, porosity; '#' comments), or "
-    "a\n"
-    "                  campaign's permeability.json (mdpore permeability) as FILE or FILE@H with\n"
-    "                  the pore size H in rc (default for a slit: h_hydraulic of its "
-    "campaign.txt)\n"
-    "  --shape S       slit or tube (default: the CSV's shape column; required for JSON inputs)\n"
-    "  --model M       navier (default): Navier slip, exact 1 + 6 b/h (slit), 1 + 4 b/R (tube);\n"
-    "                  shift: no-slip walls moved by b, (1 + 2 b/h)^3, (1 + b/R)^4\n"
-    "  --free-scale    also fit a common factor a (viscosity or density off by the same factor at\n"
-    "                  every size); default a = 1\n"
-    "  --axis A        the axis read from permeability.json inputs (default x, or the only one)\n"
-    "  --out PREFIX    writes PREFIX.csv (trend table), PREFIX.json, PREFIX.png (default: slip)\n"
-    "  --rc-m M        metres per rc for b in m (default: units.rc_m of the JSON inputs)\n"
-    "  --no-plot       no PNG (the plot needs python3 with matplotlib)\n"
-    "Exit 0 on a fit, 1 on bad input or no fit (the message names the file, key and what was\n"
-    "expected), 2 on a usage error.\n"
-    "More: docs/permeability.md, \"Slip and apparent permeability\" (mdpore --help lists every "
-    "command)\n";
+static const cli_help_option_t slip_options[] = {
+    {"INPUT",
+     "a CSV with columns h,k,k_err (optional shape, porosity; '#' comments), or a campaign's "
+     "permeability.json (mdpore permeability) as FILE or FILE@H with the pore size H in rc "
+     "(default for a slit: h_hydraulic of its campaign.txt)",
+     1},
+    {"--shape S", "slit or tube (default: the CSV's shape column; required for JSON inputs)", 1},
+    {"--model M",
+     "navier (default): Navier slip, exact 1 + 6 b/h (slit), 1 + 4 b/R (tube); shift: no-slip "
+     "walls moved by b, (1 + 2 b/h)^3, (1 + b/R)^4",
+     1},
+    {"--free-scale",
+     "also fit a common factor a (viscosity or density off by the same factor at every size); "
+     "default a = 1",
+     0},
+    {"--axis A", "the axis read from permeability.json inputs (default x, or the only one)", 0},
+    {"--out PREFIX", "writes PREFIX.csv (trend table), PREFIX.json, PREFIX.png (default: slip)", 1},
+    {"--rc-m M", "metres per rc for b in m (default: units.rc_m of the JSON inputs)", 0},
+    {"--no-plot", "no PNG (the plot needs python3 with matplotlib)", 1},
+    {"--quiet", "no report or 'wrote' lines on stdout", 0},
+    {NULL, NULL, 0}};
+
+static const cli_help_page_t slip_help = {
+    .command = "slip",
+    .usage = "usage: mdpore slip INPUT... [--shape slit|tube] [--model navier|shift]\n"
+             "                  [--free-scale] [--axis x|y|z] [--out PREFIX] [--rc-m M]\n"
+             "                  [--no-plot] [--quiet]\n",
+    .purpose = "The wall slip length b from permeabilities of one pore shape at several sizes.",
+    .about = "Fits the wall slip length b to permeabilities of one pore shape at several sizes by "
+             "weighted least squares of k = a k_noslip (1 + c b / h) (docs/permeability.md, "
+             "\"Slip and apparent permeability\"): slit k_noslip = phi h^2/12, c = 6 (h = width); "
+             "tube phi R^2/8, c = 4 (R = radius); phi the porosity (k superficial, q over the "
+             "whole cross-section).",
+    .options = slip_options,
+    .notes = "Exit 0 on a fit, 1 on bad input or no fit (the message names the file, key and what "
+             "was expected), 2 on a usage error.",
+    .more = "docs/permeability.md, \"Slip and apparent permeability\"",
+    .name_width = 14,
+};
 
 typedef struct {
   const char **inputs;
@@ -63,7 +78,7 @@ static int parse_args(int argc, char **argv, slip_args *a) {
   a->inputs = calloc(argc, sizeof *a->inputs);
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(s, "--help") || !strcmp(s, "-h")) return 1;
+    if (cli_help_flag(s)) return cli_help_flag(s);
     if (!strcmp(s, "--shape") && v) {
       if ((a->shape = slip_shape_from_name(v)) < 0) {
         fprintf(stderr, "mdpore slip: --shape: expected slit or tube, got '%s'\n", v);
@@ -181,7 +196,7 @@ int cmd_slip(int argc, char **argv) {
   int p = parse_args(argc, argv, &a);
   int rc;
   if (p != 0) {
-    if (rank == 0) fputs(usage_text, p > 0 ? stdout : stderr);
+    if (rank == 0) cli_help_print(p > 0 ? stdout : stderr, &slip_help, p > 0 ? p : CLI_HELP_SHORT);
     rc = p > 0 ? 0 : 2;
   } else {
     rc = rank == 0 ? run_slip(&a) : 0; /* a few points: one rank does it */
