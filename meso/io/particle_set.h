@@ -19,7 +19,8 @@ typedef struct {
 /* Allocate room for n particles (f and rho only when asked). 0 or -1. */
 int particle_set_alloc(particle_set_t *s, long n, int with_f, int with_rho);
 void particle_set_free(particle_set_t *s);
-/* Reorder by increasing id (outputs are sorted so files compare line by line). */
-void particle_set_sort_by_id(particle_set_t *s);
+/* Reorder by increasing id (outputs are sorted so files compare line by line). 0, or -1 when its
+ * work arrays cannot be allocated (the set unchanged). */
+int particle_set_sort_by_id(particle_set_t *s);
 
 #endif

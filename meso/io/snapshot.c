@@ -299,10 +299,11 @@ int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
   if (rank == 0) {
     const scene_t *s = sim_scene(sim);
     const long step = sim_step_index(sim);
-    particle_set_sort_by_id(&set);
     char path[1100];
     snapshot_series_path(ser, step, path, sizeof path);
-    rc = snapshot_write_set(path, s, &set, step, step * s->dt);
+    rc = particle_set_sort_by_id(&set);
+    if (rc) fprintf(stderr, "%s: out of memory sorting %ld particles\n", path, set.n);
+    if (!rc) rc = snapshot_write_set(path, s, &set, step, step * s->dt);
     if (!rc) rc = series_push(ser, step, step * s->dt, set.n, set.rho != NULL);
     if (!rc) rc = write_xdmf(ser);
   }

@@ -85,9 +85,9 @@ static PetscErrorCode gather(DM da, Vec x, double **out) {
     PetscInt n;
     const PetscScalar *a;
     PetscCall(VecGetSize(seq, &n));
-    *out = malloc(n * sizeof(double));
+    *out = malloc((n ? (size_t)n : 1) * sizeof(double)); /* NULL: the caller says out of memory */
     PetscCall(VecGetArrayRead(seq, &a));
-    memcpy(*out, a, n * sizeof(double));
+    if (*out) memcpy(*out, a, (size_t)n * sizeof(double));
     PetscCall(VecRestoreArrayRead(seq, &a));
   }
   PetscCall(VecScatterDestroy(&sc));
@@ -126,6 +126,9 @@ static PetscErrorCode solve(MPI_Comm comm, darcy_problem *p, double **pressure, 
      */
     long nb = darcy_nblocks(p);
     flow_law *nonlinear = p->laws, *lin = malloc(nb * sizeof(flow_law));
+    int oom = !lin;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm));
+    PetscCheck(!oom, comm, PETSC_ERR_MEM, "out of memory for the initial guess's %ld laws", nb);
     for (long b = 0; b < nb; b++) lin[b] = (flow_law){.kind = LAW_DARCY, .k = p->k_lin[b]};
     p->laws = lin;
     darcy_stats lst = {0};
