@@ -221,7 +221,8 @@ static int read_on_root(const char *path, sim_t *sim, int size, double *boxes, p
   if (bad) goto out;
   /* rank 0 holds every particle of the file before the memory plan is checked: its count first */
   char why[320];
-  if (mdp_size_check((double)total, 2147483646.0, 8 + 4 + 9 * 8.0, "particles", why, sizeof why)) {
+  if (mdp_size_check((double)total, 2147483646.0, particle_set_bytes(1, 0), "particles", why,
+                     sizeof why)) {
     fprintf(stderr, "%s: key 'rank_counts': %s\n", path, why);
     goto out;
   }
