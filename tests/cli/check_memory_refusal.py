@@ -1,10 +1,12 @@
 """A command refused for memory before it allocates what it was asked for.
 
 Usage: check_memory_refusal.py WORKDIR [--copy FILE]... [--sparse NAME BYTES]...
-           [--limit BYTES] [--baseline ARGS] [--max-growth-mb MB] [--expect TEXT]... -- CMD...
+           [--yaml-list NAME KEY COUNT]... [--limit BYTES] [--baseline ARGS] [--max-growth-mb MB]
+           [--expect TEXT]... -- CMD...
 
-Copies each FILE into WORKDIR and makes each NAME there a sparse file of BYTES zero bytes (a large
-image that takes no disk), then runs CMD in WORKDIR with MDPORE_MEMORY_LIMIT=BYTES. It must exit
+Copies each FILE into WORKDIR, makes each NAME there a sparse file of BYTES zero bytes (a large
+image that takes no disk) or, with --yaml-list, a YAML file whose KEY is a flow list of COUNT
+zeros (a configuration of many nodes), then runs CMD in WORKDIR with MDPORE_MEMORY_LIMIT=BYTES. It must exit
 non-zero with every TEXT in its stderr. With --baseline (a command line, run the same way without
 the limit: the same start-up and reads, without the allocation refused), the peak resident memory
 of CMD (getrusage of the child: ru_maxrss) may exceed the baseline's by at most --max-growth-mb:
@@ -38,6 +40,7 @@ def main():
     ap.add_argument("workdir")
     ap.add_argument("--copy", action="append", default=[])
     ap.add_argument("--sparse", nargs=2, action="append", default=[])
+    ap.add_argument("--yaml-list", nargs=3, action="append", default=[])
     ap.add_argument("--limit")
     ap.add_argument("--baseline")
     ap.add_argument("--max-growth-mb", type=float, default=25.0)
@@ -51,6 +54,9 @@ def main():
     for name, size in o.sparse:
         with open(os.path.join(work, name), "wb") as f:
             f.truncate(int(size))
+    for name, key, count in o.yaml_list:
+        with open(os.path.join(work, name), "w") as f:
+            f.write("%s: [%s]\n" % (key, ",".join(["0"] * int(count))))
     env = dict(os.environ)
     env.pop("MDPORE_MEMORY_LIMIT", None)
     base_mb = None

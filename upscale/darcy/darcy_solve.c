@@ -85,7 +85,7 @@ static PetscErrorCode gather(DM da, Vec x, double **out) {
     PetscInt n;
     const PetscScalar *a;
     PetscCall(VecGetSize(seq, &n));
-    *out = malloc((n ? (size_t)n : 1) * sizeof(double)); /* NULL: the caller says out of memory */
+    *out = malloc((n ? (size_t)n : 1) * sizeof(double));
     PetscCall(VecGetArrayRead(seq, &a));
     if (*out) memcpy(*out, a, (size_t)n * sizeof(double));
     PetscCall(VecRestoreArrayRead(seq, &a));
@@ -93,6 +93,11 @@ static PetscErrorCode gather(DM da, Vec x, double **out) {
   PetscCall(VecScatterDestroy(&sc));
   PetscCall(VecDestroy(&seq));
   PetscCall(VecDestroy(&nat));
+  /* every rank fails together when rank 0 has no room for the field */
+  int oom = rank == 0 && !*out;
+  PetscCallMPI(MPI_Bcast(&oom, 1, MPI_INT, 0, PetscObjectComm((PetscObject)da)));
+  PetscCheck(!oom, PetscObjectComm((PetscObject)da), PETSC_ERR_MEM,
+             "out of memory for the pressure field on rank 0");
   PetscFunctionReturn(0);
 }
 
