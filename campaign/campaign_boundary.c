@@ -104,9 +104,10 @@ static int write_image(const mdp_image_t *img, const char *path) {
 }
 
 /* --reservoir in voxels at rc_per_voxel, in double before any int: the padded image's length along
- * the axis within the int range and its voxels within the memory limit. 0, or -1 and a message
- * naming the option. */
-static int check_reservoir(const camp_opts *o, const mdp_image_t *img, int ax) {
+ * the axis within the int range and its voxels, with the `held` voxels of the images it is made
+ * beside (the sample and its mirrored copy), within the memory limit. 0, or -1 and a message naming
+ * the option. */
+static int check_reservoir(const camp_opts *o, const mdp_image_t *img, int ax, double held) {
   const int n[3] = {img->nx, img->ny, img->nz};
   const double voxels = round(o->reservoir / o->rc_per_voxel), along = n[ax] + voxels;
   char why[320] = "";
@@ -114,8 +115,8 @@ static int check_reservoir(const camp_opts *o, const mdp_image_t *img, int ax) {
     snprintf(why, sizeof why, "%.3g voxels along %c, more than the %d an image can index", along,
              'x' + ax, INT_MAX);
   else
-    mdp_size_check(along * n[(ax + 1) % 3] * n[(ax + 2) % 3], MDP_IMAGE_MAX_VOXELS, 1.0,
-                   "voxels of the padded image", why, sizeof why);
+    mdp_size_check(along * n[(ax + 1) % 3] * n[(ax + 2) % 3] + held, MDP_IMAGE_MAX_VOXELS, 1.0,
+                   "voxels of the padded image and the images it is made from", why, sizeof why);
   if (!why[0]) return 0;
   fprintf(stderr,
           "mdpore permeability: %s: --reservoir %g: expected a reservoir the image padded with it "
@@ -149,7 +150,8 @@ int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img) {
        * [0, L_sample); periodic, so the reservoir touches both faces) */
       int w[6] = {0};
       camp_padded_image_path(o, ax, path, sizeof path);
-      if ((rc = check_reservoir(o, base, ax))) {
+      const double held = (double)mdp_image_count(img) + (any ? (double)mdp_image_count(base) : 0);
+      if ((rc = check_reservoir(o, base, ax, held))) {
         /* refused, the message printed */
       } else if ((w[2 * ax + 1] = camp_reservoir_voxels(o)),
                  (rc = pore < 0 || mdp_image_pad(base, w, (uint8_t)pore, &padded, err)))

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "campaign.h"
+#include "common/size_check.h"
 #include "mdpore_image.h"
 
 #define TEMPLATE_FLUID_DENSITY 6.2     /* the generated template's geometry.fluid_density */
@@ -60,6 +61,13 @@ static long long wall_voxels(const mdp_image_t *img, double t, char *err) {
                           : img->phase_of[v] == MDP_PHASE_UNSET ? MDP_PHASE_UNSET
                                                                 : MDP_PHASE_PORE;
   const size_t n = mdp_image_count(img);
+  /* 4 bytes a voxel beside the image's 1 */
+  char why[320];
+  if (mdp_size_check((double)n, MDP_IMAGE_MAX_VOXELS, 5.0,
+                     "voxels of the image and its distance transform", why, sizeof why)) {
+    snprintf(err, MDP_IMAGE_ERR_LEN, "the wall voxels' distance transform: %s", why);
+    return -1;
+  }
   uint32_t *d4 = malloc(n * sizeof *d4);
   const int periodic[3] = {1, 1, 1};
   if (!d4) {

@@ -7,7 +7,9 @@
 char *text_trim(char *s);
 
 /* The whole file at path as one NUL-terminated string (malloc'd, the caller frees), or NULL when it
- * cannot be opened or memory runs out. For small text files: manifests, reports. */
+ * cannot be opened, memory runs out, or (errno EFBIG) twice its size is more than the memory limit
+ * (common/memory_limit.h), checked before anything is allocated. For small text files: manifests,
+ * reports. */
 char *text_read_file(const char *path);
 
 #endif

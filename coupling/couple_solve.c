@@ -92,7 +92,11 @@ static int solve_once(const couple_config *c, const couple_block *blocks, const 
   darcy_stats st;
   if (darcy_solve(MPI_COMM_WORLD, &p, &pr, &st) || !pr) goto out;
   darcy_post post;
-  darcy_post_compute(&p, pr, &post);
+  if (darcy_post_compute(&p, pr, &post)) {
+    fprintf(stderr, "mdpore couple: out of memory for the continuum field of %ld blocks\n",
+            darcy_nblocks(&p));
+    goto out;
+  }
   int a = c->axis;
   double area = 1.0;
   for (int d = 0; d < 3; d++)

@@ -60,21 +60,32 @@ int mdp_foam_read_flow(const char *dir, double **rows, int *n_rows, char *err) {
   qsort(starts, (size_t)ns, sizeof *starts, by_start);
   int cap = 1024, n = 0;
   double *r = malloc(sizeof *r * 5 * (size_t)cap);
-  for (int s = 0; s < ns; s++) {
+  for (int s = 0; s < ns && r; s++) {
     char file[4600], line[1024];
     snprintf(file, sizeof file, "%s/%s/volFieldValue.dat", base, starts[s].name);
     FILE *f = fopen(file, "r");
     if (!f) continue;
-    while (fgets(line, sizeof line, f)) {
+    while (r && fgets(line, sizeof line, f)) {
       double v[5];
       if (line[0] == '#') continue;
       if (sscanf(line, "%lf (%lf %lf %lf) %lf", &v[0], &v[1], &v[2], &v[3], &v[4]) != 5) continue;
       while (n > 0 && r[5 * (n - 1)] >= v[0]) n--; /* a restart repeats or rewinds iterations */
-      if (n == cap) r = realloc(r, sizeof *r * 5 * (size_t)(cap *= 2));
+      if (n == cap) {
+        double *grown = realloc(r, sizeof *r * 5 * (size_t)(cap *= 2));
+        if (!grown) free(r);
+        if (!(r = grown)) break;
+      }
       memcpy(r + 5 * n, v, sizeof v);
       n++;
     }
     fclose(f);
+  }
+  if (!r) {
+    snprintf(err, MDP_FOAM_ERR_LEN, "%.1500s: out of memory for %d rows of volume integrals", base,
+             n);
+    *rows = NULL;
+    *n_rows = 0;
+    return 1;
   }
   *rows = r;
   *n_rows = n;

@@ -2,6 +2,7 @@
 #include "analysis/block_average.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 /* Standard error of the mean of nb block means of length len (the first nb * len samples). */
@@ -93,12 +94,23 @@ block_average_t block_average_plateau(const double *x, long n) {
   return r;
 }
 
-void series_push(series_t *s, double v) {
+int series_push(series_t *s, double v) {
   if (s->n == s->cap) {
-    s->cap = s->cap ? 2 * s->cap : 1024;
-    s->x = realloc(s->x, (size_t)s->cap * sizeof *s->x);
+    const long cap = s->cap ? 2 * s->cap : 1024;
+    double *x = realloc(s->x, (size_t)cap * sizeof *x);
+    if (!x) {
+      if (!s->full)
+        fprintf(stderr,
+                "mdpore: warning: out of memory for a time series of %ld samples: later samples "
+                "are left out of its statistics\n",
+                cap);
+      s->full = 1;
+      return -1;
+    }
+    s->x = x, s->cap = cap;
   }
   s->x[s->n++] = v;
+  return 0;
 }
 
 void series_free(series_t *s) {

@@ -46,9 +46,12 @@ block_average_t block_average_plateau(const double *x, long n);
 typedef struct {
   double *x;
   long n, cap;
+  int full; /* the array could not grow: later values were left out (said once on stderr) */
 } series_t;
 
-void series_push(series_t *s, double v);
+/* Append v. 0, or -1 when the array cannot grow: v is left out, the series keeps its values and a
+ * warning is printed once. */
+int series_push(series_t *s, double v);
 void series_free(series_t *s);
 
 #endif

@@ -177,6 +177,10 @@ static void stat(const profile_t *p, int b, int q, double *mean, double *err) {
   const int n = p->nbins * p->nf;
   const double vbin = bin_volume(p, b);
   double *tot = calloc((size_t)p->nf, sizeof *tot);
+  if (!tot) {
+    *mean = *err = NAN;
+    return;
+  }
   long ns = 0, used = 0;
   double bm[PROFILE_BLOCKS];
   for (int k = 0; k < p->nblocks; k++) {
@@ -250,6 +254,12 @@ int profile_plateau_density(const profile_t *p, double *mean, double *err, int *
   const int n = p->nbins * p->nf;
   double *dens = calloc((size_t)p->nbins, sizeof *dens), mx = 0, mn = INFINITY;
   int *core = malloc((size_t)p->nbins * sizeof *core), nc = 0;
+  if (!dens || !core) { /* no plateau (NaN): the summary says the density is not known */
+    free(dens), free(core);
+    fprintf(stderr, "mdpore: warning: out of memory for the plateau of a profile of %d bins\n",
+            p->nbins);
+    return 0;
+  }
   for (int b = 0; b < p->nbins; b++) {
     double c = 0;
     for (int k = 0; k < p->nblocks; k++)

@@ -48,15 +48,26 @@ int sim_memory_check(sim_t *sim, memory_inputs_t *in) {
   if (rank == 0) {
     char largest[512], b_need[32], b_rank[32], b_avail[32];
     memory_plan_largest(&mp, largest, sizeof largest);
-    fprintf(stderr,
-            "mdpore: %s: not enough memory: the run needs ~%s (%s per rank x %.0f rank(s) on a "
-            "node; %.4g particles on the largest rank) but %s are available (%s); largest: %s. "
-            "Try fewer particles (a coarser geometry.rc_per_voxel, a smaller crop of the image, a "
-            "smaller box or fill) or more ranks on more nodes; mdpore run --explain prints the "
-            "plan\n",
-            st->scene.file, memory_bytes_text(need, b_need, sizeof b_need),
-            memory_bytes_text(mp.total, b_rank, sizeof b_rank), worst[0], mp.owned,
-            memory_bytes_text(available, b_avail, sizeof b_avail), from, largest);
+    if (in->stage) /* before a build whose particles are not counted yet */
+      fprintf(stderr,
+              "mdpore: %s: not enough memory for %s: it needs ~%s (%s per rank x %.0f rank(s) on "
+              "a node) before any particle is made, but %s are available (%s); largest: %s. Try "
+              "a smaller crop of the image or a coarser one (mdpore image convert --crop, "
+              "--downsample) or more ranks on more nodes; mdpore run --explain prints the plan\n",
+              st->scene.file, in->stage, memory_bytes_text(need, b_need, sizeof b_need),
+              memory_bytes_text(mp.total, b_rank, sizeof b_rank), worst[0],
+              memory_bytes_text(available, b_avail, sizeof b_avail), from, largest);
+    else
+      fprintf(
+          stderr,
+          "mdpore: %s: not enough memory: the run needs ~%s (%s per rank x %.0f rank(s) on a "
+          "node; %.4g particles on the largest rank) but %s are available (%s); largest: %s. "
+          "Try fewer particles (a coarser geometry.rc_per_voxel, a smaller crop of the image, a "
+          "smaller box or fill) or more ranks on more nodes; mdpore run --explain prints the "
+          "plan\n",
+          st->scene.file, memory_bytes_text(need, b_need, sizeof b_need),
+          memory_bytes_text(mp.total, b_rank, sizeof b_rank), worst[0], mp.owned,
+          memory_bytes_text(available, b_avail, sizeof b_avail), from, largest);
     memory_plan_print(&mp, stderr);
   }
   return -1;

@@ -124,6 +124,32 @@ void memory_plan_largest(const memory_plan_t *mp, char *out, size_t len) {
   }
 }
 
+double memory_geometry_build_bytes(double window, double gen, double lines, double segments,
+                                   int labels) {
+  /* per window voxel while the window is held: its phase and class (1 B each) and the label entry
+   * (1 B, with fluid_species_labels) */
+  const double w = window * (2 + (labels ? 1 : 0));
+  /* image_window.c: the phases and label entries, and one piece of the file read (<= the window) */
+  const double read = window * (labels ? 2 : 1) + window;
+  /* image_clusters_mpi.c: an int32 label per gen voxel, 10 B per local cluster (<= one per gen
+   * voxel) */
+  const double clusters = w + gen * (4 + 10);
+  /* image_walls.c: the squared distances of the distance transform (uint32 per window voxel) */
+  const double edt = w + window * 4;
+  /* after the phases are freed: image_fluid.c's kept counts (uint16 per gen voxel) and a key and a
+   * voxel (16 B) per own voxel (<= gen) */
+  const double held = w - window;
+  const double fluid = held + gen * (2 + 16);
+  /* image_ids.c: 16 B per x line and segment, and the local lists of wall and fluid voxels (24 B
+   * an entry; capacities doubled from 1024, so at most twice the gen voxels, plus 2 x 1024) */
+  const double ids = held + gen * 2 + lines * segments * 16 + (2 * gen + 2048) * 24;
+  double peak = read;
+  const double stage[4] = {clusters, edt, fluid, ids};
+  for (int k = 0; k < 4; k++)
+    if (stage[k] > peak) peak = stage[k];
+  return peak;
+}
+
 double memory_scene_density(const scene_t *s) {
   double rho = 0;
   for (int k = 0; k < s->init.n_fill; k++)
@@ -153,8 +179,16 @@ void memory_inputs_from_scene(const scene_t *s, const int dims[3], memory_inputs
   if (s->init.kind == INIT_GEOMETRY) {
     in->total = in->density * box;
     const double h = s->geometry.rc_per_voxel;
+    double n[3];
     in->voxels = 1;
-    for (int d = 0; d < 3; d++) in->voxels *= h > 0 ? ceil((s->box_hi[d] - s->box_lo[d]) / h) : 1;
+    for (int d = 0; d < 3; d++) {
+      n[d] = h > 0 ? ceil((s->box_hi[d] - s->box_lo[d]) / h) : 1;
+      in->voxels *= n[d];
+    }
+    /* the build of an equal share of the image per rank (its halo left out) */
+    in->build_bytes =
+        memory_geometry_build_bytes(in->voxels / ranks, in->voxels / ranks, n[1] * n[2], dims[0],
+                                    s->geometry.n_species_labels > 0);
   }
   in->owned = in->total / ranks;
   in->backend = s->backend;

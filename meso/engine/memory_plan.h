@@ -25,6 +25,8 @@ typedef struct {
   double input_set;   /* particles of an initial configuration every rank holds while they are
                          added (LAMMPS data, snapshot; 0: none)                                */
   double build_bytes; /* geometry: what the image build holds while its particles are added  */
+  const char *stage;  /* what is checked: NULL for the run's particles, else what is about to
+                         be built (the refusal names it; static or caller-owned text)          */
   int backend;        /* enum scene_backend                                                   */
   double device_bytes_per_particle; /* CUDA path: device bytes per particle slot (0: CPU)    */
 } memory_inputs_t;
@@ -52,6 +54,15 @@ void memory_plan_print(const memory_plan_t *mp, FILE *out);
 void memory_plan_largest(const memory_plan_t *mp, char *out, size_t len);
 /* Bytes in words: "812 kB", "35.2 MB", "1.21 GB". */
 const char *memory_bytes_text(double bytes, char *buf, size_t len);
+
+/* What the geometry build (populate/image_walls.c) holds at its peak on one rank, in bytes: an upper
+ * bound from the voxels of its window (what it reads: the voxels near its subdomain and a halo),
+ * of gen (those it makes particles for), the image's x lines (ny nz), the x segments of the
+ * decomposition and whether geometry.fluid_species_labels is set; the largest of its stages (the
+ * image read, the pore clusters, the distance transform, the fluid counts, the id table and the
+ * local list), each the sum of the arrays it holds. */
+double memory_geometry_build_bytes(double window, double gen, double lines, double segments,
+                                   int labels);
 
 /* The largest number density of the scene's particles: its fills, or the geometry's wall and fluid
  * densities; 0 when the scene does not say (an initial configuration from a file). */

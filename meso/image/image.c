@@ -26,6 +26,10 @@ int mdp_image_check_memory(double bytes, const char *path, const char *what, cha
 }
 
 int mdp_image_alloc(mdp_image_t *img, int nx, int ny, int nz, char *err) {
+  return mdp_image_alloc_beside(img, nx, ny, nz, 0, err);
+}
+
+int mdp_image_alloc_beside(mdp_image_t *img, int nx, int ny, int nz, double held, char *err) {
   memset(img, 0, sizeof *img);
   if (nx <= 0 || ny <= 0 || nz <= 0) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "image dimensions %dx%dx%d: each must be >= 1", nx, ny, nz);
@@ -33,8 +37,13 @@ int mdp_image_alloc(mdp_image_t *img, int nx, int ny, int nz, char *err) {
   }
   /* the count in double: three int dimensions can overflow 64 bits (2^31 cubed) */
   const double count = (double)nx * (double)ny * (double)nz;
-  char what[96];
-  snprintf(what, sizeof what, "an image of %dx%dx%d voxels", nx, ny, nz);
+  char what[160];
+  if (held > 0)
+    snprintf(what, sizeof what,
+             "an image of %dx%dx%d voxels made beside the %.4g voxels it is made from", nx, ny, nz,
+             held);
+  else
+    snprintf(what, sizeof what, "an image of %dx%dx%d voxels", nx, ny, nz);
   if (count > MDP_IMAGE_MAX_VOXELS) {
     snprintf(err, MDP_IMAGE_ERR_LEN,
              "%s: %.3g voxels, more than the %.3g an image can index (expected a product of the "
@@ -42,7 +51,7 @@ int mdp_image_alloc(mdp_image_t *img, int nx, int ny, int nz, char *err) {
              what, count, MDP_IMAGE_MAX_VOXELS, MDP_IMAGE_MAX_VOXELS);
     return 1;
   }
-  if (mdp_image_check_memory(count, "image", what, err)) return 1;
+  if (mdp_image_check_memory(count + held, "image", what, err)) return 1;
   const size_t n = (size_t)nx * (size_t)ny * (size_t)nz;
   img->label = calloc(n, 1);
   if (!img->label) {

@@ -16,7 +16,9 @@ int mdp_image_permute_axes(const mdp_image_t *in, const int axis_map[3], mdp_ima
       return 1;
     }
   }
-  if (mdp_image_alloc(out, n_in[axis_map[0]], n_in[axis_map[1]], n_in[axis_map[2]], err)) return 1;
+  if (mdp_image_alloc_beside(out, n_in[axis_map[0]], n_in[axis_map[1]], n_in[axis_map[2]],
+                             (double)mdp_image_count(in), err))
+    return 1;
   if (mdp_image_copy_meta(out, in)) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "axis map: copying the image metadata failed");
     mdp_image_free(out);

@@ -18,7 +18,7 @@ int mdp_image_mirror(const mdp_image_t *in, const int mirror[3], mdp_image_t *ou
     }
     m[a] = (int)len;
   }
-  if (mdp_image_alloc(out, m[0], m[1], m[2], err)) return 1;
+  if (mdp_image_alloc_beside(out, m[0], m[1], m[2], (double)mdp_image_count(in), err)) return 1;
   mdp_image_copy_meta(out, in);
   /* out(i) = in(i) for i < n, in(2n - 1 - i) beyond: the copy is the reflection across the high
    * face, so the high face meets its own image and, across the periodic wrap, the low face too */

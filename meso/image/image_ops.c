@@ -15,7 +15,8 @@ int mdp_image_crop(const mdp_image_t *in, const int lo[3], const int size[3], md
                lo[a], size[a], n[a]);
       return 1;
     }
-  if (mdp_image_alloc(out, size[0], size[1], size[2], err)) return 1;
+  if (mdp_image_alloc_beside(out, size[0], size[1], size[2], (double)mdp_image_count(in), err))
+    return 1;
   mdp_image_copy_meta(out, in);
   for (int k = 0; k < size[2]; k++)
     for (int j = 0; j < size[1]; j++)
@@ -52,7 +53,9 @@ int mdp_image_concat(const mdp_image_t *a, const mdp_image_t *b, int axis, mdp_i
     return 1;
   }
   n[axis] += nb[axis];
-  if (mdp_image_alloc(out, n[0], n[1], n[2], err)) return 1;
+  if (mdp_image_alloc_beside(out, n[0], n[1], n[2],
+                             (double)mdp_image_count(a) + (double)mdp_image_count(b), err))
+    return 1;
   mdp_image_copy_meta(out, a);
   for (int k = 0; k < n[2]; k++)
     for (int j = 0; j < n[1]; j++)
@@ -73,7 +76,9 @@ int mdp_image_downsample(const mdp_image_t *in, int f, mdp_image_t *out, char *e
              in->ny, in->nz);
     return 1;
   }
-  if (mdp_image_alloc(out, in->nx / f, in->ny / f, in->nz / f, err)) return 1;
+  if (mdp_image_alloc_beside(out, in->nx / f, in->ny / f, in->nz / f, (double)mdp_image_count(in),
+                             err))
+    return 1;
   mdp_image_copy_meta(out, in);
   out->voxel_size = in->voxel_size * f;
   for (int k = 0; k < out->nz; k++)
@@ -114,7 +119,9 @@ int mdp_image_pad(const mdp_image_t *in, const int w[6], uint8_t label, mdp_imag
       return 1;
     }
   }
-  if (mdp_image_alloc(out, (int)n[0], (int)n[1], (int)n[2], err)) return 1;
+  if (mdp_image_alloc_beside(out, (int)n[0], (int)n[1], (int)n[2], (double)mdp_image_count(in),
+                             err))
+    return 1;
   mdp_image_copy_meta(out, in);
   memset(out->label, label, mdp_image_count(out));
   for (int k = 0; k < in->nz; k++)

@@ -6,6 +6,7 @@
  * loop that winds around the axis, and every cluster of that component percolates (the lifting
  * argument of percolation on a torus, e.g. Machta, Phys. Rev. B 33 (1986) 4842; the same test as
  * Newman & Ziff's wrapping check, Phys. Rev. E 64 (2001) 016706). */
+#include "image_internal.h"
 #include "mdpore_image.h"
 
 #include <stdio.h>
@@ -84,6 +85,9 @@ static void axis_periodicity(const mdp_image_t *img, const int32_t *cluster, int
 
 int mdp_image_periodicity(const mdp_image_t *img, mdp_image_axis_periodicity_t per[3], char *err) {
   const size_t n = mdp_image_count(img);
+  /* the labels (4 bytes a voxel) beside the image's byte, against the memory limit */
+  if (mdp_image_check_memory(5.0 * (double)n, "image", "its cluster labels (4 bytes a voxel)", err))
+    return 1;
   int32_t *cluster = malloc(n * sizeof *cluster);
   int nc = 0, rc = 1;
   long long *size = NULL;

@@ -1,5 +1,6 @@
 /* Dropping pore clusters that do not span a flow axis: they carry no flow, and a closed pore region
  * has an undetermined pressure for a continuum solver and traps fluid for a particle one. */
+#include "image_internal.h"
 #include "mdpore_image.h"
 
 #include <stdio.h>
@@ -12,6 +13,9 @@ int mdp_image_drop_nonspanning(mdp_image_t *img, int axis, long long *dropped, c
     return 1;
   }
   size_t n = mdp_image_count(img);
+  /* the labels (4 bytes a voxel) beside the image's byte, against the memory limit */
+  if (mdp_image_check_memory(5.0 * (double)n, "image", "its cluster labels (4 bytes a voxel)", err))
+    return 1;
   int32_t *cl = malloc((n ? n : 1) * sizeof *cl); /* cluster id of each voxel, -1 for solid */
   if (!cl) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "out of memory for cluster labels (%zu voxels)", n);

@@ -1,6 +1,7 @@
 /* Porosity and pore connectivity: 6-connected clusters of pore voxels by union-find (path halving,
  * union by index), then per cluster which box faces it touches. A cluster "spans" an axis when it
  * touches both faces normal to it (inlet and outlet of a flow along that axis). */
+#include "image_internal.h"
 #include "mdpore_image.h"
 
 #include <stdio.h>
@@ -69,6 +70,9 @@ int mdp_image_stats(const mdp_image_t *img, mdp_image_stats_t *st, char *err) {
     st->n_inorganic += p == MDP_PHASE_INORGANIC;
   }
   st->porosity = (double)st->n_pore / (double)n;
+  /* the labels (4 bytes a voxel) beside the image's byte, against the memory limit */
+  if (mdp_image_check_memory(5.0 * (double)n, "image", "its cluster labels (4 bytes a voxel)", err))
+    return 1;
   int32_t *cl = malloc(n * sizeof *cl);
   if (!cl) {
     snprintf(err, MDP_IMAGE_ERR_LEN, "out of memory for cluster labels (%zu voxels)", n);

@@ -250,15 +250,30 @@ int mdp_image_read_tiff_box(const char *path, const mdp_image_read_opts_t *opts,
   if (S_ISDIR(sb.st_mode)) {
     DIR *d = opendir(path);
     char **names = NULL;
-    int n = 0, cap = 0;
+    int n = 0, cap = 0, oom = 0;
     struct dirent *e;
     while (d && (e = readdir(d))) {
       if (!has_tiff_ext(e->d_name)) continue;
-      if (n == cap) names = realloc(names, sizeof *names * (size_t)(cap = cap ? 2 * cap : 64));
-      names[n++] = strdup(e->d_name);
+      if (n == cap) {
+        char **grown = realloc(names, sizeof *names * (size_t)(cap ? 2 * cap : 64));
+        if (!grown) {
+          oom = 1;
+          break;
+        }
+        names = grown, cap = cap ? 2 * cap : 64;
+      }
+      if (!(names[n] = strdup(e->d_name))) {
+        oom = 1;
+        break;
+      }
+      n++;
     }
     if (d) closedir(d);
-    if (n == 0) {
+    if (oom) {
+      snprintf(err, MDP_IMAGE_ERR_LEN, "%s: out of memory listing %d slices of the folder", path,
+               n);
+      rc = 1;
+    } else if (n == 0) {
       snprintf(err, MDP_IMAGE_ERR_LEN, "%s: folder holds no .tif/.tiff slices", path);
       rc = 1;
     }

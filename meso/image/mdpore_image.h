@@ -68,6 +68,10 @@ static inline int mdp_image_is_pore(const mdp_image_t *img, size_t idx) {
 void mdp_image_read_opts_init(mdp_image_read_opts_t *o);
 /* Allocate an nx*ny*nz image filled with label 0, map unset, voxel size 1 "voxel". */
 int mdp_image_alloc(mdp_image_t *img, int nx, int ny, int nz, char *err);
+/* The same for an image made from others that stay allocated meanwhile (a crop, a padded, mirrored,
+ * stacked or permuted copy): `held` voxels (1 byte each) are counted with the new image against the
+ * memory limit, before the allocation. */
+int mdp_image_alloc_beside(mdp_image_t *img, int nx, int ny, int nz, double held, char *err);
 void mdp_image_free(mdp_image_t *img);
 int mdp_image_copy_meta(mdp_image_t *dst, const mdp_image_t *src); /* voxel size, unit, map */
 /* Voxel edge in metres; returns 0 for unit "voxel". */

@@ -5,6 +5,7 @@
 #include "io/gather.h"
 #include "io/h5_util.h"
 #include "engine/sim_balance.h"
+#include "common/size_check.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -72,15 +73,18 @@ int checkpoint_write(const char *path, sim_t *sim) {
     const scene_t *s = sim_scene(sim);
     double *lo = malloc((size_t)size * 3 * sizeof *lo), *hi = malloc((size_t)size * 3 * sizeof *hi);
     int64_t *c64 = malloc((size_t)size * sizeof *c64);
-    for (int r = 0; r < size; r++) {
+    for (int r = 0; lo && hi && c64 && r < size; r++) {
       memcpy(lo + 3 * r, boxes + 6 * r, 3 * sizeof *lo);
       memcpy(hi + 3 * r, boxes + 6 * r + 3, 3 * sizeof *hi);
       c64[r] = counts[r];
     }
     char tmp[SCENE_PATH_LEN + 32];
     atomic_tmp_name(path, tmp, sizeof tmp);
-    hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (f < 0) {
+    hid_t f = !lo || !hi || !c64 ? -1 : H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (!lo || !hi || !c64) {
+      fprintf(stderr, "%s: out of memory for the subdomain tables of %d ranks\n", path, size);
+      rc = -1;
+    } else if (f < 0) {
       fprintf(stderr, "%s: cannot create checkpoint file\n", tmp);
       rc = -1;
     } else {
@@ -190,6 +194,11 @@ static int read_on_root(const char *path, sim_t *sim, int size, double *boxes, p
   }
   double *lo = malloc((size_t)size * 3 * sizeof *lo), *hi = malloc((size_t)size * 3 * sizeof *hi);
   int64_t *c64 = malloc((size_t)size * sizeof *c64);
+  if (!lo || !hi || !c64) {
+    fprintf(stderr, "%s: out of memory for the subdomain tables of %d ranks\n", path, size);
+    free(lo), free(hi), free(c64);
+    goto out;
+  }
   int bad = h5_read_dataset(f, "subdomain_lo", H5T_NATIVE_DOUBLE, lo, (hsize_t)size, 3, path) ||
             h5_read_dataset(f, "subdomain_hi", H5T_NATIVE_DOUBLE, hi, (hsize_t)size, 3, path) ||
             h5_read_dataset(f, "rank_counts", H5T_NATIVE_INT64, c64, (hsize_t)size, 1, path);
@@ -209,7 +218,18 @@ static int read_on_root(const char *path, sim_t *sim, int size, double *boxes, p
   free(lo);
   free(hi);
   free(c64);
-  if (bad || particle_set_alloc(set, total, 1, 0)) goto out;
+  if (bad) goto out;
+  /* rank 0 holds every particle of the file before the memory plan is checked: its count first */
+  char why[320];
+  if (mdp_size_check((double)total, 2147483646.0, particle_set_bytes(1, 0), "particles", why,
+                     sizeof why)) {
+    fprintf(stderr, "%s: key 'rank_counts': %s\n", path, why);
+    goto out;
+  }
+  if (particle_set_alloc(set, total, 1, 0)) {
+    fprintf(stderr, "%s: out of memory for %ld particles\n", path, total);
+    goto out;
+  }
   const hsize_t n = (hsize_t)total;
   if (h5_read_dataset(f, "id", H5T_NATIVE_INT64, set->id, n, 1, path) ||
       h5_read_dataset(f, "species", H5T_NATIVE_INT32, set->species, n, 1, path) ||
@@ -283,6 +303,13 @@ int checkpoint_read(const char *path, sim_t *sim) {
   long *counts = calloc((size_t)size, sizeof *counts), step = 0;
   particle_set_t set;
   memset(&set, 0, sizeof set);
+  int oom = !boxes || !counts;
+  MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm);
+  if (oom) {
+    if (rank == 0) fprintf(stderr, "%s: out of memory for the tables of %d ranks\n", path, size);
+    free(boxes), free(counts);
+    return -1;
+  }
   int rc = rank == 0 ? read_on_root(path, sim, size, boxes, &set, counts, &step) : 0;
   MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
   if (rc) {
@@ -317,6 +344,17 @@ int checkpoint_read(const char *path, sim_t *sim) {
   /* Scatter each rank's block, field by field. */
   int *cnt = malloc((size_t)size * sizeof *cnt), *dsp = malloc((size_t)size * sizeof *dsp);
   int *cnt3 = malloc((size_t)size * sizeof *cnt3), *dsp3 = malloc((size_t)size * sizeof *dsp3);
+  particle_set_t mine;
+  memset(&mine, 0, sizeof mine);
+  oom = !cnt || !dsp || !cnt3 || !dsp3 ||
+        particle_set_alloc(&mine, counts[rank], 1, 0); /* counts: broadcast above */
+  MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm);
+  if (oom) {
+    if (rank == 0) fprintf(stderr, "%s: out of memory scattering the particles\n", path);
+    particle_set_free(&set), particle_set_free(&mine);
+    free(cnt), free(dsp), free(cnt3), free(dsp3), free(boxes), free(counts);
+    return -1;
+  }
   long off = 0;
   for (int r = 0; r < size; r++) {
     cnt[r] = (int)counts[r];
@@ -326,8 +364,6 @@ int checkpoint_read(const char *path, sim_t *sim) {
     off += counts[r];
   }
   const int n = cnt[rank];
-  particle_set_t mine;
-  particle_set_alloc(&mine, n, 1, 0);
   MPI_Scatterv(set.id, cnt, dsp, MPI_INT64_T, mine.id, n, MPI_INT64_T, 0, comm);
   MPI_Scatterv(set.species, cnt, dsp, MPI_INT32_T, mine.species, n, MPI_INT32_T, 0, comm);
   MPI_Scatterv(set.x, cnt3, dsp3, MPI_DOUBLE, mine.x, 3 * n, MPI_DOUBLE, 0, comm);

@@ -15,9 +15,11 @@ int dump_lammps_frame(const char *path, sim_t *sim, int truncate) {
   if (gather_particles(sim, 0, 1, &set, NULL)) return -1;
   if (rank == 0) {
     const scene_t *s = sim_scene(sim);
-    particle_set_sort_by_id(&set);
-    FILE *fp = fopen(path, truncate ? "w" : "a");
-    if (!fp) {
+    FILE *fp = NULL;
+    if (particle_set_sort_by_id(&set)) {
+      fprintf(stderr, "%s: out of memory sorting %ld particles for the dump\n", path, set.n);
+      rc = -1;
+    } else if (!(fp = fopen(path, truncate ? "w" : "a"))) {
       fprintf(stderr, "%s: cannot write dump: %s\n", path, strerror(errno));
       rc = -1;
     } else {

@@ -1,6 +1,7 @@
 /* Gather owned particles to one rank with MPI_Gatherv, field by field. */
 #include "io/gather.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,6 +28,17 @@ int gather_particles(sim_t *sim, int root, int with_f, particle_set_t *out, long
     displs = malloc((size_t)size * sizeof *displs);
     counts3 = malloc((size_t)size * sizeof *counts3);
     displs3 = malloc((size_t)size * sizeof *displs3);
+    bad = !counts || !displs || !counts3 || !displs3;
+  }
+  /* the send buffer of every rank, and the root's tables, before the first collective gather */
+  double *buf = malloc((size_t)(3 * (n > 0 ? n : 1)) * sizeof *buf);
+  bad |= !buf;
+  MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm);
+  if (bad) {
+    free(buf), free(counts), free(displs), free(counts3), free(displs3);
+    if (rank == root) fprintf(stderr, "mdpore: out of memory gathering the particles\n");
+    memset(out, 0, sizeof *out);
+    return -1;
   }
   MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, root, comm);
   if (rank == root) {
@@ -42,10 +54,12 @@ int gather_particles(sim_t *sim, int root, int with_f, particle_set_t *out, long
     memset(out, 0, sizeof *out);
   }
   MPI_Bcast(&bad, 1, MPI_INT, root, comm);
-  if (bad) return -1;
+  if (bad) {
+    free(buf), free(counts), free(displs), free(counts3), free(displs3);
+    return -1;
+  }
 
   /* Interleave local vectors for sending. */
-  double *buf = malloc((size_t)(3 * (n > 0 ? n : 1)) * sizeof *buf);
   gatherv(p->id, n, MPI_INT64_T, out->id, counts, displs, root, comm);
   gatherv(p->species, n, MPI_INT32_T, out->species, counts, displs, root, comm);
   double *const *src[3] = {p->x, p->v, p->f};

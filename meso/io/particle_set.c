@@ -38,25 +38,32 @@ static int by_id(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static void permute(void *arr, size_t elem, const long *perm, long n) {
+/* arr reordered by perm through tmp (n * elem bytes). */
+static void permute(void *arr, size_t elem, const long *perm, long n, char *tmp) {
   if (!arr) return;
-  char *src = arr, *tmp = malloc((size_t)n * elem);
+  char *src = arr;
   for (long i = 0; i < n; i++) memcpy(tmp + (size_t)i * elem, src + (size_t)perm[i] * elem, elem);
   memcpy(src, tmp, (size_t)n * elem);
-  free(tmp);
 }
 
-void particle_set_sort_by_id(particle_set_t *s) {
-  if (s->n < 2) return;
+int particle_set_sort_by_id(particle_set_t *s) {
+  if (s->n < 2) return 0;
+  /* both work arrays first: a failure leaves the set as it was */
   long *perm = malloc((size_t)s->n * sizeof *perm);
+  char *tmp = malloc((size_t)s->n * 3 * sizeof(double)); /* the largest element: x, v, f */
+  if (!perm || !tmp) {
+    free(perm), free(tmp);
+    return -1;
+  }
   for (long i = 0; i < s->n; i++) perm[i] = i;
   sort_ids = s->id;
   qsort(perm, (size_t)s->n, sizeof *perm, by_id);
-  permute(s->id, sizeof *s->id, perm, s->n);
-  permute(s->species, sizeof *s->species, perm, s->n);
-  permute(s->x, 3 * sizeof *s->x, perm, s->n);
-  permute(s->v, 3 * sizeof *s->v, perm, s->n);
-  permute(s->f, 3 * sizeof *s->f, perm, s->n);
-  permute(s->rho, sizeof *s->rho, perm, s->n);
-  free(perm);
+  permute(s->id, sizeof *s->id, perm, s->n, tmp);
+  permute(s->species, sizeof *s->species, perm, s->n, tmp);
+  permute(s->x, 3 * sizeof *s->x, perm, s->n, tmp);
+  permute(s->v, 3 * sizeof *s->v, perm, s->n, tmp);
+  permute(s->f, 3 * sizeof *s->f, perm, s->n, tmp);
+  permute(s->rho, sizeof *s->rho, perm, s->n, tmp);
+  free(perm), free(tmp);
+  return 0;
 }

@@ -1,6 +1,7 @@
 /* HDF5 snapshots (serial HDF5 on rank 0) and their XDMF index. */
 #include "io/snapshot.h"
 #include "common/atomic_file.h"
+#include "common/size_check.h"
 #include "io/gather.h"
 #include "io/h5_util.h"
 #include "physics/density_kernels.h"
@@ -103,7 +104,16 @@ int snapshot_read(const char *path, const scene_t *s, particle_set_t *out, long 
   H5Sclose(sp);
   H5Dclose(d);
   const int has_rho = H5Lexists(g, "density", H5P_DEFAULT) > 0;
-  if (particle_set_alloc(out, (long)n, 0, has_rho)) goto out;
+  char why[320];
+  if (mdp_size_check((double)n, 2147483646.0, particle_set_bytes(0, has_rho), "particles", why,
+                     sizeof why)) {
+    fprintf(stderr, "%s: key '/particles/id': %s\n", path, why);
+    goto out;
+  }
+  if (particle_set_alloc(out, (long)n, 0, has_rho)) {
+    fprintf(stderr, "%s: out of memory for %llu particles\n", path, (unsigned long long)n);
+    goto out;
+  }
   if (h5_read_dataset(g, "id", H5T_NATIVE_INT64, out->id, n, 1, path) ||
       h5_read_dataset(g, "species", H5T_NATIVE_INT32, out->species, n, 1, path) ||
       h5_read_dataset(g, "position", H5T_NATIVE_DOUBLE, out->x, n, 3, path) ||
@@ -299,10 +309,11 @@ int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
   if (rank == 0) {
     const scene_t *s = sim_scene(sim);
     const long step = sim_step_index(sim);
-    particle_set_sort_by_id(&set);
     char path[1100];
     snapshot_series_path(ser, step, path, sizeof path);
-    rc = snapshot_write_set(path, s, &set, step, step * s->dt);
+    rc = particle_set_sort_by_id(&set);
+    if (rc) fprintf(stderr, "%s: out of memory sorting %ld particles\n", path, set.n);
+    if (!rc) rc = snapshot_write_set(path, s, &set, step, step * s->dt);
     if (!rc) rc = series_push(ser, step, step * s->dt, set.n, set.rho != NULL);
     if (!rc) rc = write_xdmf(ser);
   }

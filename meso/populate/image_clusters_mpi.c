@@ -306,12 +306,12 @@ int image_clusters_classify(const scene_t *s, image_walls_t *g, const uint8_t *p
     image_walls_mem(g, -(long long)(nall + nrec + nprec) * 16);
   }
   MPI_Bcast(&fail, 1, MPI_INT, 0, comm);
-  fail |= !fill;
+  int *displ = rank == 0 && !fail ? malloc((size_t)size * sizeof *displ) : NULL;
+  fail |= !fill || (rank == 0 && !displ);
   MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, comm);
+  if (fail) free(displ);
   if (!fail) {
-    int *displ = NULL;
     if (rank == 0) {
-      displ = malloc((size_t)size * sizeof *displ);
       long at = 0;
       for (int r = 0; r < size; r++) ccount[r] /= 2, displ[r] = (int)at, at += ccount[r];
     }

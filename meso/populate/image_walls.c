@@ -4,6 +4,7 @@
  * wall thickness, and per wall voxel a patch of the database in one of the 24 cube orientations. */
 #include "populate/image_walls.h"
 #include "populate/init_config.h"
+#include "engine/memory_plan.h"
 #include "scene/scene_geometry.h"
 
 #include <Random123/philox.h>
@@ -471,6 +472,51 @@ static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_l
       g->rank_read[r] = all[2 * r], g->rank_peak[r] = all[2 * r + 1];
     free(all);
   }
+  return 0;
+}
+
+int image_walls_plan(const scene_t *s, MPI_Comm comm, const double sub_lo[3],
+                     const double sub_hi[3], image_walls_plan_t *p) {
+  const scene_geometry_t *geo = &s->geometry;
+  image_walls_t g;
+  memset(p, 0, sizeof *p);
+  memset(&g, 0, sizeof g);
+  g.scene = s;
+  g.h = geo->rc_per_voxel;
+  g.min_distance = geo->min_wall_distance;
+  for (int d = 0; d < 3; d++) g.lo[d] = s->box_lo[d], g.periodic[d] = s->periodic[d];
+  g.thickness = wall_thickness(s, g.h);
+  char err[4 * MDP_IMAGE_ERR_LEN];
+  /* the checks of read_stage that keep the halo finite, then the ranges (the header alone) */
+  int rc = g.thickness < g.h * (1 - 1e-12) || check_min_distance(s, &g, err, sizeof err) ||
+                   image_window_ranges(s, &g, sub_lo, sub_hi, halo_voxels(&g), err, sizeof err)
+               ? -1
+               : 0;
+  /* the x segments of the id table (image_ids.c): the distinct x cuts of the ranks' own voxels */
+  int size;
+  MPI_Comm_size(comm, &size);
+  int mine[2] = {g.own_lo[0], g.own_lo[0] + g.own_n[0]};
+  int *cut = malloc((2 * (size_t)size + 2) * sizeof *cut);
+  int fail = rc || !cut;
+  MPI_Allreduce(MPI_IN_PLACE, &fail, 1, MPI_INT, MPI_MAX, comm);
+  if (fail) {
+    free(cut);
+    return -1;
+  }
+  MPI_Allgather(mine, 2, MPI_INT, cut, 2, MPI_INT, comm);
+  int segments = 0;
+  for (int i = 0; i < 2 * size; i++) {
+    int seen = 0;
+    for (int j = 0; j < i && !seen; j++) seen = cut[j] == cut[i];
+    segments += !seen && cut[i] > 0 && cut[i] < g.n[0]; /* an inner cut adds a segment */
+  }
+  free(cut);
+  segments++;
+  for (int d = 0; d < 3; d++) p->n[d] = g.n[d];
+  p->window = (long long)g.win_n[0] * g.win_n[1] * g.win_n[2];
+  p->gen = (long long)g.gen_n[0] * g.gen_n[1] * g.gen_n[2];
+  p->bytes = memory_geometry_build_bytes((double)p->window, (double)p->gen, (double)g.n[1] * g.n[2],
+                                         segments, geo->n_species_labels > 0);
   return 0;
 }
 

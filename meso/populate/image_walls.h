@@ -124,6 +124,19 @@ int image_walls_build_local(const scene_t *scene, MPI_Comm comm, const double su
                             const double sub_hi[3], image_walls_t *g);
 void image_walls_free(image_walls_t *g);
 
+/* What image_walls_build_local will hold at its peak on this rank, before it allocates anything:
+ * the image's size (its header), the rank's window and gen voxels, and the build's bytes
+ * (engine/memory_plan.h: memory_geometry_build_bytes). Collective over comm (the x segments of the
+ * decomposition). 0, or -1 when the image or the scene's sizes are refused (*bytes = 0; the build
+ * then says why). */
+typedef struct {
+  int n[3];              /* the image's voxels along the box axes (after axis_map)          */
+  long long window, gen; /* this rank's window and gen voxels                                */
+  double bytes;          /* the build's peak                                                  */
+} image_walls_plan_t;
+int image_walls_plan(const scene_t *scene, MPI_Comm comm, const double sub_lo[3],
+                     const double sub_hi[3], image_walls_plan_t *p);
+
 /* Total particles of the whole list; particles of the local list (the whole list after
  * image_walls_build); particle i (0 <= i < local) of the local list: its id, species, position.
  * Fastest when called with i increasing (fluid voxels are generated one at a time). */
@@ -157,6 +170,10 @@ int image_walls_in_range(const image_walls_t *g, const int start[3], const int l
 /* Memory bookkeeping of the build's arrays (signed bytes). */
 void image_walls_mem(image_walls_t *g, long long bytes);
 
+/* The window's ranges alone (image_window.c): the image's size (its header) and the rank's ranges
+ * as image_window_read sets them, nothing allocated. 0 or -1 + err. */
+int image_window_ranges(const scene_t *s, image_walls_t *g, const double sub_lo[3],
+                        const double sub_hi[3], int halo, char *err, size_t errlen);
 /* The window (image_window.c): the image's size, the rank's ranges for the subdomain (whole: the
  * whole image) with `halo` voxels around gen, and the phases (mdp_phase_t) of the window voxels,
  * read with partial reads and geometry.axis_map. Local (no communication). 0 or -1 + err. */

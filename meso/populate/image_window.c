@@ -60,14 +60,13 @@ void image_walls_mem(image_walls_t *g, long long bytes) {
   if (g->mem_now > g->mem_peak) g->mem_peak = g->mem_now;
 }
 
-int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3],
-                      const double sub_hi[3], int halo, uint8_t **phase, char *err, size_t errlen) {
+int image_window_ranges(const scene_t *s, image_walls_t *g, const double sub_lo[3],
+                        const double sub_hi[3], int halo, char *err, size_t errlen) {
   const scene_geometry_t *geo = &s->geometry;
   char e[MDP_IMAGE_ERR_LEN] = "";
   mdp_image_read_opts_t opts;
   mdp_image_read_opts_init(&opts);
   if (geo->labels[0]) snprintf(opts.labels, sizeof opts.labels, "%s", geo->labels);
-  *phase = NULL;
   mdp_image_t img;
   int dims[3];
   if (mdp_image_read_box(geo->image, &opts, NULL, NULL, &img, dims, e)) {
@@ -113,6 +112,20 @@ int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3]
     wrap_range(ga, gb, n[d], g->periodic[d], &g->gen_lo[d], &g->gen_n[d]);
     wrap_range(ga - halo, gb + halo, n[d], g->periodic[d], &g->win_lo[d], &g->win_n[d]);
   }
+  return 0;
+}
+
+int image_window_read(const scene_t *s, image_walls_t *g, const double sub_lo[3],
+                      const double sub_hi[3], int halo, uint8_t **phase, char *err, size_t errlen) {
+  const scene_geometry_t *geo = &s->geometry;
+  char e[MDP_IMAGE_ERR_LEN] = "";
+  mdp_image_read_opts_t opts;
+  mdp_image_read_opts_init(&opts);
+  if (geo->labels[0]) snprintf(opts.labels, sizeof opts.labels, "%s", geo->labels);
+  *phase = NULL;
+  mdp_image_t img;
+  if (image_window_ranges(s, g, sub_lo, sub_hi, halo, err, errlen)) return -1;
+  const int *n = g->n;
   long long total = 1;
   for (int d = 0; d < 3; d++)
     if (__builtin_mul_overflow(total, (long long)g->win_n[d], &total)) total = -1;

@@ -135,9 +135,36 @@ static int offer_geometry(sim_t *sim, const scene_t *s) {
   MPI_Comm_rank(comm, &rank);
   double sub_lo[3], sub_hi[3];
   sim_subdomain(sim, sub_lo, sub_hi);
+  /* the build's own peak and the image's voxel maps, before anything is read or allocated (the
+   * particles are counted by the build, then checked below) */
+  image_walls_plan_t wp;
+  const int planned = !image_walls_plan(s, comm, sub_lo, sub_hi, &wp);
+  if (planned) {
+    char stage[1536];
+    snprintf(
+        stage, sizeof stage,
+        "the geometry build of key 'geometry.image' (%.1000s: %d x %d x %d voxels, a window of "
+        "%lld of them on rank 0)",
+        s->geometry.image, wp.n[0], wp.n[1], wp.n[2], wp.window);
+    memory_inputs_t pre = {0};
+    pre.density = memory_scene_density(s);
+    pre.voxels = (double)wp.n[0] * wp.n[1] * wp.n[2];
+    pre.build_bytes = wp.bytes;
+    pre.stage = stage;
+    if (sim_memory_check(sim, &pre)) return -1;
+  }
   image_walls_t g;
   if (image_walls_build_local(s, comm, sub_lo, sub_hi, &g)) return -1;
   if (rank == 0) image_walls_report(&g, stdout);
+  if (planned) { /* what was checked before the build, against the peak the report just gave */
+    double most = wp.bytes;
+    MPI_Allreduce(MPI_IN_PLACE, &most, 1, MPI_DOUBLE, MPI_MAX, comm);
+    if (rank == 0)
+      printf("  build checked before it ran: at most %.4g MB per rank (the largest rank's upper "
+             "bound)\n",
+             most / 1e6);
+    fflush(stdout);
+  }
   memory_inputs_t in = {0};
   in.owned = (double)image_walls_local(&g);
   in.total = (double)image_walls_total(&g);

@@ -1,6 +1,7 @@
 /* LAMMPS data files (atomic style): reader and writer. */
 #include "populate/lammps_data.h"
 #include "common/atomic_file.h"
+#include "common/size_check.h"
 #include "io/gather.h"
 
 #include <errno.h>
@@ -183,6 +184,12 @@ int lammps_data_read(const char *path, const scene_t *s, particle_set_t *out) {
                   'x' + d, s->box_lo[d], s->box_hi[d], lo[d], hi[d]);
           goto done;
         }
+      char why[320];
+      if (mdp_size_check((double)natoms, 2147483646.0, particle_set_bytes(0, 0), "atoms", why,
+                         sizeof why)) {
+        fprintf(stderr, "%s: key 'atoms': %s\n", path, why);
+        goto done;
+      }
       if (particle_set_alloc(out, natoms, 0, 0)) {
         fprintf(stderr, "%s: out of memory for %ld atoms\n", path, natoms);
         goto done;

@@ -42,10 +42,12 @@
  * seed, steps) gives the same bytes. */
 #include "populate/wall_patches.h"
 #include "common/atomic_file.h"
+#include "common/size_check.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <hdf5.h>
+#include <limits.h>
 #include <math.h>
 #include <pwd.h>
 #include <stdarg.h>
@@ -348,6 +350,10 @@ static int read_file(hid_t f, const char *file, double edge, double density, uin
                   file);
   }
   memset(out, 0, sizeof *out);
+  char why[320];
+  if (mdp_size_check((double)count + 1, (double)(1L << 30) + 1, sizeof *out->start,
+                     "entries of '/start'", why, sizeof why))
+    return fail(err, errlen, "%s: key 'count': %s", file, why);
   out->start = malloc(((size_t)count + 1) * sizeof *out->start);
   if (!out->start) return fail(err, errlen, "%s: out of memory (%ld patches)", file, count);
   hid_t d = dataset_open(f, file, "start", H5T_INTEGER, (hsize_t)count + 1, 1, err, errlen);
@@ -378,6 +384,13 @@ static int read_file(hid_t f, const char *file, double edge, double density, uin
   }
   d = dataset_open(f, file, "x", H5T_FLOAT, (hsize_t)n, 3, err, errlen);
   if (d < 0) goto bad; /* the message says n x 3 with n = start[count] */
+  /* every rank holds the database (wall_patches_load_or_build_steps) */
+  if (mdp_size_check((double)n, (double)LONG_MAX / 24, 3 * sizeof *out->x,
+                     "particles of '/x' (start[count])", why, sizeof why)) {
+    H5Dclose(d);
+    fail(err, errlen, "%s: key '/x': %s", file, why);
+    goto bad;
+  }
   out->x = malloc((size_t)n * 3 * sizeof *out->x);
   e = out->x ? H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out->x) : -1;
   H5Dclose(d);

@@ -117,6 +117,10 @@ int cmd_darcy(int argc, char **argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   const char *config = NULL;
   char **pargv = calloc(argc + 1, sizeof(char *));
+  if (!pargv) {
+    fprintf(stderr, "mdpore darcy: out of memory\n");
+    return 1;
+  }
   int pargc = 0;
   pargv[pargc++] = argv[0];
   for (int i = 1; i < argc; i++) {
@@ -177,9 +181,13 @@ int cmd_darcy(int argc, char **argv) {
   double *pressure = NULL;
   darcy_stats st;
   rc = darcy_solve(PETSC_COMM_WORLD, &c.problem, &pressure, &st) ? 1 : 0;
+  darcy_post post;
+  if (!rc && rank == 0 && (!pressure || darcy_post_compute(&c.problem, pressure, &post))) {
+    fprintf(stderr, "mdpore darcy: %s: out of memory for the pressure field of %ld blocks\n",
+            config, darcy_nblocks(&c.problem));
+    rc = 1;
+  }
   if (!rc && rank == 0) {
-    darcy_post post;
-    darcy_post_compute(&c.problem, pressure, &post);
     if (c.hdf5_path[0] && darcy_write_hdf5(c.hdf5_path, &c, pressure, &post)) rc = 1;
     if (c.json_path[0] && darcy_write_json(c.json_path, config, &c, pressure, &post, &st, size))
       rc = 1;

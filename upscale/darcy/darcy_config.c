@@ -265,6 +265,7 @@ static int parse_boundary(ytree_t *t, yaml_node_t *root, darcy_config *c) {
     long n = darcy_face_count(p, f);
     p->fixed[f] = 1;
     p->bc_p[f] = malloc(n * sizeof(double));
+    if (!p->bc_p[f]) return yt_error(t, fn, path, "out of memory for %ld face values", n);
     for (long i = 0; i < n; i++) p->bc_p[f][i] = v;
     any = 1;
   }
@@ -283,6 +284,8 @@ static int parse_sources(ytree_t *t, yaml_node_t *s, darcy_config *c) {
     return yt_error(t, s, "sources", "expected a list of {block: [i, j(, k)], rate: Q} (got %s)",
                     yt_describe(s, b, sizeof b));
   p->source = calloc(darcy_nblocks(p), sizeof(double));
+  if (!p->source)
+    return yt_error(t, s, "sources", "out of memory for %ld blocks", darcy_nblocks(p));
   for (int i = 0; i < yt_seq_size(s); i++) {
     yaml_node_t *it = yt_seq_item(t, s, i), *at[3];
     static const char *const keys[] = {"block", "rate", NULL};
@@ -320,6 +323,7 @@ static int read_k_dataset(ytree_t *t, yaml_node_t *n, darcy_config *c) {
   darcy_problem *p = &c->problem;
   long nb = darcy_nblocks(p);
   double *k = malloc(nb * sizeof(double));
+  if (!k) return yt_error(t, n, "laws.hdf5", "out of memory for %ld blocks", nb);
   kset_key key;
   int rc = darcy_k_dataset_read(full, dset, p, c->si, unit, k, msg, sizeof msg, &key);
   if (rc) {
@@ -398,6 +402,7 @@ static int parse_laws(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   long nb = darcy_nblocks(p);
   p->laws = calloc(nb, sizeof(flow_law));
   p->k_lin = calloc(nb, sizeof(double));
+  if (!p->laws || !p->k_lin) return yt_error(t, l, "laws", "out of memory for %ld blocks", nb);
   yaml_node_t *n;
   if ((n = yt_get(t, l, "uniform"))) {
     flow_law law;

@@ -30,7 +30,7 @@ static int string_attribute(hid_t d, const char *name, char *out, size_t len) {
       size_t n = H5Tget_size(ty);
       char *s = calloc(n + 1, 1);
       H5Tset_size(mem, n + 1);
-      if (H5Aread(a, mem, s) >= 0) {
+      if (s && H5Aread(a, mem, s) >= 0) {
         snprintf(out, len, "%s", s);
         rc = 1;
       }
@@ -164,6 +164,10 @@ static int read_open(hid_t d, const char *file, const char *dset, const darcy_pr
   }
   long nb = darcy_nblocks(p);
   double *raw = malloc(nb * sizeof(double));
+  if (!raw) {
+    snprintf(msg, len, "out of memory for dataset '%s' of '%s' (%ld blocks)", dset, file, nb);
+    return -1;
+  }
   if (H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw) < 0) {
     snprintf(msg, len, "expected a dataset of numbers (cannot read dataset '%s' of '%s')", dset,
              file);

@@ -32,7 +32,7 @@ static int uniform_fixed(const darcy_problem *p, int face, double *value) {
   return 1;
 }
 
-void darcy_post_compute(const darcy_problem *p, const double *pr, darcy_post *o) {
+int darcy_post_compute(const darcy_problem *p, const double *pr, darcy_post *o) {
   memset(o, 0, sizeof *o);
   long nb = darcy_nblocks(p);
   for (int a = 0; a < 3; a++) {
@@ -41,6 +41,12 @@ void darcy_post_compute(const darcy_problem *p, const double *pr, darcy_post *o)
   }
   o->block_dp = calloc(3 * nb, sizeof(double));
   o->block_grad = calloc(3 * nb, sizeof(double));
+  int oom = !o->block_dp || !o->block_grad;
+  for (int a = 0; a < 3; a++) oom |= !o->flux[a] || !o->face_p[a];
+  if (oom) {
+    darcy_post_free(o);
+    return -1;
+  }
   o->pmin = INFINITY;
   o->pmax = -INFINITY;
   for (int k = 0; k < p->n[2]; k++)
@@ -117,6 +123,7 @@ void darcy_post_compute(const darcy_problem *p, const double *pr, darcy_post *o)
   o->net_boundary_outflow = out_total;
   o->total_source = src;
   o->mass_balance_rel = scale > 0 ? fabs(out_total - src) / scale : 0.0;
+  return 0;
 }
 
 void darcy_post_free(darcy_post *o) {

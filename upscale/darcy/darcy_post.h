@@ -22,7 +22,8 @@ typedef struct {
 } darcy_post;
 
 long darcy_post_face_count(const darcy_problem *p, int axis);
-void darcy_post_compute(const darcy_problem *p, const double *pressure, darcy_post *out);
+/* 0, or -1 when its arrays cannot be allocated (out freed: nothing to free). */
+int darcy_post_compute(const darcy_problem *p, const double *pressure, darcy_post *out);
 void darcy_post_free(darcy_post *out);
 
 #endif

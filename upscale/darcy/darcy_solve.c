@@ -85,14 +85,19 @@ static PetscErrorCode gather(DM da, Vec x, double **out) {
     PetscInt n;
     const PetscScalar *a;
     PetscCall(VecGetSize(seq, &n));
-    *out = malloc(n * sizeof(double));
+    *out = malloc((n ? (size_t)n : 1) * sizeof(double));
     PetscCall(VecGetArrayRead(seq, &a));
-    memcpy(*out, a, n * sizeof(double));
+    if (*out) memcpy(*out, a, (size_t)n * sizeof(double));
     PetscCall(VecRestoreArrayRead(seq, &a));
   }
   PetscCall(VecScatterDestroy(&sc));
   PetscCall(VecDestroy(&seq));
   PetscCall(VecDestroy(&nat));
+  /* every rank fails together when rank 0 has no room for the field */
+  int oom = rank == 0 && !*out;
+  PetscCallMPI(MPI_Bcast(&oom, 1, MPI_INT, 0, PetscObjectComm((PetscObject)da)));
+  PetscCheck(!oom, PetscObjectComm((PetscObject)da), PETSC_ERR_MEM,
+             "out of memory for the pressure field on rank 0");
   PetscFunctionReturn(0);
 }
 
@@ -126,6 +131,9 @@ static PetscErrorCode solve(MPI_Comm comm, darcy_problem *p, double **pressure, 
      */
     long nb = darcy_nblocks(p);
     flow_law *nonlinear = p->laws, *lin = malloc(nb * sizeof(flow_law));
+    int oom = !lin;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm));
+    PetscCheck(!oom, comm, PETSC_ERR_MEM, "out of memory for the initial guess's %ld laws", nb);
     for (long b = 0; b < nb; b++) lin[b] = (flow_law){.kind = LAW_DARCY, .k = p->k_lin[b]};
     p->laws = lin;
     darcy_stats lst = {0};

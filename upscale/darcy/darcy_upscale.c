@@ -63,8 +63,10 @@ static double linear_value(const darcy_problem *p, int face, const int c[3], int
 }
 
 /* The base problem with the boundary conditions of family f driving along dir (pressure drop dp
- * over the grid). Shares laws and k_lin with base; its own bc_p arrays. */
-static darcy_problem family_problem(const darcy_problem *base, int f, int dir, double dp) {
+ * over the grid). Shares laws and k_lin with base; its own bc_p arrays (*oom = 1 when one of them
+ * could not be allocated). */
+static darcy_problem family_problem(const darcy_problem *base, int f, int dir, double dp,
+                                    int *oom) {
   darcy_problem q = *base;
   memset(q.fixed, 0, sizeof q.fixed);
   memset(q.bc_p, 0, sizeof q.bc_p);
@@ -77,6 +79,11 @@ static darcy_problem family_problem(const darcy_problem *base, int f, int dir, d
     long n = darcy_face_count(&q, face);
     q.fixed[face] = 1;
     q.bc_p[face] = malloc(n * sizeof(double));
+    if (!q.bc_p[face]) {
+      q.fixed[face] = 0;
+      *oom = 1;
+      continue;
+    }
     int axis = face / 2, t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
     for (int b = 0; b < q.n[t2]; b++)
       for (int a = 0; a < q.n[t1]; a++) {
@@ -136,7 +143,14 @@ int darcy_upscale(MPI_Comm comm, const darcy_problem *base, int families, darcy_
     r->converged[f] = 1;
     for (int dir = 0; dir < base->dim; dir++) {
       const double dp = 1.0; /* any drop: the problem is linear and its equations scaled */
-      darcy_problem q = family_problem(base, f, dir, dp);
+      int oom = 0;
+      darcy_problem q = family_problem(base, f, dir, dp, &oom);
+      MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm);
+      if (oom) {
+        if (rank == 0) fprintf(stderr, "mdpore darcy: --upscale: out of memory for a boundary\n");
+        free_bc(&q);
+        return 1;
+      }
       double *pr = NULL;
       darcy_stats st;
       int err = darcy_solve(comm, &q, &pr, &st);

@@ -154,6 +154,15 @@ int twophase_run(MPI_Comm comm, darcy_config *c, twophase_summary *sum) {
   sum->breakthrough_pvi = -1.0;
   double *k_abs = malloc(nb * sizeof(double)), *sw = malloc(nb * sizeof(double));
   double *dsw = malloc(nb * sizeof(double));
+  int oom = !k_abs || !sw || !dsw;
+  MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm);
+  if (oom) {
+    if (rank == 0)
+      fprintf(stderr, "mdpore darcy: twophase: out of memory for the saturations of %ld blocks\n",
+              nb);
+    free(k_abs), free(sw), free(dsw);
+    return 1;
+  }
   for (long b = 0; b < nb; b++) k_abs[b] = p->laws[b].k, sw[b] = tp->s_init;
   const double pore_volume = tp->porosity * p->h[0] * p->h[1] * p->h[2] * nb;
   const double oil0 = pore_volume * (1.0 - tp->s_init);

@@ -174,10 +174,19 @@ int relperm_read_table(const char *path, relperm *r, int *had_pc, char *why, int
       break;
     }
     if (r->rows == cap) {
-      cap = cap ? 2 * cap : 32;
-      r->sw = realloc(r->sw, cap * sizeof(double));
-      r->krw = realloc(r->krw, cap * sizeof(double));
-      r->kro = realloc(r->kro, cap * sizeof(double));
+      const int grown = cap ? 2 * cap : 32;
+      double *sw = realloc(r->sw, (size_t)grown * sizeof(double));
+      if (sw) r->sw = sw;
+      double *krw = realloc(r->krw, (size_t)grown * sizeof(double));
+      if (krw) r->krw = krw;
+      double *kro = realloc(r->kro, (size_t)grown * sizeof(double));
+      if (kro) r->kro = kro;
+      if (!sw || !krw || !kro) {
+        snprintf(why, why_len, "%s:%d: out of memory for %d rows", path, lineno, grown);
+        rc = -1;
+        break;
+      }
+      cap = grown;
     }
     r->sw[r->rows] = v[0];
     r->krw[r->rows] = v[1];

@@ -82,6 +82,10 @@ static int parse_args(int argc, char **argv, fit_args *a) {
   for (int k = 0; k < LAW_COUNT; k++) a->kinds[k] = k;
   a->nk = LAW_COUNT;
   a->petsc_argv = calloc(argc + 1, sizeof(char *));
+  if (!a->petsc_argv) {
+    fprintf(stderr, "mdpore fit: out of memory\n");
+    return -1;
+  }
   a->petsc_argv[a->petsc_argc++] = argv[0];
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];

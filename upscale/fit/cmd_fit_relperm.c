@@ -91,6 +91,10 @@ static int parse_args(int argc, char **argv, relperm_args *a) {
   a->swof_rows = KR_SWOF_DEFAULT_ROWS;
   a->fit.swc = a->fit.sor = NAN;
   a->petsc_argv = calloc(argc + 1, sizeof(char *));
+  if (!a->petsc_argv) {
+    fprintf(stderr, "mdpore fit: out of memory\n");
+    return -1;
+  }
   a->petsc_argv[a->petsc_argc++] = argv[0];
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i];

@@ -76,6 +76,10 @@ static int parse_args(int argc, char **argv, slip_args *a) {
   a->out = "slip";
   a->rc_m = NAN;
   a->inputs = calloc(argc, sizeof *a->inputs);
+  if (!a->inputs) {
+    fprintf(stderr, "mdpore slip: out of memory\n");
+    return -1;
+  }
   for (int i = 1; i < argc; i++) {
     const char *s = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (cli_help_flag(s)) return cli_help_flag(s);
