@@ -192,11 +192,12 @@ static int run_loop(couple_config *c) {
       }
     }
     h.left_out[pass - 1] = left_out;
-    const int new_cross = c->axes == COUPLE_AXES_AUTO ? want_cross_axes(c, blocks, n, &s, pass) : 0;
-    h.new_cross[pass - 1] = new_cross;
     if (couple_write_pass_table(c, blocks, n, pass, &s, new_runs) ||
         couple_write_field(c, blocks, pass, size, &s))
       goto out;
+    /* after the table: it shows the laws this pass solved with */
+    const int new_cross = c->axes == COUPLE_AXES_AUTO ? want_cross_axes(c, blocks, n, &s, pass) : 0;
+    h.new_cross[pass - 1] = new_cross;
     double worst = 0;
     if (pass > 1)
       for (int b = 0; b < n; b++) {

@@ -86,21 +86,23 @@ const char *couple_k_along(const couple_config *c, const couple_block *b, int a,
 }
 
 /* With cross axes (campaign.axes all or auto): the block's k along every axis, as the continuum
- * uses it, into the table's extra columns and a printed line. */
+ * uses it, into the table's extra columns and a line to print (line[len]). */
 static void write_axes_k(const couple_config *c, const couple_block *B, double cross_flow, FILE *f,
-                         int pass) {
-  char line[512];
-  int used = snprintf(line, sizeof line, "pass %d: block (%d,%d,%d) k along", pass, B->index[0],
+                         int pass, char *line, size_t len) {
+  int used = snprintf(line, len, "pass %d: block (%d,%d,%d) k along", pass, B->index[0],
                       B->index[1], B->index[2]);
   for (int a = 0; a < 3; a++) {
     double k, err;
     const char *from = couple_k_along(c, B, a, &k, &err);
     fprintf(f, ",%.9g,%.9g,%s", k, err, from);
-    used += snprintf(line + used, sizeof line - used, "%s %c %.4g+-%.2g (%s)", a ? "," : "",
-                     'x' + a, k, err, from);
+    if (used >= 0 && (size_t)used < len)
+      used += snprintf(line + used, len - used, "%s %c %.4g+-%.2g (%s)", a ? "," : "", 'x' + a, k,
+                       err, from);
   }
   fprintf(f, ",%.4g", cross_flow);
-  printf("%s; flow across the axis %.3g of the flow along it\n", line, cross_flow);
+  if (used >= 0 && (size_t)used < len)
+    snprintf(line + used, len - used, "; flow across the axis %.3g of the flow along it",
+             cross_flow);
 }
 
 int couple_write_pass_table(const couple_config *c, const couple_block *blocks, int n, int pass,
@@ -146,7 +148,9 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
             B->percolates ? law_flag(L) : "pore space does not span the axis");
     double cross_flow = 0.0; /* the largest over the cross axes */
     for (int a = 0; a < 3; a++) cross_flow = fmax(cross_flow, s->cross[3 * b + a]);
-    if (c->axes != COUPLE_AXES_FLOW) write_axes_k(c, B, cross_flow, f, pass);
+    char axes_line[512] = "";
+    if (c->axes != COUPLE_AXES_FLOW)
+      write_axes_k(c, B, cross_flow, f, pass, axes_line, sizeof axes_line);
     fputc('\n', f);
     char blk[32], kk[48], cal[48], seen[32], newr[32];
     snprintf(blk, sizeof blk, "(%d,%d,%d)", B->index[0], B->index[1], B->index[2]);
@@ -160,6 +164,7 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
     printf("pass %d: %-9s %-7s %-12s %-22s %-20s %-9s %-12.5g %-12.5g %s\n", pass, blk,
            B->percolates ? flow_law_name(L->law.kind) : "none", kk, cal, seen, range_word(c, B, G),
            s->flux[b], q_law, newr);
+    if (axes_line[0]) printf("%s\n", axes_line);
   }
   return atomic_commit(f, tmp, path);
 }
