@@ -84,6 +84,32 @@ static int feed_back(const couple_config *c, couple_block *b, double G) {
   return 1;
 }
 
+/* campaign.axes: auto. Marks the cross axes along which a block's flow in this pass's solve exceeds
+ * COUPLE_CROSS_FLOW_FRACTION of its flow along the loop's axis (only axes with faces between blocks
+ * carry any) to be measured in the next pass; an axis its pore space does not span is taken
+ * impermeable without a campaign. Returns how many were marked. */
+static int want_cross_axes(const couple_config *c, couple_block *blocks, int n,
+                           const couple_solution *s, int pass) {
+  int marked = 0;
+  for (int b = 0; b < n; b++)
+    for (int a = 0; a < 3; a++) {
+      couple_block *B = &blocks[b];
+      if (a == c->axis || c->blocks[a] < 2 || B->cross_state[a] != CROSS_NONE || !B->percolates)
+        continue;
+      const double fraction = s->cross[3 * b + a];
+      if (!(fraction > COUPLE_CROSS_FLOW_FRACTION)) continue;
+      B->cross_state[a] = B->spans[a] ? CROSS_WANTED : CROSS_NO_SPAN;
+      marked++;
+      printf("mdpore couple: pass %d: block (%d,%d,%d): its flow along %c is %.3g of its flow "
+             "along %c (> %.2g, campaign.axes: auto): %s\n",
+             pass, B->index[0], B->index[1], B->index[2], 'x' + a, fraction, 'x' + c->axis,
+             COUPLE_CROSS_FLOW_FRACTION,
+             B->spans[a] ? "its k along that axis is measured in the next pass"
+                         : "its pore space does not span that axis: impermeable along it");
+    }
+  return marked;
+}
+
 static int run_loop(couple_config *c) {
   int n = c->blocks[0] * c->blocks[1] * c->blocks[2];
   couple_block *blocks = calloc((size_t)n, sizeof *blocks);
@@ -123,8 +149,13 @@ static int run_loop(couple_config *c) {
       rc = 3;
       goto out;
     }
-    for (int b = 0; b < n; b++)
+    for (int b = 0; b < n; b++) {
       if (couple_read_law(c, &blocks[b])) goto out;
+      for (int a = 0; a < 3; a++)
+        if (blocks[b].cross_state[a] == CROSS_WANTED && blocks[b].cross_run[a] &&
+            couple_read_cross_law(c, &blocks[b], a))
+          goto out;
+    }
     if (pass == 1) {
       gradient = drive_gradient(c, blocks, n);
       if (!(gradient > 0)) {
@@ -170,6 +201,9 @@ static int run_loop(couple_config *c) {
     if (couple_write_pass_table(c, blocks, n, pass, &s, new_runs) ||
         couple_write_field(c, blocks, pass, size, &s))
       goto out;
+    /* after the table: it shows the laws this pass solved with */
+    const int new_cross = c->axes == COUPLE_AXES_AUTO ? want_cross_axes(c, blocks, n, &s, pass) : 0;
+    h.new_cross[pass - 1] = new_cross;
     double worst = 0;
     if (pass > 1)
       for (int b = 0; b < n; b++) {
@@ -185,8 +219,10 @@ static int run_loop(couple_config *c) {
     printf("pass %d: k_eff = %.5g +- %.2g rc^2 (%d Monte-Carlo samples), %d new pore-scale runs",
            pass, s.keff, s.keff_err, s.samples_ok, added);
     if (pass > 1) printf(", largest block-flux change %.3g standard errors", worst);
+    if (new_cross) printf(", %d block axes to measure across the flow", new_cross);
     printf("\n");
-    if (pass > 1 && worst <= c->tolerance_sigma) {
+    /* a pass that asked for cross-axis campaigns is not the last: the next one solves with them */
+    if (pass > 1 && worst <= c->tolerance_sigma && !new_cross) {
       h.converged = 1;
       snprintf(h.stop_reason, sizeof h.stop_reason,
                "converged at pass %d: every block flux agrees with pass %d within %.3g combined "

@@ -27,6 +27,15 @@
 
 enum { COUPLE_LAUNCH_MPIEXEC = 0, COUPLE_LAUNCH_SLURM };
 enum { COUPLE_LAW_DARCY = 0, COUPLE_LAW_CHOSEN };
+/* campaign.axes: which axes each block's permeability is measured along. FLOW: the loop's axis only,
+ * one scalar law per block (the default). ALL: every axis along which the block grid has more than
+ * one block (the only axes whose faces between blocks carry flow), a diagonal law per block. AUTO:
+ * the loop's axis, then a cross axis of a block wherever the continuum's flow through the block
+ * along it exceeds COUPLE_CROSS_FLOW_FRACTION of its flow along the loop's axis. */
+enum { COUPLE_AXES_FLOW = 0, COUPLE_AXES_ALL, COUPLE_AXES_AUTO };
+#define COUPLE_CROSS_FLOW_FRACTION 0.05
+/* The state of a block's campaign along a cross axis. */
+enum { CROSS_NONE = 0, CROSS_WANTED, CROSS_NO_SPAN, CROSS_MEASURED };
 
 typedef struct {
   char path[COUPLE_PATH];    /* the config file */
@@ -62,6 +71,7 @@ typedef struct {
   int drive_pressure;  /* 1: --drive pressure (inlet force in a reservoir, measured G) */
   char boundary[16];   /* --boundary of every block campaign ("" = the campaign's default, auto) */
   char sides[16];      /* --sides ("" = the campaign's default, periodic) */
+  int axes;            /* COUPLE_AXES_* (campaign.axes) */
   /* loop */
   int max_passes;
   double tolerance_sigma;     /* fluxes agree when |dq| <= tol * combined standard error */
@@ -94,7 +104,13 @@ typedef struct {
   char image[COUPLE_PATH];   /* the block's image file */
   char workdir[COUPLE_PATH]; /* its campaign folder */
   double porosity;
-  int percolates;
+  int percolates; /* the pore space spans the loop's axis */
+  int spans[3];   /* the pore space spans axis a */
+  /* along each cross axis a (a != the loop's axis): CROSS_* and, when measured, the law of the
+   * block's campaign along a (WORKDIR/blocks/bI_J_K/campaign_<a>; auto ladder, no feedback runs) */
+  int cross_state[3];
+  int cross_run[3]; /* its campaign ran (or was collected) in this loop */
+  couple_law cross[3];
   int n_extra; /* gradients added by the loop */
   int n_extra_run; /* n_extra when its campaign last ran (-1: not yet): unchanged blocks are not rerun */
   double extra_g[COUPLE_MAX_GRADIENTS]; /* body forces per particle added by the loop */
@@ -117,6 +133,8 @@ typedef struct {
   double *grad;     /* per block: mean gradient along the axis */
   double *flux;     /* per block: mean superficial velocity along the axis (mean of its faces) */
   double *flux_err; /* Monte-Carlo standard error of flux */
+  double *cross;    /* per block and axis [3 b + a]: mean |superficial velocity| through the block's
+                       two faces normal to a, over |flux| (0 along the loop's axis) */
   double keff, keff_err; /* effective permeability along the axis and its error */
   double q_total;        /* mean superficial velocity through the sample */
   double dp;             /* pressure drop over the sample */
@@ -132,16 +150,23 @@ void couple_config_free(couple_config *c);
  * Fills blocks[n] (index, image, workdir, porosity, percolates). 0 or -1 with a message. */
 int couple_make_blocks(const couple_config *c, couple_block *blocks, double block_size[3]);
 
-/* couple_campaigns.c: run (or reuse) the campaign of every block with its current gradients; with
- * the slurm launcher, write the job array of the unfinished runs instead and set *pending. Then
- * collect (tables, fits) the blocks whose runs are all finished. 0 or -1. */
+/* couple_campaigns.c: run (or reuse) the campaign of every block with its current gradients, and
+ * the cross-axis campaigns wanted (cross_state CROSS_WANTED, not run yet); with the slurm launcher,
+ * write the job array of the unfinished runs instead and set *pending. Then collect (tables, fits)
+ * the campaigns whose runs are all finished. 0 or -1. */
 int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, int pass,
                          int *pending);
 /* The gradients (body forces per particle) of a block's campaign manifest. */
 int couple_read_ladder(couple_block *b);
 
+/* The folder of block b's campaign along axis a (its workdir along the loop's axis). */
+void couple_campaign_dir(const couple_config *c, const couple_block *b, int a, char *out,
+                         size_t len);
+
 /* couple_law.c: reads a block's fit JSON (WORKDIR/fit_<axis>.json). 0 or -1 with a message. */
 int couple_read_law(const couple_config *c, couple_block *b);
+/* The same for the block's campaign along cross axis a (into b->cross[a], CROSS_MEASURED). */
+int couple_read_cross_law(const couple_config *c, couple_block *b, int a);
 /* A law with parameters drawn from the fit's covariance (normal deviates z[3]). */
 void couple_law_sample(const couple_law *L, const double z[3], flow_law *out);
 
@@ -154,6 +179,13 @@ void couple_solution_free(couple_solution *s);
 /* couple_output.c */
 /* "block (i,j,k) axis x: mirror (seam continuity 0.13; auto: periodic at >= 0.80), sides periodic" */
 void couple_boundary_text(const couple_config *c, const couple_block *b, char *out, size_t len);
+/* The same for the campaign along axis a. */
+void couple_boundary_text_axis(const couple_config *c, const couple_block *b, int a, char *out,
+                               size_t len);
+/* The Darcy k of block b along axis a that the continuum uses (the flow axis's along an axis not
+ * measured), its error, and where it comes from ("campaign", "flow axis", "impermeable"). */
+const char *couple_k_along(const couple_config *c, const couple_block *b, int a, double *k,
+                           double *err);
 int couple_write_pass_table(const couple_config *c, const couple_block *blocks, int n, int pass,
                             const couple_solution *s, const int *new_runs);
 int couple_write_field(const couple_config *c, const couple_block *blocks, int pass,
@@ -163,7 +195,8 @@ typedef struct {
   char stop_reason[512];
   double keff[16], keff_err[16], max_dq_sigma[16]; /* per pass */
   int new_runs[16];
-  int left_out[16]; /* blocks outside their range whose run there the fit left out, per pass */
+  int new_cross[16]; /* cross-axis campaigns asked for after each pass (campaign.axes: auto) */
+  int left_out[16];  /* blocks outside their range whose run there the fit left out, per pass */
 } couple_history;
 int couple_write_summary(const couple_config *c, const couple_block *blocks, int n,
                          const double block_size[3], const couple_solution *s,

@@ -52,6 +52,11 @@ static int store_block(const couple_config *c, mdp_image_t *img, couple_block *b
   }
   b->porosity = st.porosity;
   b->percolates = st.spans[c->axis];
+  for (int a = 0; a < 3; a++) b->spans[a] = st.spans[a];
+  /* campaign.axes: all measures every cross axis with faces between blocks from the start */
+  for (int a = 0; a < 3; a++)
+    if (c->axes == COUPLE_AXES_ALL && a != c->axis && c->blocks[a] > 1)
+      b->cross_state[a] = b->spans[a] ? CROSS_WANTED : CROSS_NO_SPAN;
   return 0;
 }
 

@@ -31,21 +31,31 @@ static void gradient_list(const couple_block *b, char *out, size_t len) {
   }
 }
 
-/* argv of `mdpore permeability` for block b; mode: "" (run), "--emit-scenes" or "--collect". */
-static int campaign_argv(const couple_config *c, const couple_block *b, const char *mode,
+void couple_campaign_dir(const couple_config *c, const couple_block *b, int a, char *out,
+                         size_t len) {
+  if (a == c->axis)
+    snprintf(out, len, "%s", b->workdir);
+  else /* beside the loop axis's WORKDIR/blocks/bI_J_K/campaign */
+    snprintf(out, len, "%.4000s_%c", b->workdir, 'x' + a);
+}
+
+/* argv of `mdpore permeability` for block b along axis a; mode: "" (run), "--emit-scenes" or
+ * "--collect". Along a cross axis the campaign is the auto ladder alone (no feedback runs). */
+static int campaign_argv(const couple_config *c, const couple_block *b, int a, const char *mode,
                          char **argv) {
   int n = 0;
-  char v[4096];
+  char v[4096], dir[COUPLE_PATH + 8];
+  couple_campaign_dir(c, b, a, dir, sizeof dir);
   int bad = add(argv, &n, c->self_exe) || add(argv, &n, "permeability");
   if (!strcmp(mode, "--collect")) {
-    bad = bad || add(argv, &n, "--collect") || add(argv, &n, b->workdir);
+    bad = bad || add(argv, &n, "--collect") || add(argv, &n, dir);
     argv[n] = NULL;
     return bad ? -1 : 0;
   }
-  snprintf(v, sizeof v, "%c", 'x' + c->axis);
+  snprintf(v, sizeof v, "%c", 'x' + a);
   bad = bad || add(argv, &n, b->image) || add(argv, &n, "--axis") || add(argv, &n, v);
-  bad = bad || add(argv, &n, mode[0] ? mode : "--workdir") || add(argv, &n, b->workdir);
-  if (b->n_extra > 0) {
+  bad = bad || add(argv, &n, mode[0] ? mode : "--workdir") || add(argv, &n, dir);
+  if (b->n_extra > 0 && a == c->axis) {
     gradient_list(b, v, sizeof v);
     bad = bad || add(argv, &n, "--gradients") || add(argv, &n, v);
   } else {
@@ -100,9 +110,10 @@ static void free_argv(char **argv) {
   for (int i = 0; argv[i]; i++) free(argv[i]);
 }
 
-static int spawn(const couple_config *c, const couple_block *b, const char *mode, const char *log) {
+static int spawn(const couple_config *c, const couple_block *b, int a, const char *mode,
+                 const char *log) {
   char *argv[64] = {0};
-  if (campaign_argv(c, b, mode, argv)) {
+  if (campaign_argv(c, b, a, mode, argv)) {
     free_argv(argv);
     return -1;
   }
@@ -141,10 +152,25 @@ int couple_read_ladder(couple_block *b) {
   return rc;
 }
 
-/* Appends the lines of WORKDIR/commands.txt whose run folder has no summary.json to `out`. */
-static int pending_commands(const couple_block *b, FILE *out, int *count) {
+/* The boundary treatment of block b's campaign along cross axis a (its campaign.txt). */
+static int read_cross_manifest(const couple_config *c, couple_block *b, int a) {
+  char dir[COUPLE_PATH + 8];
+  couple_campaign_dir(c, b, a, dir, sizeof dir);
+  campaign *m = malloc(sizeof *m);
+  if (!m) return -1;
+  int rc = camp_read_manifest(dir, m);
+  if (!rc) {
+    b->boundary[a] = m->boundary[a];
+    b->seam_continuity[a] = m->seam_continuity[a];
+  }
+  free(m);
+  return rc;
+}
+
+/* Appends the lines of DIR/commands.txt whose run folder has no summary.json to `out`. */
+static int pending_commands(const char *dir_of_campaign, FILE *out, int *count) {
   char path[COUPLE_PATH + 32], line[3 * COUPLE_PATH];
-  snprintf(path, sizeof path, "%s/commands.txt", b->workdir);
+  snprintf(path, sizeof path, "%.4000s/commands.txt", dir_of_campaign);
   FILE *f = fopen(path, "r");
   if (!f) {
     fprintf(stderr, "mdpore couple: %s: missing (the campaign's --emit-scenes should write it)\n",
@@ -189,6 +215,71 @@ static int write_slurm(const couple_config *c, int pass, const char *commands, i
   return atomic_commit(f, tmp, path);
 }
 
+/* Runs (mpiexec) or emits and, when finished, collects (slurm) block b's campaign along axis a.
+ * Adds its unfinished runs to *count (and b->pending). 0, or -1 with a message. */
+static int run_campaign(const couple_config *c, couple_block *b, int a, int pass, FILE *array,
+                        int *count) {
+  char dir[COUPLE_PATH + 8], log[COUPLE_PATH + 64], cross[48] = "";
+  int st;
+  couple_campaign_dir(c, b, a, dir, sizeof dir);
+  snprintf(log, sizeof log, "%.4000s/campaign.log", dir);
+  if (a != c->axis) snprintf(cross, sizeof cross, " along %c", 'x' + a);
+  if (make_dirs(dir)) return -1;
+  if (a == c->axis)
+    fprintf(stderr, "mdpore couple: pass %d: block (%d,%d,%d): campaign %s (%d gradients%s)\n",
+            pass, b->index[0], b->index[1], b->index[2], dir,
+            b->n_extra ? b->n_ladder + b->n_extra : c->n_gradients,
+            b->n_extra ? ", with the loop's" : ", auto ladder");
+  else
+    fprintf(stderr,
+            "mdpore couple: pass %d: block (%d,%d,%d): campaign along %c %s (%d gradients, auto "
+            "ladder: the block's k along a cross axis)\n",
+            pass, b->index[0], b->index[1], b->index[2], 'x' + a, dir, c->n_gradients);
+  if (c->launcher == COUPLE_LAUNCH_SLURM) {
+    int before = *count;
+    if (spawn(c, b, a, "--emit-scenes", log) != 0 || pending_commands(dir, array, count)) {
+      fprintf(stderr, "mdpore couple: the campaign%s of block (%d,%d,%d) failed: see %s\n", cross,
+              b->index[0], b->index[1], b->index[2], log);
+      return -1;
+    }
+    b->pending += *count - before;
+    if (*count == before && (st = spawn(c, b, a, "--collect", log)) != 0) {
+      fprintf(stderr, "mdpore couple: collecting block (%d,%d,%d)%s %s: see %s\n", b->index[0],
+              b->index[1], b->index[2], cross,
+              st == CAMP_EXIT_NO_DARCY_RANGE ? "found no Darcy range (its k is not defined)"
+                                             : "failed",
+              log);
+      return -1;
+    }
+  } else if ((st = spawn(c, b, a, "", log)) != 0) {
+    if (st == CAMP_EXIT_NO_DARCY_RANGE)
+      fprintf(stderr,
+              "mdpore couple: the runs of block (%d,%d,%d)%s define no Darcy range: its k is not "
+              "defined, so neither is the sample's (the reasons and what to try: %s)\n",
+              b->index[0], b->index[1], b->index[2], cross, log);
+    else
+      fprintf(stderr, "mdpore couple: the campaign%s of block (%d,%d,%d) failed: see %s\n", cross,
+              b->index[0], b->index[1], b->index[2], log);
+    return -1;
+  }
+  if (a == c->axis ? couple_read_ladder(b) : read_cross_manifest(c, b, a)) return -1;
+  char text[256];
+  couple_boundary_text_axis(c, b, a, text, sizeof text);
+  printf("mdpore couple: pass %d: %s\n", pass, text);
+  /* the campaign warns in its own log; a forced periodic seam across a crop's mismatched faces
+   * can read k many times too low (docs/permeability.md, "Boundaries"), so say it here too */
+  if (b->boundary[a] == CAMP_BOUNDARY_PERIODIC &&
+      b->seam_continuity[a] < MDP_SEAM_PERIODIC_CONTINUITY)
+    fprintf(stderr,
+            "mdpore couple: warning: block (%d,%d,%d) runs periodic along %c, but its end slices "
+            "do not continue each other (seam continuity %.2f < %.2f): the seam closes or "
+            "invents flow paths; campaign.boundary auto or mirror treats a cut block's faces\n",
+            b->index[0], b->index[1], b->index[2], 'x' + a, b->seam_continuity[a],
+            MDP_SEAM_PERIODIC_CONTINUITY);
+  fflush(stdout);
+  return 0;
+}
+
 int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, int pass,
                          int *pending) {
   *pending = 0;
@@ -203,60 +294,19 @@ int couple_run_campaigns(const couple_config *c, couple_block *blocks, int n, in
   }
   for (int i = 0; i < n; i++) {
     couple_block *b = &blocks[i];
-    int st;
     b->pending = 0;
-    if (!b->percolates) continue;
-    if (b->n_extra_run == b->n_extra) continue; /* no new gradient: its runs and fit stand */
-    char log[COUPLE_PATH + 64];
-    snprintf(log, sizeof log, "%.4000s/campaign.log", b->workdir);
-    if (make_dirs(b->workdir)) goto fail;
-    fprintf(stderr, "mdpore couple: pass %d: block (%d,%d,%d): campaign %s (%d gradients%s)\n",
-            pass, b->index[0], b->index[1], b->index[2], b->workdir,
-            b->n_extra ? b->n_ladder + b->n_extra : c->n_gradients,
-            b->n_extra ? ", with the loop's" : ", auto ladder");
-    if (c->launcher == COUPLE_LAUNCH_SLURM) {
-      int before = count;
-      if (spawn(c, b, "--emit-scenes", log) != 0 || pending_commands(b, array, &count)) {
-        fprintf(stderr, "mdpore couple: the campaign of block (%d,%d,%d) failed: see %s\n",
-                b->index[0], b->index[1], b->index[2], log);
-        goto fail;
-      }
-      b->pending = count - before;
-      if (!b->pending && (st = spawn(c, b, "--collect", log)) != 0) {
-        fprintf(stderr, "mdpore couple: collecting block (%d,%d,%d) %s: see %s\n", b->index[0],
-                b->index[1], b->index[2],
-                st == CAMP_EXIT_NO_DARCY_RANGE ? "found no Darcy range (its k is not defined)"
-                                               : "failed",
-                log);
-        goto fail;
-      }
-    } else if ((st = spawn(c, b, "", log)) != 0) {
-      if (st == CAMP_EXIT_NO_DARCY_RANGE)
-        fprintf(stderr,
-                "mdpore couple: the runs of block (%d,%d,%d) define no Darcy range: its k is not "
-                "defined, so neither is the sample's (the reasons and what to try: %s)\n",
-                b->index[0], b->index[1], b->index[2], log);
-      else
-        fprintf(stderr, "mdpore couple: the campaign of block (%d,%d,%d) failed: see %s\n",
-                b->index[0], b->index[1], b->index[2], log);
-      goto fail;
+    /* along the loop's axis: a block without a new gradient keeps its runs and fit */
+    if (b->percolates && b->n_extra_run != b->n_extra) {
+      if (run_campaign(c, b, c->axis, pass, array, &count)) goto fail;
+      if (!b->pending) b->n_extra_run = b->n_extra;
     }
-    if (couple_read_ladder(b)) goto fail;
-    char text[256];
-    couple_boundary_text(c, b, text, sizeof text);
-    printf("mdpore couple: pass %d: %s\n", pass, text);
-    /* the campaign warns in its own log; a forced periodic seam across a crop's mismatched faces
-     * can read k many times too low (docs/permeability.md, "Boundaries"), so say it here too */
-    if (b->boundary[c->axis] == CAMP_BOUNDARY_PERIODIC &&
-        b->seam_continuity[c->axis] < MDP_SEAM_PERIODIC_CONTINUITY)
-      fprintf(stderr,
-              "mdpore couple: warning: block (%d,%d,%d) runs periodic along %c, but its end slices "
-              "do not continue each other (seam continuity %.2f < %.2f): the seam closes or "
-              "invents flow paths; campaign.boundary auto or mirror treats a cut block's faces\n",
-              b->index[0], b->index[1], b->index[2], 'x' + c->axis, b->seam_continuity[c->axis],
-              MDP_SEAM_PERIODIC_CONTINUITY);
-    fflush(stdout);
-    if (!b->pending) b->n_extra_run = b->n_extra;
+    /* along the cross axes wanted: once per loop (the auto ladder, cached) */
+    for (int a = 0; a < 3; a++) {
+      if (b->cross_state[a] != CROSS_WANTED || b->cross_run[a]) continue;
+      const int before = b->pending;
+      if (run_campaign(c, b, a, pass, array, &count)) goto fail;
+      if (b->pending == before) b->cross_run[a] = 1;
+    }
   }
   if (array) {
     if (atomic_commit(array, tmp, cmds)) return -1;

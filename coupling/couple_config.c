@@ -17,10 +17,10 @@ static const char *const top_keys[] = {
     "axis",    "gradient", "law",          "campaign",         "loop",   "launcher",
     "slurm",   NULL};
 static const char *const campaign_keys[] = {
-    "rc_per_voxel", "np",        "n_gradients", "velocity_range",
-    "target_error", "max_steps", "accuracy",    "seed",
-    "voxel_size",   "viscosity", "mpiexec",     "jobs",
-    "drive",        "boundary",  "sides",       NULL};
+    "rc_per_voxel", "np",       "n_gradients", "velocity_range", "target_error",
+    "max_steps",    "accuracy", "seed",        "voxel_size",     "viscosity",
+    "mpiexec",      "jobs",     "drive",       "boundary",       "sides",
+    "axes",         NULL};
 static const char *const loop_keys[] = {"max_passes", "tolerance_sigma", "resolvable_fraction",
                                         "error_samples", NULL};
 static const char *const axis_words[] = {"x", "y", "z", NULL};
@@ -145,6 +145,9 @@ static int read_campaign(ytree_t *t, yaml_node_t *m, couple_config *c) {
                       boundary_words[b]);
     if (b == 3) c->drive_pressure = 1; /* a reservoir is what the pressure drive runs in */
   }
+  static const char *const axes_words[] = {"flow", "all", "auto", NULL};
+  if ((n = yt_get(t, m, "axes")) && (c->axes = yt_enum(t, n, "campaign.axes", axes_words)) < 0)
+    return -1;
   if ((n = yt_get(t, m, "sides"))) {
     int sd = yt_enum(t, n, "campaign.sides", sides_words);
     if (sd < 0) return -1;

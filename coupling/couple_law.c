@@ -58,12 +58,8 @@ static int read_model(ytree_t *t, const char *want, couple_law *L) {
   return yt_error(t, models, "models", "expected a fitted '%s' model", want);
 }
 
-int couple_read_law(const couple_config *c, couple_block *b) {
-  couple_law *L = &b->law;
-  char path[COUPLE_PATH + 32];
-  snprintf(path, sizeof path, "%.4000s/fit_%c.json", b->workdir, 'x' + c->axis);
-  L->percolates = b->percolates;
-  if (!b->percolates) return 0;
+/* The law of the fit JSON at path into L (the fields of the fit; the rest of L is kept). */
+static int read_law(const couple_config *c, const char *path, couple_law *L) {
   int si = 0;
   fluid_props fl;
   flow_law darcy;
@@ -106,6 +102,24 @@ int couple_read_law(const couple_config *c, couple_block *b) {
 out:
   yt_free(&t);
   return rc;
+}
+
+int couple_read_law(const couple_config *c, couple_block *b) {
+  char path[COUPLE_PATH + 32];
+  snprintf(path, sizeof path, "%.4000s/fit_%c.json", b->workdir, 'x' + c->axis);
+  b->law.percolates = b->percolates;
+  return b->percolates ? read_law(c, path, &b->law) : 0;
+}
+
+int couple_read_cross_law(const couple_config *c, couple_block *b, int a) {
+  char dir[COUPLE_PATH + 8], path[COUPLE_PATH + 48];
+  couple_campaign_dir(c, b, a, dir, sizeof dir);
+  snprintf(path, sizeof path, "%.4000s/fit_%c.json", dir, 'x' + a);
+  memset(&b->cross[a], 0, sizeof b->cross[a]);
+  b->cross[a].percolates = 1;
+  if (read_law(c, path, &b->cross[a])) return -1;
+  b->cross_state[a] = CROSS_MEASURED;
+  return 0;
 }
 
 void couple_law_sample(const couple_law *L, const double z[3], flow_law *out) {

@@ -49,11 +49,15 @@ static const char *boundary_chooser(const couple_config *c) {
 }
 
 void couple_boundary_text(const couple_config *c, const couple_block *b, char *out, size_t len) {
-  const int a = c->axis;
+  couple_boundary_text_axis(c, b, c->axis, out, len);
+}
+
+void couple_boundary_text_axis(const couple_config *c, const couple_block *b, int a, char *out,
+                               size_t len) {
   if (!b->boundary[a]) {
     snprintf(out, len, "block (%d,%d,%d) axis %c: no campaign (%s)", b->index[0], b->index[1],
              b->index[2], 'x' + a,
-             b->percolates ? "not run yet" : "the pore space does not span the axis");
+             b->spans[a] ? "not run yet" : "the pore space does not span the axis");
     return;
   }
   snprintf(out, len, "block (%d,%d,%d) axis %c: %s (seam continuity %.2f; %s%s), sides %s",
@@ -61,6 +65,44 @@ void couple_boundary_text(const couple_config *c, const couple_block *b, char *o
            b->seam_continuity[a], boundary_chooser(c),
            strcmp(boundary_chooser(c), "auto") ? "" : ": periodic at >= 0.80",
            b->sides_mirror ? "mirror" : "periodic");
+}
+
+const char *couple_k_along(const couple_config *c, const couple_block *b, int a, double *k,
+                           double *err) {
+  const int cross = a != c->axis;
+  if (cross && b->cross_state[a] == CROSS_MEASURED) {
+    *k = b->cross[a].k_darcy;
+    *err = b->cross[a].k_darcy_err;
+    return "campaign";
+  }
+  if (!b->percolates || (cross && b->cross_state[a] == CROSS_NO_SPAN)) {
+    *k = 0.0;
+    *err = 0.0;
+    return "impermeable";
+  }
+  *k = b->law.k_darcy;
+  *err = b->law.k_darcy_err;
+  return cross ? "flow axis" : "campaign";
+}
+
+/* With cross axes (campaign.axes all or auto): the block's k along every axis, as the continuum
+ * uses it, into the table's extra columns and a line to print (line[len]). */
+static void write_axes_k(const couple_config *c, const couple_block *B, double cross_flow, FILE *f,
+                         int pass, char *line, size_t len) {
+  int used = snprintf(line, len, "pass %d: block (%d,%d,%d) k along", pass, B->index[0],
+                      B->index[1], B->index[2]);
+  for (int a = 0; a < 3; a++) {
+    double k, err;
+    const char *from = couple_k_along(c, B, a, &k, &err);
+    fprintf(f, ",%.9g,%.9g,%s", k, err, from);
+    if (used >= 0 && (size_t)used < len)
+      used += snprintf(line + used, len - used, "%s %c %.4g+-%.2g (%s)", a ? "," : "", 'x' + a, k,
+                       err, from);
+  }
+  fprintf(f, ",%.4g", cross_flow);
+  if (used >= 0 && (size_t)used < len)
+    snprintf(line + used, len - used, "; flow across the axis %.3g of the flow along it",
+             cross_flow);
 }
 
 int couple_write_pass_table(const couple_config *c, const couple_block *blocks, int n, int pass,
@@ -73,9 +115,13 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
           "# mdpore couple pass %d: blocks along %c (reduced units: k rc^2, G kT/rc^4, q rc/tau;"
           " q superficial = Q / A_block)\n",
           pass, 'x' + c->axis);
-  fprintf(f, "i,j,k,porosity,law_used,k_or_K,second_parameter,k_darcy,k_darcy_err,chosen_law,G_min,"
-             "G_max,G_seen,range,q_continuum,q_continuum_err,q_mdpd_law,new_run_g,boundary,"
-             "seam_continuity,note\n");
+  fprintf(f,
+          "i,j,k,porosity,law_used,k_or_K,second_parameter,k_darcy,k_darcy_err,chosen_law,G_min,"
+          "G_max,G_seen,range,q_continuum,q_continuum_err,q_mdpd_law,new_run_g,boundary,"
+          "seam_continuity,note%s\n",
+          c->axes == COUPLE_AXES_FLOW ? ""
+                                      : ",k_x,k_x_err,k_x_from,k_y,k_y_err,k_y_from,k_z,k_z_err,"
+                                        "k_z_from,cross_flow");
   printf("pass %d: %-9s %-7s %-12s %-22s %-20s %-9s %-12s %-12s %s\n", pass, "block", "law",
          "k (rc^2)", "calibrated G", "G seen", "range", "q continuum", "q law(G)", "new run");
   for (int b = 0; b < n; b++) {
@@ -92,7 +138,7 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
     double g_new = new_runs[b] ? B->extra_g[B->n_extra - 1] : NAN;
     fprintf(f,
             "%d,%d,%d,%.6g,%s,%.9g,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%s,%.9g,%.9g,%.9g,%.9g,%s,%.3g,"
-            "%s\n",
+            "%s",
             B->index[0], B->index[1], B->index[2], B->porosity,
             B->percolates ? flow_law_name(L->law.kind) : "none", first, second, L->k_darcy,
             L->k_darcy_err, B->percolates ? L->chosen_name : "none", L->g_min, L->g_max, G,
@@ -100,6 +146,12 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
             B->boundary[c->axis] ? camp_boundary_name(B->boundary[c->axis]) : "none",
             B->seam_continuity[c->axis],
             B->percolates ? law_flag(L) : "pore space does not span the axis");
+    double cross_flow = 0.0; /* the largest over the cross axes */
+    for (int a = 0; a < 3; a++) cross_flow = fmax(cross_flow, s->cross[3 * b + a]);
+    char axes_line[512] = "";
+    if (c->axes != COUPLE_AXES_FLOW)
+      write_axes_k(c, B, cross_flow, f, pass, axes_line, sizeof axes_line);
+    fputc('\n', f);
     char blk[32], kk[48], cal[48], seen[32], newr[32];
     snprintf(blk, sizeof blk, "(%d,%d,%d)", B->index[0], B->index[1], B->index[2]);
     snprintf(kk, sizeof kk, "%.4g+-%.2g", L->k_darcy, L->k_darcy_err);
@@ -112,6 +164,7 @@ int couple_write_pass_table(const couple_config *c, const couple_block *blocks, 
     printf("pass %d: %-9s %-7s %-12s %-22s %-20s %-9s %-12.5g %-12.5g %s\n", pass, blk,
            B->percolates ? flow_law_name(L->law.kind) : "none", kk, cal, seen, range_word(c, B, G),
            s->flux[b], q_law, newr);
+    if (axes_line[0]) printf("%s\n", axes_line);
   }
   return atomic_commit(f, tmp, path);
 }
@@ -222,6 +275,8 @@ int couple_write_summary(const couple_config *c, const couple_block *blocks, int
   json_numbers(&j, "blocks", (const double[]){c->blocks[0], c->blocks[1], c->blocks[2]}, 3);
   json_numbers(&j, "block_size_rc", size, 3);
   json_string(&j, "law", c->law_choice == COUPLE_LAW_CHOSEN ? "chosen" : "darcy");
+  if (c->axes != COUPLE_AXES_FLOW)
+    json_string(&j, "campaign_axes", c->axes == COUPLE_AXES_ALL ? "all" : "auto");
   json_string(&j, "convention",
               "superficial (Darcy) velocity q = Q / A_total over the whole cross-section; k = mu q "
               "/ G with G = -dp/dx; reduced units (rc, kT, tau) unless stated");
@@ -258,6 +313,7 @@ int couple_write_summary(const couple_config *c, const couple_block *blocks, int
     json_number(&j, "max_flux_change_sigma", h->max_dq_sigma[p]);
     json_int(&j, "new_runs", h->new_runs[p]);
     json_int(&j, "blocks_with_left_out_run", h->left_out[p]);
+    if (c->axes == COUPLE_AXES_AUTO) json_int(&j, "new_cross_axes", h->new_cross[p]);
     json_object_end(&j);
   }
   json_array_end(&j);
@@ -298,6 +354,15 @@ int couple_write_summary(const couple_config *c, const couple_block *blocks, int
     json_number(&j, "q_continuum", s->flux[b]);
     json_number(&j, "q_continuum_err", s->flux_err[b]);
     json_string(&j, "note", B->percolates ? law_flag(&B->law) : "does not span the axis");
+    if (c->axes != COUPLE_AXES_FLOW) { /* the diagonal the continuum used */
+      double k[3], err[3];
+      json_array(&j, "k_axes_from");
+      for (int a = 0; a < 3; a++) json_string(&j, NULL, couple_k_along(c, B, a, &k[a], &err[a]));
+      json_array_end(&j);
+      json_numbers(&j, "k_axes_rc2", k, 3);
+      json_numbers(&j, "k_axes_rc2_err", err, 3);
+      json_numbers(&j, "cross_flow", &s->cross[3 * b], 3);
+    }
     json_object_end(&j);
   }
   json_array_end(&j);

@@ -24,8 +24,16 @@
  * permeability of the others: the solver needs k > 0, and the flow through it is then negligible. */
 #define COUPLE_TIGHT_FRACTION 1e-6
 
+/* A cross-axis law entry that stands for an impermeable direction (the block's pore space does not
+ * span that axis). */
+#define TIGHT_KIND LAW_COUNT
+
+/* laws: the law of every block along the loop's axis; cross[a] (NULL: none) the law of every block
+ * along cross axis a, TIGHT_KIND for an impermeable direction. With no cross laws the problem has
+ * one scalar law per block. */
 static int build(const couple_config *c, const couple_block *blocks, const double size[3],
-                 double gradient, const flow_law *laws, darcy_problem *p) {
+                 double gradient, const flow_law *laws, flow_law *const cross[3],
+                 darcy_problem *p) {
   memset(p, 0, sizeof *p);
   p->dim = 3;
   for (int a = 0; a < 3; a++) {
@@ -55,6 +63,18 @@ static int build(const couple_config *c, const couple_block *blocks, const doubl
       p->laws[b].k = COUPLE_TIGHT_FRACTION * kmin;
     }
   }
+  if (cross[0] || cross[1] || cross[2]) {
+    /* a diagonal law per block: every axis starts as a copy of the loop axis's laws (darcy_problem
+     * holds the x laws in `laws`, y and z in laws_axis[1], [2]); the cross axes measured replace
+     * them */
+    if (darcy_problem_make_diagonal(p)) return -1;
+    flow_law *along[3] = {p->laws, p->laws_axis[1], p->laws_axis[2]};
+    const flow_law tight = {.kind = LAW_DARCY, .k = COUPLE_TIGHT_FRACTION * kmin};
+    for (int d = 0; d < 3; d++)
+      if (d != c->axis && cross[d])
+        for (long b = 0; b < nb; b++)
+          along[d][b] = cross[d][b].kind == TIGHT_KIND ? tight : cross[d][b];
+  }
   int a = c->axis;
   double L = p->n[a] * p->h[a];
   for (int side = 0; side < 2; side++) {
@@ -81,13 +101,16 @@ static long face_of(const darcy_problem *p, int a, int i, int j, int k) {
 typedef struct {
   double keff, *flux, *grad;
   int converged;
+  double
+      *cross; /* [3 b + d]: the block's mean |flux| along d over |flux| along the axis, or NULL */
 } one_solve;
 
 static int solve_once(const couple_config *c, const couple_block *blocks, const double size[3],
-                      double gradient, const flow_law *laws, one_solve *out, double **pressure) {
+                      double gradient, const flow_law *laws, flow_law *const cross[3],
+                      one_solve *out, double **pressure) {
   darcy_problem p;
   int rc = -1;
-  if (build(c, blocks, size, gradient, laws, &p)) goto out;
+  if (build(c, blocks, size, gradient, laws, cross, &p)) goto out;
   double *pr = NULL;
   darcy_stats st;
   if (darcy_solve(MPI_COMM_WORLD, &p, &pr, &st) || !pr) goto out;
@@ -109,6 +132,17 @@ static int solve_once(const couple_config *c, const couple_block *blocks, const 
         long hi = face_of(&p, a, i + (a == 0), j + (a == 1), k + (a == 2));
         out->flux[b] = 0.5 * (post.flux[a][lo] + post.flux[a][hi]) / area;
         out->grad[b] = post.block_grad[3 * b + a];
+        for (int d = 0; out->cross && d < 3; d++) {
+          if (d == a) {
+            out->cross[3 * b + d] = 0.0;
+            continue;
+          }
+          const double area_d = p.h[(d + 1) % 3] * p.h[(d + 2) % 3];
+          long dlo = face_of(&p, d, i, j, k);
+          long dhi = face_of(&p, d, i + (d == 0), j + (d == 1), k + (d == 2));
+          const double q_d = 0.5 * (fabs(post.flux[d][dlo]) + fabs(post.flux[d][dhi])) / area_d;
+          out->cross[3 * b + d] = fabs(out->flux[b]) > 0 ? q_d / fabs(out->flux[b]) : 0.0;
+        }
       }
   out->keff = post.keff_defined[a] ? post.keff[a] : NAN;
   out->converged = st.converged;
@@ -134,18 +168,35 @@ int couple_solve(const couple_config *c, const couple_block *blocks, const doubl
   memset(s, 0, sizeof *s);
   long nb = (long)c->blocks[0] * c->blocks[1] * c->blocks[2];
   double t0 = MPI_Wtime();
-  flow_law *laws = malloc((size_t)nb * sizeof *laws);
+  flow_law *laws = malloc((size_t)nb * sizeof *laws), *cross[3] = {NULL, NULL, NULL};
+  for (int d = 0; d < 3; d++) { /* the cross axes along which some block was measured */
+    for (long b = 0; b < nb && !cross[d]; b++)
+      if (d != c->axis && blocks[b].cross_state[d] >= CROSS_NO_SPAN)
+        cross[d] = malloc((size_t)nb * sizeof(flow_law));
+    if (cross[d])
+      for (long b = 0; b < nb; b++) /* not measured: the loop axis's law (isotropic) */
+        cross[d][b] = blocks[b].cross_state[d] == CROSS_MEASURED ? blocks[b].cross[d].law
+                      : blocks[b].cross_state[d] == CROSS_NO_SPAN || !blocks[b].percolates
+                          ? (flow_law){.kind = TIGHT_KIND}
+                          : blocks[b].law.law;
+  }
   s->grad = calloc((size_t)nb, sizeof(double));
+  s->cross = calloc((size_t)nb * 3, sizeof(double));
   s->flux = calloc((size_t)nb, sizeof(double));
   s->flux_err = calloc((size_t)nb, sizeof(double));
   double *sum = calloc((size_t)nb, sizeof(double)), *sum2 = calloc((size_t)nb, sizeof(double));
-  one_solve one = {0, calloc((size_t)nb, sizeof(double)), calloc((size_t)nb, sizeof(double)), 0};
+  one_solve one = {0, calloc((size_t)nb, sizeof(double)), calloc((size_t)nb, sizeof(double)), 0,
+                   NULL};
   int rc = -1;
-  if (!laws || !s->grad || !s->flux || !s->flux_err || !sum || !sum2 || !one.flux || !one.grad)
+  if (!laws || !s->grad || !s->flux || !s->flux_err || !sum || !sum2 || !one.flux || !one.grad ||
+      !s->cross)
     goto out;
+  for (int d = 0; d < 3; d++)
+    for (long b = 0; b < nb && !cross[d]; b++)
+      if (d != c->axis && blocks[b].cross_state[d] >= CROSS_NO_SPAN) goto out; /* no memory */
   for (long b = 0; b < nb; b++) laws[b] = blocks[b].law.law;
-  one_solve main_solve = {0, s->flux, s->grad, 0};
-  if (solve_once(c, blocks, size, gradient, laws, &main_solve, &s->pressure)) goto out;
+  one_solve main_solve = {0, s->flux, s->grad, 0, s->cross};
+  if (solve_once(c, blocks, size, gradient, laws, cross, &main_solve, &s->pressure)) goto out;
   s->converged = main_solve.converged;
   s->keff = main_solve.keff;
   int a = c->axis;
@@ -165,7 +216,18 @@ int couple_solve(const couple_config *c, const couple_block *blocks, const doubl
       double z[3] = {normal(state), normal(state), normal(state)};
       couple_law_sample(&blocks[b].law, z, &laws[b]);
     }
-    if (solve_once(c, blocks, size, gradient, laws, &one, NULL) || !one.converged ||
+    /* the cross-axis laws drawn from their own fits, after the loop axis's (whose draws are then
+     * those of a loop without cross axes) */
+    for (int d = 0; d < 3; d++)
+      for (long b = 0; cross[d] && b < nb; b++) {
+        if (blocks[b].cross_state[d] == CROSS_MEASURED) {
+          double z[3] = {normal(state), normal(state), normal(state)};
+          couple_law_sample(&blocks[b].cross[d], z, &cross[d][b]);
+        } else if (cross[d][b].kind != TIGHT_KIND) {
+          cross[d][b] = laws[b]; /* isotropic: the loop axis's draw */
+        }
+      }
+    if (solve_once(c, blocks, size, gradient, laws, cross, &one, NULL) || !one.converged ||
         !isfinite(one.keff))
       continue;
     s->samples_ok++;
@@ -189,6 +251,7 @@ int couple_solve(const couple_config *c, const couple_block *blocks, const doubl
   rc = 0;
 out:
   free(laws);
+  for (int d = 0; d < 3; d++) free(cross[d]);
   free(sum);
   free(sum2);
   free(one.flux);
@@ -201,5 +264,6 @@ void couple_solution_free(couple_solution *s) {
   free(s->grad);
   free(s->flux);
   free(s->flux_err);
+  free(s->cross);
   memset(s, 0, sizeof *s);
 }

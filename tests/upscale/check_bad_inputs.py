@@ -58,6 +58,20 @@ CONFIGS = [
      ["bad_cells.yaml:2", "cells", "positive integer"]),
     ("missing_fit.yaml", GOOD_CFG.replace("{law: darcy, k: 1.0e-15}", "{fit: nowhere.fit.json}"),
      ["missing_fit.yaml:8", "nowhere.fit.json", "cannot open"]),
+    ("diag_missing_axis.yaml", GOOD_CFG.replace("{law: darcy, k: 1.0e-15}",
+                                                "{x: {law: darcy, k: 1.0e-15}}"),
+     ["diag_missing_axis.yaml:8", "'laws.uniform.y'", "a law along each of x and y"]),
+    ("diag_z_in_2d.yaml", GOOD_CFG.replace(
+        "{law: darcy, k: 1.0e-15}",
+        "{x: {law: darcy, k: 1.0e-15}, y: {law: darcy, k: 1.0e-15}, z: {law: darcy, k: 1.0e-15}}"),
+     ["diag_z_in_2d.yaml:8", "'laws.uniform.z'", "unknown key"]),
+    ("diag_mixed.yaml", GOOD_CFG.replace("{law: darcy, k: 1.0e-15}",
+                                         "{law: darcy, k: 1.0e-15, y: {law: darcy, k: 1.0e-15}}"),
+     ["diag_mixed.yaml:8", "'laws.uniform.law'", "unknown key", "x, y"]),
+    ("diag_bad_k.yaml", GOOD_CFG.replace(
+        "{law: darcy, k: 1.0e-15}",
+        "{x: {law: darcy, k: 1.0e-15}, y: {law: darcy, k: -2}}"),
+     ["diag_bad_k.yaml:8", "'laws.uniform.y'", "k > 0"]),
     ("yaml_syntax.yaml", GOOD_CFG.replace("grid: {", "grid: {{"), ["yaml_syntax.yaml", "syntax"]),
 ]
 

@@ -172,6 +172,49 @@ static int parse_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_config 
   return 0;
 }
 
+/* A block's law at `path`: a scalar law (parse_law: the same along every axis) or a diagonal one,
+ * {x: LAW, y: LAW(, z: LAW)}, one scalar law per axis of the grid, each used for the faces normal to
+ * its axis. law[a] gets the law along a (law[0] = law[1] = law[2] for a scalar law); *diagonal
+ * says which form it was. */
+static int parse_block_law(ytree_t *t, yaml_node_t *n, const char *path, darcy_config *c,
+                           const char *extra, flow_law law[3], int *diagonal) {
+  static const char *const axes[] = {"x", "y", "z"};
+  const int dim = c->problem.dim;
+  *diagonal = n && n->type == YAML_MAPPING_NODE &&
+              (yt_get(t, n, "x") || yt_get(t, n, "y") || yt_get(t, n, "z"));
+  if (!*diagonal) {
+    TRY(parse_law(t, n, path, c, extra, &law[0]));
+    law[1] = law[2] = law[0];
+    return 0;
+  }
+  const char *keys[] = {"x", "y", dim == 3 ? "z" : extra, dim == 3 ? extra : NULL, NULL};
+  TRY(yt_check_keys(t, n, path, keys));
+  for (int a = 0; a < 3; a++) {
+    char sub[PATH_LEN];
+    join(sub, sizeof sub, path, axes[a]);
+    if (a >= dim) {
+      law[a] = law[0];
+      continue;
+    }
+    yaml_node_t *an = yt_need(t, n, axes[a], sub,
+                              dim == 3 ? "a law along each of x, y and z (a diagonal law)"
+                                       : "a law along each of x and y (a diagonal law)");
+    if (!an) return -1;
+    TRY(parse_law(t, an, sub, c, NULL, &law[a]));
+  }
+  return 0;
+}
+
+/* Stores the law(s) of block b: a diagonal law gives the problem its per-axis law arrays
+ * (darcy_problem_make_diagonal, filled with the scalar laws of the blocks set before). */
+static int set_block_law(darcy_problem *p, long b, const flow_law law[3], int diagonal) {
+  if (diagonal && !darcy_is_diagonal(p) && darcy_problem_make_diagonal(p)) return -1;
+  p->laws[b] = law[0];
+  for (int a = 1; a < 3; a++)
+    if (p->laws_axis[a]) p->laws_axis[a][b] = law[a];
+  return 0;
+}
+
 /* A required list of 2 or 3 numbers map.key, each a quantity qty (with an optional unit) or, qty < 0,
  * a plain number; the item nodes go to `at` (for later messages). */
 static int need_number_list(ytree_t *t, yaml_node_t *map, const char *path, const char *key,
@@ -362,9 +405,10 @@ static int parse_layers(ytree_t *t, yaml_node_t *n, darcy_config *c) {
     char path[48], sub[64];
     snprintf(path, sizeof path, "laws.layers.list[%d]", i);
     join(sub, sizeof sub, path, "cells");
-    flow_law law;
+    flow_law law[3];
+    int diagonal;
     long cells;
-    TRY(parse_law(t, it, path, c, "cells", &law));
+    TRY(parse_block_law(t, it, path, c, "cells", law, &diagonal));
     yaml_node_t *cn = yt_need(t, it, "cells", sub, "a number of cells along the axis");
     if (!cn || yt_long(t, cn, sub, &cells)) return -1;
     if (cells < 1 || start + cells > p->n[axis])
@@ -377,7 +421,7 @@ static int parse_layers(ytree_t *t, yaml_node_t *n, darcy_config *c) {
         for (int ii = 0; ii < p->n[0]; ii++) {
           int c3[3] = {ii, j, k};
           if (c3[axis] >= start && c3[axis] < start + cells)
-            p->laws[darcy_index(p, ii, j, k)] = law;
+            TRY(set_block_law(p, darcy_index(p, ii, j, k), law, diagonal));
         }
     start += (int)cells;
   }
@@ -405,9 +449,10 @@ static int parse_laws(ytree_t *t, yaml_node_t *root, darcy_config *c) {
   if (!p->laws || !p->k_lin) return yt_error(t, l, "laws", "out of memory for %ld blocks", nb);
   yaml_node_t *n;
   if ((n = yt_get(t, l, "uniform"))) {
-    flow_law law;
-    TRY(parse_law(t, n, "laws.uniform", c, NULL, &law));
-    for (long i = 0; i < nb; i++) p->laws[i] = law;
+    flow_law law[3];
+    int diagonal;
+    TRY(parse_block_law(t, n, "laws.uniform", c, NULL, law, &diagonal));
+    for (long i = 0; i < nb; i++) TRY(set_block_law(p, i, law, diagonal));
   } else if ((n = yt_get(t, l, "layers"))) {
     TRY(parse_layers(t, n, c));
   } else if ((n = yt_get(t, l, "blocks"))) {
@@ -420,7 +465,10 @@ static int parse_laws(ytree_t *t, yaml_node_t *root, darcy_config *c) {
     for (long i = 0; i < nb; i++) {
       char path[48];
       snprintf(path, sizeof path, "laws.blocks[%ld]", i);
-      TRY(parse_law(t, yt_seq_item(t, n, (int)i), path, c, NULL, &p->laws[i]));
+      flow_law law[3];
+      int diagonal;
+      TRY(parse_block_law(t, yt_seq_item(t, n, (int)i), path, c, NULL, law, &diagonal));
+      TRY(set_block_law(p, i, law, diagonal));
     }
   } else {
     TRY(read_k_dataset(t, yt_get(t, l, "hdf5"), c));
@@ -584,11 +632,14 @@ static int parse_document(ytree_t *t, darcy_config *c, int upscale_cli) {
   } else {
     TRY(parse_output(t, root, c));
   }
-  for (long b = 0; b < darcy_nblocks(p); b++)
-    if (p->laws[b].kind == LAW_FORCHHEIMER && p->laws[b].beta > 0 && !(p->fluid.rho > 0)) {
-      yaml_node_t *f = yt_get(t, root, "fluid"), *d = yt_get(t, f, "density");
-      return yt_error(t, d ? d : f, "fluid.density",
-                      "expected a density > 0 for the Forchheimer laws (got %g)", p->fluid.rho);
+  for (int a = 0; a < 3; a++)
+    for (long b = 0; b < darcy_nblocks(p); b++) {
+      const flow_law *l = darcy_law(p, b, a);
+      if (l->kind == LAW_FORCHHEIMER && l->beta > 0 && !(p->fluid.rho > 0)) {
+        yaml_node_t *f = yt_get(t, root, "fluid"), *d = yt_get(t, f, "density");
+        return yt_error(t, d ? d : f, "fluid.density",
+                        "expected a density > 0 for the Forchheimer laws (got %g)", p->fluid.rho);
+      }
     }
   darcy_problem_linearise(p, c->g_lin_fraction);
   return 0;

@@ -11,13 +11,13 @@ face_flux_result darcy_face(const darcy_problem *p, int i, int j, int k, int fac
   int nb[3] = {i + step[face][0], j + step[face][1], k + step[face][2]};
   *area = p->h[(axis + 1) % 3] * p->h[(axis + 2) % 3];
   double half = 0.5 * p->h[axis];
-  const flow_law *la = &p->laws[darcy_index(p, i, j, k)];
+  const flow_law *la = darcy_law(p, darcy_index(p, i, j, k), axis);
   face_flux_result r = {0.0, 0.0, 0.0};
   if (darcy_has_neighbour(p, c, face)) { /* interior face: two halves in series */
     nb[axis] = (nb[axis] + p->n[axis]) % p->n[axis];
     double jump = p->periodic ? (face % 2 ? 1.0 : -1.0) * p->drive[axis] * p->h[axis] : 0.0;
-    r = face_flux(la, half, &p->laws[darcy_index(p, nb[0], nb[1], nb[2])], half, &p->fluid,
-                  p->g_lin, p_c - p_nb + jump);
+    r = face_flux(la, half, darcy_law(p, darcy_index(p, nb[0], nb[1], nb[2]), axis), half,
+                  &p->fluid, p->g_lin, p_c - p_nb + jump);
   } else if (p->fixed[face]) { /* fixed pressure at the face: one half */
     double pb = p->bc_p[face][darcy_face_index(p, face, i, j, k)];
     r = face_flux(la, half, NULL, 0.0, &p->fluid, p->g_lin, p_c - pb);
@@ -31,10 +31,10 @@ face_flux_result darcy_face(const darcy_problem *p, int i, int j, int k, int fac
 static double linear_conductance(const darcy_problem *p, int i, int j, int k, int face) {
   int axis = face / 2, c[3] = {i, j, k};
   int nb[3] = {i + step[face][0], j + step[face][1], k + step[face][2]};
-  double half = 0.5 * p->h[axis], r = half / p->k_lin[darcy_index(p, i, j, k)];
+  double half = 0.5 * p->h[axis], r = half / darcy_k_lin(p, darcy_index(p, i, j, k), axis);
   if (darcy_has_neighbour(p, c, face)) {
     nb[axis] = (nb[axis] + p->n[axis]) % p->n[axis];
-    r += half / p->k_lin[darcy_index(p, nb[0], nb[1], nb[2])];
+    r += half / darcy_k_lin(p, darcy_index(p, nb[0], nb[1], nb[2]), axis);
   }
   return 1.0 / (p->fluid.mu * r);
 }

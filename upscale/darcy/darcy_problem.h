@@ -14,9 +14,15 @@ typedef struct {
   int n[3];    /* cells per axis (n[2] = 1 in 2D) */
   double h[3]; /* cell size per axis (h[2] = 1, unit depth, in 2D) */
   fluid_props fluid;
-  flow_law *laws; /* one per block */
+  flow_law *laws; /* one per block: its law along x, and along every axis a whose laws_axis[a] is
+                     NULL (a scalar law: the same for the faces of every direction) */
   double *k_lin;  /* per block: permeability of the law linearised at the characteristic gradient */
-  int fixed[6];   /* 1: fixed pressure on that face, 0: no flow */
+  /* A diagonal permeability per block: laws_axis[a] (a = 1, 2; laws_axis[0] stays NULL, x is
+   * `laws`) is the law of every block along axis a, used for the faces normal to a; k_lin_axis[a]
+   * is its linearised permeability. NULL (the default): every direction uses `laws`. */
+  flow_law *laws_axis[3];
+  double *k_lin_axis[3];
+  int fixed[6];    /* 1: fixed pressure on that face, 0: no flow */
   double *bc_p[6]; /* fixed pressures, one per boundary cell of the face (NULL when not fixed);
                       x faces indexed j + ny k, y faces i + nx k, z faces i + nx j */
   double *source;  /* volumetric rate into each block (negative: sink), or NULL */
@@ -45,6 +51,18 @@ static inline int darcy_has_neighbour(const darcy_problem *p, const int c[3], in
 static inline long darcy_nblocks(const darcy_problem *p) {
   return (long)p->n[0] * p->n[1] * p->n[2];
 }
+/* The law of block b along axis a (the faces normal to a). */
+static inline const flow_law *darcy_law(const darcy_problem *p, long b, int a) {
+  return p->laws_axis[a] ? &p->laws_axis[a][b] : &p->laws[b];
+}
+/* The linearised permeability of block b along axis a. */
+static inline double darcy_k_lin(const darcy_problem *p, long b, int a) {
+  return p->k_lin_axis[a] ? p->k_lin_axis[a][b] : p->k_lin[b];
+}
+/* Whether any block has a law along some axis other than its x law (a diagonal permeability). */
+static inline int darcy_is_diagonal(const darcy_problem *p) {
+  return p->laws_axis[1] || p->laws_axis[2];
+}
 /* Index into bc_p[face] of the boundary cell (i,j,k). */
 static inline long darcy_face_index(const darcy_problem *p, int face, int i, int j, int k) {
   int axis = face / 2;
@@ -57,7 +75,11 @@ static inline long darcy_face_count(const darcy_problem *p, int face) {
   return (long)p->n[(axis + 1) % 3] * p->n[(axis + 2) % 3];
 }
 
-/* Fills k_lin, g_lin (from the characteristic gradient = largest fixed-pressure difference over the
+/* Gives the problem per-axis laws (laws_axis[1..dim-1] and their k_lin_axis), each a copy of
+ * `laws` until set; nothing when already there. 0, or -1 when out of memory. */
+int darcy_problem_make_diagonal(darcy_problem *p);
+
+/* Fills k_lin (and k_lin_axis), g_lin (from the characteristic gradient = largest fixed-pressure difference over the
  * domain length), p_scale and eq_scale. Call after laws, boundary values and sizes are set. */
 void darcy_problem_linearise(darcy_problem *p, double g_lin_fraction);
 void darcy_problem_free(darcy_problem *p);

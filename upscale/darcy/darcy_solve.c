@@ -9,8 +9,9 @@
 #include "darcy_fv.h"
 
 static int all_darcy(const darcy_problem *p) {
-  for (long b = 0; b < darcy_nblocks(p); b++)
-    if (p->laws[b].kind != LAW_DARCY) return 0;
+  for (int a = 0; a < 3; a++)
+    for (long b = 0; b < darcy_nblocks(p); b++)
+      if (darcy_law(p, b, a)->kind != LAW_DARCY) return 0;
   return 1;
 }
 
@@ -130,16 +131,31 @@ static PetscErrorCode solve(MPI_Comm comm, darcy_problem *p, double **pressure, 
     /* initial guess: the problem with every law replaced by Darcy with its linearised permeability
      */
     long nb = darcy_nblocks(p);
-    flow_law *nonlinear = p->laws, *lin = malloc(nb * sizeof(flow_law));
-    int oom = !lin;
+    flow_law *nonlinear[3] = {p->laws, p->laws_axis[1], p->laws_axis[2]}, *lin[3] = {0};
+    int oom = 0;
+    for (int a = 0; a < 3; a++) {
+      if (!nonlinear[a]) continue;
+      lin[a] = malloc(nb * sizeof(flow_law));
+      if (!lin[a]) {
+        oom = 1;
+        continue;
+      }
+      for (long b = 0; b < nb; b++)
+        lin[a][b] = (flow_law){.kind = LAW_DARCY, .k = darcy_k_lin(p, b, a)};
+    }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &oom, 1, MPI_INT, MPI_MAX, comm));
+    if (oom)
+      for (int a = 0; a < 3; a++) free(lin[a]);
     PetscCheck(!oom, comm, PETSC_ERR_MEM, "out of memory for the initial guess's %ld laws", nb);
-    for (long b = 0; b < nb; b++) lin[b] = (flow_law){.kind = LAW_DARCY, .k = p->k_lin[b]};
-    p->laws = lin;
+    p->laws = lin[0];
+    p->laws_axis[1] = lin[1];
+    p->laws_axis[2] = lin[2];
     darcy_stats lst = {0};
     PetscCall(linear_solve(snes, x, 1e-8, &lst));
-    p->laws = nonlinear;
-    free(lin);
+    p->laws = nonlinear[0];
+    p->laws_axis[1] = nonlinear[1];
+    p->laws_axis[2] = nonlinear[2];
+    for (int a = 0; a < 3; a++) free(lin[a]);
     PetscCall(residual_norm(snes, x, &st->residual0));
     KSP ksp;
     PetscCall(SNESGetKSP(snes, &ksp));

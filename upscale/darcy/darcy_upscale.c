@@ -25,13 +25,17 @@ int darcy_upscale_check(const darcy_problem *p, int families, char *why, size_t 
   for (int k = 0; k < p->n[2]; k++)
     for (int j = 0; j < p->n[1]; j++)
       for (int i = 0; i < p->n[0]; i++) {
-        const flow_law *l = &p->laws[darcy_index(p, i, j, k)];
-        if (l->kind != LAW_DARCY) {
-          snprintf(why, why_len,
-                   "a permeability tensor needs Darcy laws in every block (block (%d, %d, %d) "
-                   "has law %s)",
-                   i, j, k, flow_law_name(l->kind));
-          return -1;
+        for (int a = 0; a < (darcy_is_diagonal(p) ? p->dim : 1); a++) {
+          const flow_law *l = darcy_law(p, darcy_index(p, i, j, k), a);
+          if (l->kind != LAW_DARCY) {
+            char along[16] = "";
+            if (darcy_is_diagonal(p)) snprintf(along, sizeof along, " along %c", 'x' + a);
+            snprintf(why, why_len,
+                     "a permeability tensor needs Darcy laws in every block (block (%d, %d, %d) "
+                     "has law %s%s)",
+                     i, j, k, flow_law_name(l->kind), along);
+            return -1;
+          }
         }
       }
   if (p->source)

@@ -195,6 +195,10 @@ int twophase_config_read(ytree_t *t, yaml_node_t *n, darcy_config *c) {
                       "expected Darcy laws in every block for a two-phase solve (got a %s law in "
                       "block %ld)",
                       flow_law_name(p->laws[i].kind), i);
+  if (darcy_is_diagonal(p))
+    return yt_error(t, n, "twophase",
+                    "expected one scalar law per block for a two-phase solve (got diagonal laws "
+                    "{x: ..., y: ...}: the two-phase solve scales one permeability per block)");
   TRY(positive_quantity(t, n, "twophase", "mu_w", QTY_VISCOSITY, c->si, &tp->kr.mu_w));
   TRY(positive_quantity(t, n, "twophase", "mu_o", QTY_VISCOSITY, c->si, &tp->kr.mu_o));
   TRY(number_in(t, n, "twophase", "porosity", 1e-6, 1.0, 1, &tp->porosity));
