@@ -1,9 +1,11 @@
-/* mdpore run [--explain] [--steps N] [--output-dir D] [--restart FILE] SCENE */
+/* mdpore run [--explain] [--steps N] [--output-dir D] [--restart FILE] SCENE
+ * mdpore run --replicas [--steps N] [--backend B] ... SCENE [SCENE...] (run/run_replicas.c) */
 #include "effects/scene_load.h"
 #include "commands.h"
 #include "engine/sim.h"
 #include "common/atomic_file.h"
 #include "run/run_loop.h"
+#include "run/run_replicas.h"
 
 #include <getopt.h>
 #include <mpi.h>
@@ -15,7 +17,13 @@ static void usage(FILE *to) {
   fprintf(
       to,
       "usage: mdpore run [--explain] [--steps N] [--output-dir DIR] [--restart FILE] SCENE.yaml\n"
+      "       mdpore run --replicas [--steps N] [--backend B] [--skin S] [--gpu-memory M] "
+      "SCENE.yaml...\n"
       "  Run a scene (format: docs/scene-format.md) on all MPI ranks.\n"
+      "  --replicas        run each SCENE as its own one-rank run, all at once in this process\n"
+      "                    (one thread each, sharing the GPU or the cores); each writes its\n"
+      "                    outputs into its scene's folder, as --output-dir DIR DIR/scene.yaml\n"
+      "                    would; one that fails leaves the others running (exit 1 naming it)\n"
       "  --explain         print the per-step plan the scene's effects produce, and exit\n"
       "  --steps N         run N steps instead of run.steps (after a restart: N more steps)\n"
       "  --output-dir DIR  write the outputs (relative paths) into DIR (created if needed)\n"
@@ -34,6 +42,65 @@ static void usage(FILE *to) {
       "every command)\n");
 }
 
+/* --replicas: load every scene first (a scene that does not load stops the command before any
+ * runs), then run them at once. */
+static int run_replica_scenes(int n, char **files, long steps, double skin, int gpu_memory,
+                              const char *backend, int single_only, int size) {
+  if (single_only) {
+    fprintf(stderr, "mdpore run: --replicas: --explain, --output-dir and --restart are for one "
+                    "scene (a replica writes into its scene's folder; set restart in its scene)\n");
+    return 2;
+  }
+  if (n < 1) {
+    usage(stderr);
+    return 2;
+  }
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&provided);
+  if (size > 1) {
+    fprintf(stderr,
+            "mdpore run: --replicas: each replica runs on one rank in this process: start "
+            "it without mpiexec (got %d ranks)\n",
+            size);
+    return 2;
+  }
+  if (provided < MPI_THREAD_MULTIPLE) {
+    fprintf(stderr,
+            "mdpore run: --replicas: this MPI gave thread level %d, MPI_THREAD_MULTIPLE (%d) is "
+            "needed (spell --replicas in full: mdpore asks for it when it sees that word)\n",
+            provided, MPI_THREAD_MULTIPLE);
+    return 2;
+  }
+  scene_t *scenes = calloc((size_t)n, sizeof *scenes);
+  if (!scenes) {
+    fprintf(stderr, "mdpore run: out of memory for %d scenes\n", n);
+    return 1;
+  }
+  int chosen = SCENE_BACKEND_CPU;
+  char err[512];
+  if (sim_backend_choose(backend, 1, &chosen, err, sizeof err)) {
+    fprintf(stderr, "mdpore run: %s\n", err);
+    free(scenes);
+    return 2;
+  }
+  for (int i = 0; i < n; i++) {
+    if (scene_load(files[i], &scenes[i])) {
+      fprintf(stderr, "mdpore run: --replicas: %s (replica %d of %d) did not load; nothing ran\n",
+              files[i], i + 1, n);
+      free(scenes);
+      return 1;
+    }
+    if (steps >= 0) scenes[i].steps = steps;
+    if (skin >= 0.0) scenes[i].neighbour_skin = skin;
+    scenes[i].gpu_memory = gpu_memory;
+    scenes[i].backend = chosen;
+  }
+  int rc = run_replicas_prepare(scenes, n) ? 2 : 0;
+  if (!rc) rc = run_replicas(scenes, n, run_replicas_omp_threads(n));
+  free(scenes);
+  return rc;
+}
+
 int cmd_run(int argc, char **argv) {
   int rank, size;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -45,16 +112,17 @@ int cmd_run(int argc, char **argv) {
                                        {"backend", required_argument, NULL, 'b'},
                                        {"skin", required_argument, NULL, 'k'},
                                        {"gpu-memory", required_argument, NULL, 'm'},
+                                       {"replicas", no_argument, NULL, 'R'},
                                        {"help", no_argument, NULL, 'h'},
                                        {NULL, 0, NULL, 0}};
-  int explain = 0, c;
+  int explain = 0, replicas = 0, c;
   long steps = -1;
   const char *outdir = NULL, *restart = NULL, *backend = "auto";
   double skin = -1.0;
   int gpu_memory = SCENE_GPU_MEMORY_AUTO;
   optind = 1;
   opterr = rank == 0;
-  while ((c = getopt_long(argc, argv, "es:o:r:b:k:m:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, "es:o:r:b:k:m:Rh", opts, NULL)) != -1) {
     switch (c) {
     case 'e':
       explain = 1;
@@ -103,6 +171,9 @@ int cmd_run(int argc, char **argv) {
         return 2;
       }
       break;
+    case 'R':
+      replicas = 1;
+      break;
     case 'h':
       if (rank == 0) usage(stdout);
       return 0;
@@ -111,6 +182,9 @@ int cmd_run(int argc, char **argv) {
       return 2;
     }
   }
+  if (replicas)
+    return run_replica_scenes(argc - optind, argv + optind, steps, skin, gpu_memory, backend,
+                              explain || outdir || restart, size);
   if (optind != argc - 1) {
     if (rank == 0) usage(stderr);
     return 2;
