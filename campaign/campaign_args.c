@@ -47,6 +47,9 @@ const char *camp_usage =
     "                      another, as on a CPU CI machine). auto: on a CUDA build with a GPU,\n"
     "                      as many as fit in its free memory (at most 8); else cores / --np.\n"
     "                      Every run's result is the same at any N\n"
+    "  --job-mode M        process (default): each run of --jobs its own process; replicas: the\n"
+    "                      runs at once stepped in one process (mdpore run --replicas: one\n"
+    "                      start-up, one GPU context; one-rank runs without --target-error-k)\n"
     "  --workdir DIR       campaign folder (default permeability-SAMPLE)\n"
     "  --emit-scenes DIR   write the scenes, the manifest and commands.txt, run nothing\n"
     "  --collect DIR       read a campaign folder back: tables, fits, report\n"
@@ -327,6 +330,13 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
         if (ll > CAMP_MAX_JOBS) return bad(s, "at most 64 runs at once, or auto", v);
         o->jobs = (int)ll;
       }
+    } else if (!strcmp(s, "--job-mode")) {
+      if (!strcmp(v, "process"))
+        o->job_replicas = 0;
+      else if (!strcmp(v, "replicas"))
+        o->job_replicas = 1;
+      else
+        return bad(s, "process or replicas", v);
     } else if (!strcmp(s, "--mpiexec"))
       snprintf(o->mpiexec, sizeof o->mpiexec, "%s", v);
     else if (!strcmp(s, "--workdir"))
