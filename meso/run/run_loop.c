@@ -293,6 +293,7 @@ int run_scene_watched(const scene_t *scene, MPI_Comm comm, run_watch_t *watch) {
     if (stop) break;
   }
   progress_end(&pr);
+  if (watch) __atomic_store_n(&watch->step, last, __ATOMIC_RELAXED); /* done (or stopped early) */
   thermo_log_close(&log);
   if (dguard.on && rank == 0)
     fprintf(stderr,

@@ -11,8 +11,8 @@
 int run_scene(const scene_t *scene, MPI_Comm comm);
 
 /* Where a run stands, for a watcher in another thread (run_replicas.c; read with atomic loads):
- * the first and last step of the loop once set up, the step just done, and MPI_Wtime() when the
- * loop started (0 before). */
+ * the first and last step of the loop once set up, the step just done (last once the loop ended,
+ * also after an early stop or a failure), and MPI_Wtime() when the loop started (0 before). */
 typedef struct {
   long first, last, step;
   double t_loop;
