@@ -95,5 +95,5 @@ same = sum(all(k in o and os.path.exists(f) and os.path.exists(o[k]) and
                filecmp.cmp(f, o[k], shallow=False) for o in other) for k, f in ref.items())
 print(f"{size}: flux.csv the same bytes in every mode: {same} of {len(ref)} runs")
 EOF
-  grep -h "runs at once" err_"$3"_*.txt 2> /dev/null | sort -u
+  grep -h -e "--jobs auto:" -e "in one process" err_"$3"_*.txt 2> /dev/null | sort -u
 done
