@@ -49,9 +49,14 @@ static void usage(FILE *to) {
 }
 
 int main(int argc, char **argv) {
+  /* `mdpore run --replicas` calls MPI from several threads (meso/run/run_replicas.c); every other
+   * command from this one */
+  int threads = MPI_THREAD_FUNNELED;
+  for (int i = 2; i < argc && !strcmp(argv[1], "run"); i++)
+    if (!strcmp(argv[i], "--replicas")) threads = MPI_THREAD_MULTIPLE;
   int provided = 0;
   mpi_singleton_prepare();
-  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Init_thread(&argc, &argv, threads, &provided);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   int rc = 2;

@@ -62,6 +62,7 @@ typedef struct {
   double dt;                        /* run.dt (0: the template's) */
   int np;                           /* ranks per run */
   int jobs;                         /* --jobs: runs at once (default 1; 0: auto) */
+  int job_replicas; /* --job-mode replicas: the runs at once in one process (campaign_replicas.c) */
   char workdir[CAMP_PATH];
   char emit_dir[CAMP_PATH];    /* --emit-scenes DIR ("" = no) */
   char collect_dir[CAMP_PATH]; /* --collect DIR ("" = no) */
@@ -377,6 +378,11 @@ void camp_forward_signals(int on);
  * 0 or -1. */
 int camp_execute(const camp_opts *o, campaign *c);
 
+/* campaign_replicas.c (--job-mode replicas): the runs not reused, in batches of `jobs`, each batch
+ * one `mdpore run --replicas` process; the batch's log is each of its runs' run.log (hard links).
+ * camp_execute calls it for one-rank runs without --target-error-k at jobs > 1. 0 or -1. */
+int camp_execute_replicas(const camp_opts *o, campaign *c, int jobs, char *const *env);
+
 /* campaign_jobs.c: the number of runs at once (--jobs N, or auto: on a CUDA build with a visible
  * GPU the runs whose estimated memory fits in the free memory, at most CAMP_AUTO_JOBS_MAX; else
  * floor(cores / np)), printed with how it was chosen when not 1. */
@@ -407,6 +413,10 @@ typedef struct {
 double camp_now(void);
 void camp_progress_start(camp_progress *p, int total, int jobs);
 void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds);
+/* n runs that ended together (a batch of --job-mode replicas, each its wall time the batch's): one
+ * line. */
+void camp_progress_batch_done(camp_progress *p, const camp_run *const *runs, int n,
+                              double wall_seconds);
 
 /* campaign_units.c: the reduced -> SI mapping (the factors: common/units.h). camp_units_make: the
  * campaign's default mapping (kT = kB T, m = rho_water / n); camp_units_of: a campaign's own,

@@ -46,6 +46,11 @@ static const cli_help_option_t camp_options[] = {
      "machine). auto: on a CUDA build with a GPU, as many as fit in its free memory (at most 8); "
      "else cores / --np. Every run's result is the same at any N",
      0},
+    {"--job-mode M",
+     "process (default): each run of --jobs its own process; replicas: the runs at once stepped "
+     "in one process (mdpore run --replicas: one start-up, one GPU context; one-rank runs "
+     "without --target-error-k)",
+     0},
     {"--workdir DIR", "campaign folder (default permeability-SAMPLE)", 1},
     {"--emit-scenes DIR", "write the scenes, the manifest and commands.txt, run nothing", 1},
     {"--collect DIR", "read a campaign folder back: tables, fits, report", 1},
@@ -358,6 +363,13 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
         if (ll > CAMP_MAX_JOBS) return bad(s, "at most 64 runs at once, or auto", v);
         o->jobs = (int)ll;
       }
+    } else if (!strcmp(s, "--job-mode")) {
+      if (!strcmp(v, "process"))
+        o->job_replicas = 0;
+      else if (!strcmp(v, "replicas"))
+        o->job_replicas = 1;
+      else
+        return bad(s, "process or replicas", v);
     } else if (!strcmp(s, "--mpiexec"))
       snprintf(o->mpiexec, sizeof o->mpiexec, "%s", v);
     else if (!strcmp(s, "--workdir"))

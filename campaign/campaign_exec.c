@@ -270,6 +270,13 @@ int camp_execute(const camp_opts *o, campaign *c) {
   camp_forward_signals(1);
   const int jobs = camp_jobs(o, c);
   char *const *env = camp_jobs_env(o, jobs);
+  if (o->job_replicas && jobs > 1 && o->np == 1 && !(o->target_error_k > 0)) {
+    camp_forward_signals(0);
+    return camp_execute_replicas(o, c, jobs, env);
+  }
+  if (o->job_replicas && jobs > 1)
+    fprintf(stderr, "mdpore permeability: --job-mode replicas is for one-rank runs without "
+                    "--target-error-k: the runs at once are processes\n");
   camp_progress p;
   camp_progress_start(&p, c->n_runs, jobs);
   char buf[512], *argv[64], why[CAMP_PATH + 256], path[CAMP_PATH + 64];

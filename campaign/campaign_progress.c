@@ -37,7 +37,8 @@ static void hms(double s, char *out, int len) {
     snprintf(out, len, "%lds", t);
 }
 
-void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds) {
+/* One run counted done (its particle-steps into the mean size, and into the rate when executed). */
+static void count_done(camp_progress *p, const camp_run *r, double wall_seconds) {
   p->done++;
   double ps = (double)r->steps * (double)r->particles;
   if (ps > 0) {
@@ -48,6 +49,22 @@ void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds
       p->s_exec += wall_seconds;
     }
   }
+}
+
+static void print_line(camp_progress *p);
+
+void camp_progress_done(camp_progress *p, const camp_run *r, double wall_seconds) {
+  count_done(p, r, wall_seconds);
+  print_line(p);
+}
+
+void camp_progress_batch_done(camp_progress *p, const camp_run *const *runs, int n,
+                              double wall_seconds) {
+  for (int i = 0; i < n; i++) count_done(p, runs[i], wall_seconds);
+  print_line(p);
+}
+
+static void print_line(camp_progress *p) {
   char el[32], eta[128] = "unknown (no run executed yet)", running[32] = "";
   const double now = camp_now();
   hms(now - p->t0, el, sizeof el);

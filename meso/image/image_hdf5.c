@@ -1,6 +1,7 @@
 /* HDF5 images: dataset of integer labels with dims [nz][ny][nx] (x fastest in memory), attributes
  * voxel_size (double), unit (string), label_map (string, same syntax as --labels). Serial API only.
  */
+#include "common/hdf5_lock.h"
 #include "image_internal.h"
 #include "mdpore_image.h"
 
@@ -97,16 +98,16 @@ static int read_voxel_size(hid_t obj, double *out, const char *path, const char 
   return -1;
 }
 
-int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
-                        char *err) {
+static int mdp_image_read_hdf5_unlocked(const char *path, const mdp_image_read_opts_t *opts,
+                                        mdp_image_t *img, char *err) {
   return mdp_image_read_hdf5_box(path, opts, NULL, img, NULL, err);
 }
 
 /* The box is a hyperslab of the dataset: only its voxels are read from the file (whole chunks of a
  * chunked dataset, decompressed by HDF5). */
-int mdp_image_read_hdf5_box(const char *path, const mdp_image_read_opts_t *opts,
-                            const mdp_image_box_t *box, mdp_image_t *img, int dims_out[3],
-                            char *err) {
+static int mdp_image_read_hdf5_box_unlocked(const char *path, const mdp_image_read_opts_t *opts,
+                                            const mdp_image_box_t *box, mdp_image_t *img,
+                                            int dims_out[3], char *err) {
   const char *dname = opts->dataset[0] ? opts->dataset : "/labels";
   H5E_auto2_t old_func;
   void *old_data;
@@ -251,7 +252,7 @@ static int write_string_attr(hid_t obj, const char *name, const char *value) {
   return e < 0;
 }
 
-int mdp_image_write_hdf5(const mdp_image_t *img, const char *path, char *err) {
+static int mdp_image_write_hdf5_unlocked(const mdp_image_t *img, const char *path, char *err) {
   char tmp[4096], map[512];
   mdp_image_tmp_path(path, tmp, sizeof tmp);
   hid_t file = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -291,4 +292,29 @@ int mdp_image_write_hdf5(const mdp_image_t *img, const char *path, char *err) {
     return 1;
   }
   return mdp_image_commit(tmp, path, err);
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int mdp_image_read_hdf5(const char *path, const mdp_image_read_opts_t *opts, mdp_image_t *img,
+                        char *err) {
+  hdf5_lock();
+  const int rc = mdp_image_read_hdf5_unlocked(path, opts, img, err);
+  hdf5_unlock();
+  return rc;
+}
+
+int mdp_image_read_hdf5_box(const char *path, const mdp_image_read_opts_t *opts,
+                            const mdp_image_box_t *box, mdp_image_t *img, int dims_out[3],
+                            char *err) {
+  hdf5_lock();
+  const int rc = mdp_image_read_hdf5_box_unlocked(path, opts, box, img, dims_out, err);
+  hdf5_unlock();
+  return rc;
+}
+
+int mdp_image_write_hdf5(const mdp_image_t *img, const char *path, char *err) {
+  hdf5_lock();
+  const int rc = mdp_image_write_hdf5_unlocked(img, path, err);
+  hdf5_unlock();
+  return rc;
 }

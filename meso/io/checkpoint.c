@@ -1,4 +1,5 @@
 /* Checkpoint/restart files (see checkpoint.h). */
+#include "common/hdf5_lock.h"
 #include "io/checkpoint.h"
 #include "common/atomic_file.h"
 #include "io/crc32.h"
@@ -56,7 +57,7 @@ static double *gather_subdomains(sim_t *sim, MPI_Comm comm, int rank, int size) 
   return boxes;
 }
 
-int checkpoint_write(const char *path, sim_t *sim) {
+static int checkpoint_write_unlocked(const char *path, sim_t *sim) {
   MPI_Comm comm = sim_comm(sim);
   int rank, size, rc = 0;
   MPI_Comm_rank(comm, &rank);
@@ -294,7 +295,7 @@ static int adopt_cuts(const char *path, sim_t *sim, MPI_Comm comm, int rank, int
   return bad ? -1 : 0;
 }
 
-int checkpoint_read(const char *path, sim_t *sim) {
+static int checkpoint_read_unlocked(const char *path, sim_t *sim) {
   MPI_Comm comm = sim_comm(sim);
   int rank, size;
   MPI_Comm_rank(comm, &rank);
@@ -397,4 +398,19 @@ int checkpoint_read(const char *path, sim_t *sim) {
   free(boxes);
   free(counts);
   return bad ? -1 : 0;
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int checkpoint_write(const char *path, sim_t *sim) {
+  hdf5_lock();
+  const int rc = checkpoint_write_unlocked(path, sim);
+  hdf5_unlock();
+  return rc;
+}
+
+int checkpoint_read(const char *path, sim_t *sim) {
+  hdf5_lock();
+  const int rc = checkpoint_read_unlocked(path, sim);
+  hdf5_unlock();
+  return rc;
 }

@@ -1,4 +1,5 @@
 /* The flood's series, profiles and saturation maps (flood_log.h). */
+#include "common/hdf5_lock.h"
 #include "io/flood_log.h"
 #include "common/atomic_file.h"
 #include "io/h5_util.h"
@@ -27,7 +28,7 @@ static FILE *open_text(const char *path, const char *what) {
   return fp;
 }
 
-int flood_log_open(flood_log_t *log, const scene_t *s, const flood_t *f, int rank) {
+static int flood_log_open_unlocked(flood_log_t *log, const scene_t *s, const flood_t *f, int rank) {
   memset(log, 0, sizeof *log);
   if (rank != 0 || !f->on) return 0;
   const scene_flood_t *o = &s->flood;
@@ -68,7 +69,7 @@ int flood_log_open(flood_log_t *log, const scene_t *s, const flood_t *f, int ran
   return 0;
 }
 
-void flood_log_row(flood_log_t *log, const flood_t *f, long recolored) {
+static void flood_log_row_unlocked(flood_log_t *log, const flood_t *f, long recolored) {
   if (!log->active) return;
   fprintf(log->series, "%ld,%.10g,%.8g,%.8g,%.0f,%.0f,%.8g,%.8g,%.8g,%.8g,%.6g,%ld,%.0f,%.0f\n",
           f->step, f->time, f->s_inv, 1.0 - f->s_inv, f->n_inv, f->n_def, f->q_inv, f->q_def,
@@ -161,7 +162,8 @@ static int write_map_file(const char *path, const scene_t *s, const flood_t *f, 
   return atomic_rename(tmp, path);
 }
 
-int flood_log_map(flood_log_t *log, const scene_t *s, const flood_t *f, sim_t *sim, int rank) {
+static int flood_log_map_unlocked(flood_log_t *log, const scene_t *s, const flood_t *f, sim_t *sim,
+                                  int rank) {
   MPI_Comm comm = sim_comm(sim);
   int cells[3];
   double cell[3];
@@ -227,10 +229,37 @@ int flood_log_map(flood_log_t *log, const scene_t *s, const flood_t *f, sim_t *s
   return rc;
 }
 
-void flood_log_close(flood_log_t *log) {
+static void flood_log_close_unlocked(flood_log_t *log) {
   if (log->series) fclose(log->series);
   if (log->profile) fclose(log->profile);
   free(log->map_steps);
   free(log->map_times);
   memset(log, 0, sizeof *log);
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int flood_log_open(flood_log_t *log, const scene_t *s, const flood_t *f, int rank) {
+  hdf5_lock();
+  const int rc = flood_log_open_unlocked(log, s, f, rank);
+  hdf5_unlock();
+  return rc;
+}
+
+void flood_log_row(flood_log_t *log, const flood_t *f, long recolored) {
+  hdf5_lock();
+  flood_log_row_unlocked(log, f, recolored);
+  hdf5_unlock();
+}
+
+int flood_log_map(flood_log_t *log, const scene_t *s, const flood_t *f, sim_t *sim, int rank) {
+  hdf5_lock();
+  const int rc = flood_log_map_unlocked(log, s, f, sim, rank);
+  hdf5_unlock();
+  return rc;
+}
+
+void flood_log_close(flood_log_t *log) {
+  hdf5_lock();
+  flood_log_close_unlocked(log);
+  hdf5_unlock();
 }

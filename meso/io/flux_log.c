@@ -1,4 +1,5 @@
 /* Flux time series in CSV or HDF5 (see flux_log.h). */
+#include "common/hdf5_lock.h"
 #include "io/flux_log.h"
 #include "common/atomic_file.h"
 #include "io/h5_util.h"
@@ -151,8 +152,9 @@ static int open_h5(flux_log_t *log, const scene_t *s, const flux_def_t *d, const
   return 0;
 }
 
-int flux_log_open(flux_log_t *log, const scene_t *s, const flux_def_t *d, const char *path,
-                  long restart_step, series_t *steps, series_t *q, series_t *q_phase) {
+static int flux_log_open_unlocked(flux_log_t *log, const scene_t *s, const flux_def_t *d,
+                                  const char *path, long restart_step, series_t *steps, series_t *q,
+                                  series_t *q_phase) {
   memset(log, 0, sizeof *log);
   log->file = log->dset = -1;
   log->ncol = FLUX_LOG_NCOL + d->n_phases;
@@ -175,7 +177,7 @@ int flux_log_open(flux_log_t *log, const scene_t *s, const flux_def_t *d, const 
   return 0;
 }
 
-void flux_log_row(flux_log_t *log, const flux_sample_t *r) {
+static void flux_log_row_unlocked(flux_log_t *log, const flux_sample_t *r) {
   if (!log->active) return;
   double row[FLUX_LOG_MAX_COLS] = {(double)r->step, r->time, r->q, r->Q, r->G, r->u, r->N};
   for (int k = FLUX_LOG_NCOL; k < log->ncol; k++) row[k] = r->q_phase[k - FLUX_LOG_NCOL];
@@ -190,10 +192,31 @@ void flux_log_row(flux_log_t *log, const flux_sample_t *r) {
   h5_append_row(log->file, log->dset, log->rows++, log->ncol, row);
 }
 
-void flux_log_close(flux_log_t *log) {
+static void flux_log_close_unlocked(flux_log_t *log) {
   if (log->fp) fclose(log->fp);
   if (log->dset >= 0) H5Dclose(log->dset);
   if (log->file >= 0) H5Fclose(log->file);
   memset(log, 0, sizeof *log);
   log->file = log->dset = -1;
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int flux_log_open(flux_log_t *log, const scene_t *s, const flux_def_t *d, const char *path,
+                  long restart_step, series_t *steps, series_t *q, series_t *q_phase) {
+  hdf5_lock();
+  const int rc = flux_log_open_unlocked(log, s, d, path, restart_step, steps, q, q_phase);
+  hdf5_unlock();
+  return rc;
+}
+
+void flux_log_row(flux_log_t *log, const flux_sample_t *r) {
+  hdf5_lock();
+  flux_log_row_unlocked(log, r);
+  hdf5_unlock();
+}
+
+void flux_log_close(flux_log_t *log) {
+  hdf5_lock();
+  flux_log_close_unlocked(log);
+  hdf5_unlock();
 }

@@ -32,7 +32,8 @@ void particle_set_free(particle_set_t *s) {
   memset(s, 0, sizeof *s);
 }
 
-static const int64_t *sort_ids;
+/* qsort's comparator context: one per thread (the replicas of mdpore run --replicas sort at once) */
+static _Thread_local const int64_t *sort_ids;
 static int by_id(const void *a, const void *b) {
   const int64_t x = sort_ids[*(const long *)a], y = sort_ids[*(const long *)b];
   return (x > y) - (x < y);

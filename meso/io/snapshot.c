@@ -1,4 +1,5 @@
 /* HDF5 snapshots (serial HDF5 on rank 0) and their XDMF index. */
+#include "common/hdf5_lock.h"
 #include "io/snapshot.h"
 #include "common/atomic_file.h"
 #include "common/size_check.h"
@@ -20,8 +21,8 @@ static void species_list(const scene_t *s, char *out, size_t len) {
   }
 }
 
-int snapshot_write_set(const char *path, const scene_t *s, const particle_set_t *set, long step,
-                       double time) {
+static int snapshot_write_set_unlocked(const char *path, const scene_t *s,
+                                       const particle_set_t *set, long step, double time) {
   char tmp[SCENE_PATH_LEN + 32];
   atomic_tmp_name(path, tmp, sizeof tmp);
   hid_t f = H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -55,7 +56,8 @@ int snapshot_write_set(const char *path, const scene_t *s, const particle_set_t 
   return atomic_rename(tmp, path);
 }
 
-int snapshot_read(const char *path, const scene_t *s, particle_set_t *out, long *step) {
+static int snapshot_read_unlocked(const char *path, const scene_t *s, particle_set_t *out,
+                                  long *step) {
   memset(out, 0, sizeof *out);
   H5E_auto2_t fn;
   void *cd;
@@ -245,7 +247,7 @@ static int step_cmp(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-int snapshot_series_resume(snapshot_series_t *ser, const scene_t *s, long upto) {
+static int snapshot_series_resume_unlocked(snapshot_series_t *ser, const scene_t *s, long upto) {
   char dir[1024], stem[1024];
   snprintf(dir, sizeof dir, "%s", ser->base);
   snprintf(stem, sizeof stem, "%s", ser->base);
@@ -300,7 +302,7 @@ int snapshot_series_resume(snapshot_series_t *ser, const scene_t *s, long upto) 
   return rc;
 }
 
-int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
+static int snapshot_series_write_unlocked(snapshot_series_t *ser, sim_t *sim) {
   int rank, rc = 0;
   MPI_Comm comm = sim_comm(sim);
   MPI_Comm_rank(comm, &rank);
@@ -319,5 +321,35 @@ int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
   }
   particle_set_free(&set);
   MPI_Bcast(&rc, 1, MPI_INT, 0, comm);
+  return rc;
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int snapshot_write_set(const char *path, const scene_t *s, const particle_set_t *set, long step,
+                       double time) {
+  hdf5_lock();
+  const int rc = snapshot_write_set_unlocked(path, s, set, step, time);
+  hdf5_unlock();
+  return rc;
+}
+
+int snapshot_read(const char *path, const scene_t *s, particle_set_t *out, long *step) {
+  hdf5_lock();
+  const int rc = snapshot_read_unlocked(path, s, out, step);
+  hdf5_unlock();
+  return rc;
+}
+
+int snapshot_series_resume(snapshot_series_t *ser, const scene_t *s, long upto) {
+  hdf5_lock();
+  const int rc = snapshot_series_resume_unlocked(ser, s, upto);
+  hdf5_unlock();
+  return rc;
+}
+
+int snapshot_series_write(snapshot_series_t *ser, sim_t *sim) {
+  hdf5_lock();
+  const int rc = snapshot_series_write_unlocked(ser, sim);
+  hdf5_unlock();
   return rc;
 }

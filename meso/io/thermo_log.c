@@ -1,4 +1,5 @@
 /* Thermo time series in CSV or HDF5 (see thermo_log.h). */
+#include "common/hdf5_lock.h"
 #include "io/thermo_log.h"
 #include "io/h5_util.h"
 #include "physics/density_kernels.h"
@@ -72,8 +73,8 @@ static int h5_trim(thermo_log_t *log, const char *path, long upto) {
   return 0;
 }
 
-int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, long restart_step,
-                    int rank) {
+static int thermo_log_open_unlocked(thermo_log_t *log, const scene_t *s, const char *path,
+                                    long restart_step, int rank) {
   memset(log, 0, sizeof *log);
   log->file = log->dset = -1;
   if (rank != 0 || !path[0]) return 0;
@@ -129,7 +130,7 @@ int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, long 
   return 0;
 }
 
-void thermo_log_row(thermo_log_t *log, const thermo_t *t) {
+static void thermo_log_row_unlocked(thermo_log_t *log, const thermo_t *t) {
   if (!log->active) return;
   const double *P = t->pressure;
   const int NCOL = log->ncol;
@@ -167,10 +168,31 @@ void thermo_log_row(thermo_log_t *log, const thermo_t *t) {
   h5_append_row(log->file, log->dset, log->rows++, (hsize_t)NCOL, row);
 }
 
-void thermo_log_close(thermo_log_t *log) {
+static void thermo_log_close_unlocked(thermo_log_t *log) {
   if (log->fp) fclose(log->fp);
   if (log->dset >= 0) H5Dclose(log->dset);
   if (log->file >= 0) H5Fclose(log->file);
   memset(log, 0, sizeof *log);
   log->file = log->dset = -1;
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int thermo_log_open(thermo_log_t *log, const scene_t *s, const char *path, long restart_step,
+                    int rank) {
+  hdf5_lock();
+  const int rc = thermo_log_open_unlocked(log, s, path, restart_step, rank);
+  hdf5_unlock();
+  return rc;
+}
+
+void thermo_log_row(thermo_log_t *log, const thermo_t *t) {
+  hdf5_lock();
+  thermo_log_row_unlocked(log, t);
+  hdf5_unlock();
+}
+
+void thermo_log_close(thermo_log_t *log) {
+  hdf5_lock();
+  thermo_log_close_unlocked(log);
+  hdf5_unlock();
 }

@@ -345,7 +345,11 @@ static int build(const scene_t *s, MPI_Comm comm, int whole, const double *sub_l
   memset(g, 0, sizeof *g);
   g->scene = s;
   g->whole = whole;
-  g->work = whole ? MPI_COMM_SELF : comm;
+  int comm_size = 1;
+  MPI_Comm_size(comm, &comm_size);
+  /* a one-rank comm is its own (the replicas of mdpore run --replicas: threads of one process must
+   * not share MPI_COMM_SELF's collectives) */
+  g->work = whole && comm_size > 1 ? MPI_COMM_SELF : comm;
   g->h = geo->rc_per_voxel;
   g->min_distance = geo->min_wall_distance;
   for (int d = 0; d < 3; d++) g->lo[d] = s->box_lo[d], g->periodic[d] = s->periodic[d];

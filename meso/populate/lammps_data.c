@@ -63,7 +63,8 @@ static long find_id(const int64_t *sorted_ids, const long *order, long n, int64_
   return -1;
 }
 
-static const int64_t *cmp_ids;
+/* qsort's comparator context: one per thread (the replicas of mdpore run --replicas) */
+static _Thread_local const int64_t *cmp_ids;
 static int cmp_order(const void *a, const void *b) {
   const int64_t x = cmp_ids[*(const long *)a], y = cmp_ids[*(const long *)b];
   return (x > y) - (x < y);

@@ -40,6 +40,7 @@
  * and description (text: the parameters and steps of the run). Written to a temporary file renamed
  * over the target (common/atomic_file.h), without modification times, so the same (edge, density,
  * seed, steps) gives the same bytes. */
+#include "common/hdf5_lock.h"
 #include "populate/wall_patches.h"
 #include "common/atomic_file.h"
 #include "common/size_check.h"
@@ -175,8 +176,8 @@ static void describe(const wall_patches_t *p, const wall_patches_run_t *run, cha
            run->temperature_mean);
 }
 
-int wall_patches_write(const char *path, const wall_patches_t *p, const wall_patches_run_t *run,
-                       char *err, size_t errlen) {
+static int wall_patches_write_unlocked(const char *path, const wall_patches_t *p,
+                                       const wall_patches_run_t *run, char *err, size_t errlen) {
   char tmp[PATCH_PATH_LEN + 32], text[2048];
   atomic_tmp_name(path, tmp, sizeof tmp);
   describe(p, run, text, sizeof text);
@@ -418,8 +419,9 @@ bad:
   return -1;
 }
 
-int wall_patches_read(const char *path, double edge, double density, uint64_t seed,
-                      wall_patches_t *out, wall_patches_run_t *run, char *err, size_t errlen) {
+static int wall_patches_read_unlocked(const char *path, double edge, double density, uint64_t seed,
+                                      wall_patches_t *out, wall_patches_run_t *run, char *err,
+                                      size_t errlen) {
   memset(out, 0, sizeof *out);
   H5E_auto2_t fn;
   void *cd;
@@ -575,4 +577,21 @@ int wall_patches_load_or_build(const char *path, double edge, double density, ui
                                MPI_Comm comm, wall_patches_t *out, char *err, size_t errlen) {
   return wall_patches_load_or_build_steps(path, edge, density, seed, WALL_PATCHES_STEPS, comm, out,
                                           NULL, err, errlen);
+}
+
+/* The public entry points: each whole call under the HDF5 lock (common/hdf5_lock.h). */
+int wall_patches_write(const char *path, const wall_patches_t *p, const wall_patches_run_t *run,
+                       char *err, size_t errlen) {
+  hdf5_lock();
+  const int rc = wall_patches_write_unlocked(path, p, run, err, errlen);
+  hdf5_unlock();
+  return rc;
+}
+
+int wall_patches_read(const char *path, double edge, double density, uint64_t seed,
+                      wall_patches_t *out, wall_patches_run_t *run, char *err, size_t errlen) {
+  hdf5_lock();
+  const int rc = wall_patches_read_unlocked(path, edge, density, seed, out, run, err, errlen);
+  hdf5_unlock();
+  return rc;
 }

@@ -1,10 +1,12 @@
-/* mdpore run [--explain] [--steps N] [--output-dir D] [--restart FILE] SCENE */
+/* mdpore run [--explain] [--steps N] [--output-dir D] [--restart FILE] SCENE
+ * mdpore run --replicas [--steps N] [--backend B] ... SCENE [SCENE...] (run/run_replicas.c) */
 #include "effects/scene_load.h"
 #include "commands.h"
 #include "engine/sim.h"
 #include "common/atomic_file.h"
 #include "common/cli_help.h"
 #include "run/run_loop.h"
+#include "run/run_replicas.h"
 
 #include <getopt.h>
 #include <mpi.h>
@@ -13,6 +15,12 @@
 #include <string.h>
 
 static const cli_help_option_t run_options[] = {
+    {"--replicas",
+     "run each SCENE as its own one-rank run, all at once in this process (one thread each, "
+     "sharing the GPU or the cores); each writes its outputs into its scene's folder, as "
+     "--output-dir DIR DIR/scene.yaml would; one that fails leaves the others running (exit 1 "
+     "naming it)",
+     0},
     {"--explain", "print the per-step plan the scene's effects produce, and exit", 1},
     {"--steps N", "run N steps instead of run.steps (after a restart: N more steps)", 1},
     {"--output-dir DIR", "write the outputs (relative paths) into DIR (created if needed)", 1},
@@ -33,31 +41,96 @@ static const cli_help_option_t run_options[] = {
 static const cli_help_page_t run_help = {
     .command = "run",
     .usage = "usage: mdpore run [--explain] [--steps N] [--output-dir DIR] [--restart FILE]\n"
-             "                  SCENE.yaml\n",
+             "                  SCENE.yaml\n"
+             "       mdpore run --replicas [--steps N] [--backend B] SCENE.yaml...\n",
     .purpose = "Run a scene (format: docs/scene-format.md) on all MPI ranks.",
     .options = run_options,
     .more = "docs/scene-format.md, docs/engine-core.md, docs/engine-cuda.md",
     .name_width = 16,
 };
 
+/* --replicas: load every scene first (a scene that does not load stops the command before any
+ * runs), then run them at once. */
+static int run_replica_scenes(int n, char **files, long steps, double skin, int gpu_memory,
+                              const char *backend, int single_only, int size) {
+  if (single_only) {
+    fprintf(stderr, "mdpore run: --replicas: --explain, --output-dir and --restart are for one "
+                    "scene (a replica writes into its scene's folder; set restart in its scene)\n");
+    return 2;
+  }
+  if (n < 1) {
+    cli_help_print(stderr, &run_help, CLI_HELP_SHORT);
+    return 2;
+  }
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&provided);
+  if (size > 1) {
+    fprintf(stderr,
+            "mdpore run: --replicas: each replica runs on one rank in this process: start "
+            "it without mpiexec (got %d ranks)\n",
+            size);
+    return 2;
+  }
+  if (provided < MPI_THREAD_MULTIPLE) {
+    fprintf(stderr,
+            "mdpore run: --replicas: this MPI gave thread level %d, MPI_THREAD_MULTIPLE (%d) is "
+            "needed (spell --replicas in full: mdpore asks for it when it sees that word)\n",
+            provided, MPI_THREAD_MULTIPLE);
+    return 2;
+  }
+  scene_t *scenes = calloc((size_t)n, sizeof *scenes);
+  if (!scenes) {
+    fprintf(stderr, "mdpore run: out of memory for %d scenes\n", n);
+    return 1;
+  }
+  int chosen = SCENE_BACKEND_CPU;
+  char err[512];
+  if (sim_backend_choose(backend, 1, &chosen, err, sizeof err)) {
+    fprintf(stderr, "mdpore run: %s\n", err);
+    free(scenes);
+    return 2;
+  }
+  for (int i = 0; i < n; i++) {
+    if (scene_load(files[i], &scenes[i])) {
+      fprintf(stderr, "mdpore run: --replicas: %s (replica %d of %d) did not load; nothing ran\n",
+              files[i], i + 1, n);
+      free(scenes);
+      return 1;
+    }
+    if (steps >= 0) scenes[i].steps = steps;
+    if (skin >= 0.0) scenes[i].neighbour_skin = skin;
+    scenes[i].gpu_memory = gpu_memory;
+    scenes[i].backend = chosen;
+  }
+  int rc = run_replicas_prepare(scenes, n) ? 2 : 0;
+  if (!rc) rc = run_replicas(scenes, n, run_replicas_omp_threads(n));
+  free(scenes);
+  return rc;
+}
+
 int cmd_run(int argc, char **argv) {
   int rank, size;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  static const struct option opts[] = {
-      {"explain", no_argument, NULL, 'e'},          {"steps", required_argument, NULL, 's'},
-      {"output-dir", required_argument, NULL, 'o'}, {"restart", required_argument, NULL, 'r'},
-      {"backend", required_argument, NULL, 'b'},    {"skin", required_argument, NULL, 'k'},
-      {"gpu-memory", required_argument, NULL, 'm'}, {"help", no_argument, NULL, 'h'},
-      {"help-all", no_argument, NULL, 'H'},         {NULL, 0, NULL, 0}};
-  int explain = 0, c;
+  static const struct option opts[] = {{"explain", no_argument, NULL, 'e'},
+                                       {"steps", required_argument, NULL, 's'},
+                                       {"output-dir", required_argument, NULL, 'o'},
+                                       {"restart", required_argument, NULL, 'r'},
+                                       {"backend", required_argument, NULL, 'b'},
+                                       {"skin", required_argument, NULL, 'k'},
+                                       {"gpu-memory", required_argument, NULL, 'm'},
+                                       {"replicas", no_argument, NULL, 'R'},
+                                       {"help", no_argument, NULL, 'h'},
+                                       {"help-all", no_argument, NULL, 'H'},
+                                       {NULL, 0, NULL, 0}};
+  int explain = 0, replicas = 0, c;
   long steps = -1;
   const char *outdir = NULL, *restart = NULL, *backend = "auto";
   double skin = -1.0;
   int gpu_memory = SCENE_GPU_MEMORY_AUTO;
   optind = 1;
   opterr = rank == 0;
-  while ((c = getopt_long(argc, argv, "es:o:r:b:k:m:h", opts, NULL)) != -1) {
+  while ((c = getopt_long(argc, argv, "es:o:r:b:k:m:Rh", opts, NULL)) != -1) {
     switch (c) {
     case 'e':
       explain = 1;
@@ -106,6 +179,9 @@ int cmd_run(int argc, char **argv) {
         return 2;
       }
       break;
+    case 'R':
+      replicas = 1;
+      break;
     case 'h':
     case 'H':
       if (rank == 0) cli_help_print(stdout, &run_help, c == 'H' ? CLI_HELP_ALL : CLI_HELP_SHORT);
@@ -115,6 +191,9 @@ int cmd_run(int argc, char **argv) {
       return 2;
     }
   }
+  if (replicas)
+    return run_replica_scenes(argc - optind, argv + optind, steps, skin, gpu_memory, backend,
+                              explain || outdir || restart, size);
   if (optind != argc - 1) {
     if (rank == 0) cli_help_print(stderr, &run_help, CLI_HELP_SHORT);
     return 2;

@@ -95,6 +95,10 @@ static int penetration_sample(const penetration_map_t *m, sim_t *sim, thermo_t *
 }
 
 int run_scene(const scene_t *scene, MPI_Comm comm) {
+  return run_scene_watched(scene, comm, NULL);
+}
+
+int run_scene_watched(const scene_t *scene, MPI_Comm comm, run_watch_t *watch) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -201,6 +205,13 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     err = write_outputs(sim, first, 1, first == last, &snaps, &dump_started);
   }
   double loop = 0;
+  if (watch) {
+    __atomic_store_n(&watch->first, first, __ATOMIC_RELAXED);
+    __atomic_store_n(&watch->step, first, __ATOMIC_RELAXED);
+    __atomic_store_n(&watch->last, last, __ATOMIC_RELAXED);
+    const double now = MPI_Wtime();
+    __atomic_store(&watch->t_loop, &now, __ATOMIC_RELAXED);
+  }
   for (long step = first + 1; step <= last && !err; step++) {
     const int sample = s->profile.nbins > 0 && profile_wants(&prof, step);
     const int virial_for_flux = run_flux_wants_virial(&rf, step); /* measured pressure drop */
@@ -258,6 +269,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
       err = 1;
       break;
     }
+    if (watch) __atomic_store_n(&watch->step, step, __ATOMIC_RELAXED);
     progress_update(&pr, step, th.step, th.temperature,
                     (th.pressure[0] + th.pressure[1] + th.pressure[2]) / 3);
     /* The flux sample; with run.target_error it may end the run here (every rank together; the
@@ -281,6 +293,7 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     if (stop) break;
   }
   progress_end(&pr);
+  if (watch) __atomic_store_n(&watch->step, last, __ATOMIC_RELAXED); /* done (or stopped early) */
   thermo_log_close(&log);
   if (dguard.on && rank == 0)
     fprintf(stderr,
@@ -298,8 +311,10 @@ int run_scene(const scene_t *scene, MPI_Comm comm) {
     st.total_seconds = MPI_Wtime() - t_start;
     if (rank == 0) {
       if (s->profile.nbins > 0 && profile_write(&prof, s->profile.path)) err = 1;
+      flockfile(stdout); /* one block: replicas (run_replicas.c) write theirs at once */
       if (run_summary_write(&st, s, s->profile.nbins > 0 ? &prof : NULL, stdout, s->summary_path))
         err = 1;
+      funlockfile(stdout);
     }
     MPI_Bcast(&err, 1, MPI_INT, 0, comm);
   }
