@@ -62,7 +62,8 @@ typedef struct {
   double dt;                        /* run.dt (0: the template's) */
   int np;                           /* ranks per run */
   int jobs;                         /* --jobs: runs at once (default 1; 0: auto) */
-  int job_replicas; /* --job-mode replicas: the runs at once in one process (campaign_replicas.c) */
+  int job_replicas; /* --job-mode: 1 replicas (the runs at once in one process, campaign_replicas.c),
+                     0 process, -1 auto (replicas when the runs at once share a GPU) */
   char workdir[CAMP_PATH];
   char emit_dir[CAMP_PATH];    /* --emit-scenes DIR ("" = no) */
   char collect_dir[CAMP_PATH]; /* --collect DIR ("" = no) */
@@ -388,7 +389,7 @@ int camp_execute_replicas(const camp_opts *o, campaign *c, int jobs, char *const
  * floor(cores / np)), printed with how it was chosen when not 1. */
 #define CAMP_MAX_JOBS 64
 #define CAMP_AUTO_JOBS_MAX 8
-int camp_jobs(const camp_opts *o, const campaign *c);
+int camp_jobs(const camp_opts *o, const campaign *c, int *on_gpu);
 /* The pure rules of auto (unit-tested): GPU: gpus > 0 visible, free_bytes free in all, each run of
  * particles (NAN: not known -> 1) on np ranks; CPU: cores and np. */
 int camp_jobs_auto_gpu(double free_bytes, int gpus, double particles, int np);

@@ -47,9 +47,9 @@ static const cli_help_option_t camp_options[] = {
      "else cores / --np. Every run's result is the same at any N",
      0},
     {"--job-mode M",
-     "process (default): each run of --jobs its own process; replicas: the runs at once stepped "
-     "in one process (mdpore run --replicas: one start-up, one GPU context; one-rank runs "
-     "without --target-error-k)",
+     "auto (default): replicas when the runs at once share a GPU, else process; process: each "
+     "run of --jobs its own process; replicas: the runs at once stepped in one process (mdpore "
+     "run --replicas: one start-up, one GPU context; one-rank runs without --target-error-k)",
      0},
     {"--workdir DIR", "campaign folder (default permeability-SAMPLE)", 1},
     {"--emit-scenes DIR", "write the scenes, the manifest and commands.txt, run nothing", 1},
@@ -275,6 +275,7 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
   o->target_error = 0.05;
   o->np = 1;
   o->jobs = 1;
+  o->job_replicas = -1; /* --job-mode auto */
   o->rc_per_voxel = 0.5;
   o->min_throat = 4.0;
   o->viscosity = 5.41;
@@ -364,12 +365,14 @@ int camp_parse_args(int argc, char **argv, camp_opts *o) {
         o->jobs = (int)ll;
       }
     } else if (!strcmp(s, "--job-mode")) {
-      if (!strcmp(v, "process"))
+      if (!strcmp(v, "auto"))
+        o->job_replicas = -1;
+      else if (!strcmp(v, "process"))
         o->job_replicas = 0;
       else if (!strcmp(v, "replicas"))
         o->job_replicas = 1;
       else
-        return bad(s, "process or replicas", v);
+        return bad(s, "auto, process or replicas", v);
     } else if (!strcmp(s, "--mpiexec"))
       snprintf(o->mpiexec, sizeof o->mpiexec, "%s", v);
     else if (!strcmp(s, "--workdir"))

@@ -97,16 +97,20 @@ static int probe_gpu(double *free_bytes, double *total_bytes) {
 #endif
 }
 
-int camp_jobs(const camp_opts *o, const campaign *c) {
+int camp_jobs(const camp_opts *o, const campaign *c, int *on_gpu) {
+  double free_b, total_b;
+  *on_gpu = 0;
   if (o->jobs > 0) {
     const int n = o->jobs > CAMP_MAX_JOBS ? CAMP_MAX_JOBS : o->jobs;
+    /* --job-mode auto needs to know whether the runs at once share a GPU */
+    if (n > 1 && o->job_replicas < 0) *on_gpu = probe_gpu(&free_b, &total_b) > 0;
     if (n > 1)
       fprintf(stderr, "mdpore permeability: up to %d runs at once (--jobs %d)\n", n, o->jobs);
     return n;
   }
-  double free_b, total_b;
   const int gpus = probe_gpu(&free_b, &total_b);
   int n;
+  *on_gpu = gpus > 0;
   if (gpus > 0) {
     n = camp_jobs_auto_gpu(free_b, gpus, c->particles_estimate, o->np);
     if (isfinite(c->particles_estimate))
