@@ -5,7 +5,7 @@
 # needed, then fuzzes from the seed corpus tests/fuzz/corpus/TARGET. New inputs are kept in the build
 # folder (BUILD/tests/fuzz/work/TARGET/corpus), never in the repository; a crash, hang or sanitizer
 # report stops the run, leaves the input as BUILD/tests/fuzz/work/TARGET/crash-* (or timeout-*,
-# oom-*) and exits non-zero. Extra libFuzzer flags: MDPORE_FUZZ_FLAGS="-jobs=2 -workers=2".
+# oom-*, leak-*) and exits non-zero. Extra libFuzzer flags: MDPORE_FUZZ_FLAGS="-jobs=2".
 # MDPORE_FUZZ_NO_BUILD=1 runs the executable as built (no cmake step: runs one after another while
 # the tree is being built for other targets).
 set -euo pipefail
@@ -38,7 +38,7 @@ set +e
 rc=$?
 set -e
 if [ $rc -ne 0 ]; then
-  echo "$0: $target: a finding (exit $rc); its input: $(ls -t "$work"/crash-* "$work"/timeout-* "$work"/oom-* 2>/dev/null | head -1)"
+  echo "$0: $target: a finding (exit $rc); its input: $(ls -t "$work"/crash-* "$work"/timeout-* "$work"/oom-* "$work"/leak-* 2>/dev/null | head -1)"
   echo "replay it: $build/bin/fuzz_${target}_replay FILE (or $exe FILE); once fixed, copy it to tests/fuzz/corpus/$target/crash_NAME"
 fi
 exit $rc

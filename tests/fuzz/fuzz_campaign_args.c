@@ -19,14 +19,17 @@
 static rp_opts ro; /* large: not on the stack */
 static camp_opts co;
 
-/* The message names an argument as given (an option, or a value of two or more characters), or
- * what is missing. */
+/* The message names an argument as given (an option or value of two or more characters, a shorter
+ * one quoted or as the message's subject), or what is missing. */
 static int names_argument(const char *msg, int argc, char **argv) {
   if (strstr(msg, "IMAGE") || strstr(msg, "--axis") || strstr(msg, "WORKDIR")) return 1;
   for (int i = 1; i < argc; i++) {
-    char quoted[4200];
+    char quoted[4200], subject[4200];
     snprintf(quoted, sizeof quoted, "'%.4096s'", argv[i]);
-    if ((strlen(argv[i]) >= 2 && strstr(msg, argv[i])) || strstr(msg, quoted)) return 1;
+    snprintf(subject, sizeof subject, ": %.4096s:", argv[i]); /* "mdpore X: TOKEN: ..." */
+    if ((strlen(argv[i]) >= 2 && strstr(msg, argv[i])) || strstr(msg, quoted) ||
+        strstr(msg, subject))
+      return 1;
   }
   return 0;
 }
