@@ -222,17 +222,21 @@ static int image_ops(int to, char **argv, int from, mdp_image_t *img, int check_
   return 0;
 }
 
-/* stack AXIS OPTIONS [+ OPTIONS]...: the fixed image under each group, joined along AXIS. */
-static void stack(int argc, char **argv) {
-  if (argc < 3 || strlen(argv[2]) != 1 || argv[2][0] < 'x' || argv[2][0] > 'z') return;
+/* stack AXIS OPTIONS [+ OPTIONS]...: the fixed image under each group, joined along AXIS. 1 when
+ * every group was joined. */
+static int stack(int argc, char **argv) {
+  if (argc < 3 || strlen(argv[2]) != 1 || argv[2][0] < 'x' || argv[2][0] > 'z') return 0;
   const int axis = argv[2][0] - 'x';
   mdp_image_t acc = {0}, next, joined;
-  int have = 0;
+  int have = 0, all = 1;
   for (int from = 3; from <= argc;) {
     int to = from;
     while (to < argc && strcmp(argv[to], "+")) to++;
     const int rc = image_ops(to, argv, from, &next, 0);
-    if (rc) break;
+    if (rc) {
+      all = 0;
+      break;
+    }
     if (!have) {
       acc = next, have = 1;
     } else {
@@ -250,6 +254,7 @@ static void stack(int argc, char **argv) {
       if (bad) {
         if (!strstr(err, "stack")) finding("a stack refused without naming it", detail);
         if (fits && voxels <= MAY_REFUSE) finding("images that fit were not stacked", detail);
+        all = 0;
         break;
       }
       if (!fits || voxels > MUST_REFUSE) finding("images that do not fit were stacked", detail);
@@ -263,10 +268,12 @@ static void stack(int argc, char **argv) {
     from = to + 1;
   }
   if (have) mdp_image_free(&acc);
+  return all;
 }
 
-/* permeability OPTIONS: the boundary image of each flow axis. */
-static void boundary(int argc, char **argv) {
+/* permeability OPTIONS: the boundary image of each flow axis. 1 when the options were accepted and
+ * every axis's image built (or the image itself serves). */
+static int boundary(int argc, char **argv) {
   char *args[MAX_ARGS + 4], workdir[300];
   int n = 0;
   fuzz_path("campaign", workdir, sizeof workdir);
@@ -279,7 +286,8 @@ static void boundary(int argc, char **argv) {
   fuzz_capture_begin();
   int rc = camp_parse_args(n, args, &co);
   fuzz_capture_end(); /* the campaign_args entry checks these messages */
-  if (rc || co.collect_dir[0]) return;
+  if (rc || co.collect_dir[0]) return 0;
+  int all = 1;
   memset(&camp, 0, sizeof camp);
   camp_resolve_boundaries(&co, &camp, &fixed);
   for (int a = 0; a < co.n_axes; a++) {
@@ -308,6 +316,7 @@ static void boundary(int argc, char **argv) {
           !(strstr(msg, "--reservoir") || strstr(msg, "--boundary") || strstr(msg, "--drive")))
         finding("a boundary image refused without naming the input and the option", detail);
       if (fits && voxels <= MAY_REFUSE) finding("a boundary image that fits was refused", detail);
+      all = 0;
       continue;
     }
     if (rc > 0) {
@@ -321,6 +330,7 @@ static void boundary(int argc, char **argv) {
       finding("a boundary image of the wrong size", detail);
     mdp_image_free(&out);
   }
+  return all;
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -329,9 +339,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   const int argc = fuzz_argv(data, size, "image_ops", argv, MAX_ARGS);
   int accepted = 0;
   if (argc >= 2 && !strcmp(argv[1], "stack"))
-    stack(argc, argv);
+    accepted = stack(argc, argv);
   else if (argc >= 2 && !strcmp(argv[1], "permeability"))
-    boundary(argc, argv);
+    accepted = boundary(argc, argv);
   else {
     mdp_image_t img;
     if (image_ops(argc, argv, 1, &img, 1) == 0) {
@@ -339,6 +349,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
       accepted = 1;
     }
   }
-  fuzz_last_accepted = accepted; /* replay: ok_* seeds are `image` options that give a result */
+  fuzz_last_accepted = accepted; /* replay: ok_* seeds give a result, bad_* a refusal */
   return 0;
 }

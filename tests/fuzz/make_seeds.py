@@ -291,7 +291,7 @@ for name, args in (("no_workdir", ["IMG", "--axis", "x"]),
                    ("ratio_3", ["IMG", "--axis", "x", "--viscosity-ratio", "3", "W"]),
                    ("nw_label_256", ["IMG", "--axis", "x", "--nw-label", "256", "W"]),
                    ("scene_input", ["case.yaml", "--axis", "x", "W"]),
-                   ("boundary_reservoir", ["IMG", "--axis", "x", "--boundary", "reservoir", "W"])):
+                   ("ok_boundary_reservoir", ["IMG", "--axis", "x", "--boundary", "reservoir", "W"])):
     put("campaign_args", "bad_relperm_" + name,
         "relperm\n" + "\n".join(img if a == "IMG" else a for a in args) + "\n")
 
@@ -363,19 +363,19 @@ for name, args in (("crop_outside", ["image", "--crop", "0:7,:,:"]),
                    ("mirror_w", ["image", "--mirror", "w"]),
                    ("mirror_memory", ["image", "--pad", "x=1000000", "--mirror", "x,y,z"])):
     put("image_ops", "bad_" + name, "\n".join(args) + "\n")
-for name, args in (("stack_x", ["stack", "x", "+", "--crop", "0:2,:,:", "+", "--pad", "x=3"]),
-                   ("stack_mismatch", ["stack", "y", "+", "--crop", "0:2,:,:"]),
-                   ("stack_voxel_size", ["stack", "z", "--downsample", "2", "+", "--downsample", "1"]),
-                   ("stack_overflow", ["stack", "x", "--pad", "x=1073741823", "+", "--pad", "x=1073741823"]),
-                   ("boundary_mirror", ["permeability", "--axis", "all", "--boundary", "mirror"]),
-                   ("boundary_sides", ["permeability", "--axis", "y", "--boundary", "mirror", "--sides", "mirror"]),
-                   ("boundary_reservoir", ["permeability", "--axis", "x", "--drive", "pressure",
+for name, args in (("ok_stack_x", ["stack", "x", "+", "--crop", "0:2,:,:", "+", "--pad", "x=3"]),
+                   ("bad_stack_mismatch", ["stack", "y", "+", "--crop", "0:2,:,:"]),
+                   ("bad_stack_voxel_size", ["stack", "z", "--downsample", "2", "+", "--downsample", "1"]),
+                   ("bad_stack_overflow", ["stack", "x", "--pad", "x=1073741823", "+", "--pad", "x=1073741823"]),
+                   ("ok_boundary_mirror", ["permeability", "--axis", "all", "--boundary", "mirror"]),
+                   ("ok_boundary_sides", ["permeability", "--axis", "y", "--boundary", "mirror", "--sides", "mirror"]),
+                   ("ok_boundary_reservoir", ["permeability", "--axis", "x", "--drive", "pressure",
                                            "--reservoir", "7", "--rc-per-voxel", "0.25"]),
-                   ("boundary_reservoir_huge", ["permeability", "--axis", "z", "--boundary", "reservoir",
+                   ("bad_boundary_reservoir_huge", ["permeability", "--axis", "z", "--boundary", "reservoir",
                                                 "--reservoir", "999999", "--rc-per-voxel", "1e-300"]),
-                   ("boundary_reservoir_memory", ["permeability", "--axis", "y", "--drive", "pressure",
+                   ("bad_boundary_reservoir_memory", ["permeability", "--axis", "y", "--drive", "pressure",
                                                   "--reservoir", "900000", "--sides", "mirror"])):
-    put("image_ops", "any_" + name, "\n".join(args) + "\n")
+    put("image_ops", name, "\n".join(args) + "\n")
 
 # ---- geometry: scenes built against the entry's slit_8x6x4.raw (the geometry test scenes' image)
 geo_bad = os.path.join(ROOT, "tests/engine/bad_scenes/geometry")
