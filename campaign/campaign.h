@@ -219,8 +219,15 @@ void camp_resolve_boundaries(camp_opts *o, campaign *c, const mdp_image_t *img);
  * mirror). */
 void camp_mirror_image_path(const camp_opts *o, int axis, char *out, int len);
 int camp_mirrored_along(const camp_opts *o, int axis, int d);
-/* Writes the per-axis images of the mirror and reservoir treatments (the reservoir pads the
- * laterally mirrored image). 0 or -1 with a message. */
+/* The image a run along flow axis ax reads under its treatment: mirrored along each dimension
+ * camp_mirrored_along names, then for a reservoir padded after the high face along ax with
+ * camp_reservoir_voxels(o) layers of the smallest pore label (the padded size checked against the
+ * index range and the memory limit first). 0 with *out allocated (the caller frees it); 1 when the
+ * treatment reads the image itself (periodic, sides periodic); -1 after a message naming the input
+ * and the option. Writes nothing. */
+int camp_boundary_image(const camp_opts *o, const mdp_image_t *img, int ax, mdp_image_t *out);
+/* Writes the per-axis images of the mirror and reservoir treatments (camp_boundary_image) to
+ * camp_mirror_image_path or camp_padded_image_path. 0 or -1 with a message. */
 int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img);
 
 /* campaign_scene.c: the scene text of one run (template + axis + g), malloc'd; NULL + message.
@@ -340,6 +347,10 @@ typedef struct {
   char stop_why[3][256]; /* per axis: why the rounds stopped */
 } camp_rounds_report;
 extern camp_rounds_report camp_rounds_done; /* n_rounds 0: the rule was not used */
+/* The recorded rounds of WORKDIR/rounds.txt: rep->step[r][i] for every recorded round r (a run a
+ * round does not list keeps its step of the round before; a line naming a folder that is not one
+ * of c's runs is ignored). No file: no rounds. 0, or -1 with a message naming the file and line. */
+int camp_rounds_read_ledger(const char *workdir, const campaign *c, camp_rounds_report *rep);
 /* The object "campaign_stop" of permeability.json and rounds.json (nothing when not used). */
 void camp_rounds_json(json_out *j, const campaign *c);
 

@@ -125,48 +125,55 @@ static int check_reservoir(const camp_opts *o, const mdp_image_t *img, int ax, d
   return -1;
 }
 
-int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img) {
+int camp_boundary_image(const camp_opts *o, const mdp_image_t *img, int ax, mdp_image_t *out) {
+  const int reservoir = o->boundary_of_axis[ax] == CAMP_BOUNDARY_RESERVOIR;
+  int mirror[3], any = 0;
+  for (int d = 0; d < 3; d++) any |= mirror[d] = camp_mirrored_along(o, ax, d);
+  if (!any && !reservoir) return 1;
+  char err[MDP_IMAGE_ERR_LEN];
+  mdp_image_t mirrored;
+  const mdp_image_t *base = img;
+  if (any) {
+    if (mdp_image_mirror(img, mirror, &mirrored, err)) {
+      fprintf(stderr, "mdpore permeability: %s: --boundary mirror: %s\n", o->input, err);
+      return -1;
+    }
+    if (!reservoir) {
+      *out = mirrored;
+      return 0;
+    }
+    base = &mirrored;
+  }
   int pore = -1;
   for (int v = 0; v < 256 && pore < 0; v++)
     if (img->phase_of[v] == MDP_PHASE_PORE) pore = v;
+  /* the reservoir's pore voxels after the high face along the axis (the sample keeps
+   * [0, L_sample); periodic, so the reservoir touches both faces) */
+  const double held = (double)mdp_image_count(img) + (any ? (double)mdp_image_count(base) : 0);
+  int w[6] = {0}, rc = check_reservoir(o, base, ax, held); /* refused: the message printed */
+  if (!rc && (w[2 * ax + 1] = camp_reservoir_voxels(o),
+              rc = pore < 0 || mdp_image_pad(base, w, (uint8_t)pore, out, err)))
+    fprintf(stderr, "mdpore permeability: %s: --drive pressure: %s\n", o->input,
+            pore < 0 ? "the image has no pore label for the reservoir" : err);
+  if (any) mdp_image_free(&mirrored);
+  return rc ? -1 : 0;
+}
+
+int camp_write_boundary_images(const camp_opts *o, const mdp_image_t *img) {
   for (int a = 0; a < o->n_axes; a++) {
-    const int ax = o->axes[a], reservoir = o->boundary_of_axis[ax] == CAMP_BOUNDARY_RESERVOIR;
-    int mirror[3], any = 0;
-    for (int d = 0; d < 3; d++) any |= mirror[d] = camp_mirrored_along(o, ax, d);
-    if (!any && !reservoir) continue;
-    char err[MDP_IMAGE_ERR_LEN], path[CAMP_PATH];
-    mdp_image_t mirrored, padded;
-    const mdp_image_t *base = img;
-    if (any) {
-      if (mdp_image_mirror(img, mirror, &mirrored, err)) {
-        fprintf(stderr, "mdpore permeability: %s: --boundary mirror: %s\n", o->input, err);
-        return -1;
-      }
-      base = &mirrored;
-    }
-    int rc;
-    if (reservoir) {
-      /* the reservoir's pore voxels after the high face along the axis (the sample keeps
-       * [0, L_sample); periodic, so the reservoir touches both faces) */
-      int w[6] = {0};
+    const int ax = o->axes[a];
+    mdp_image_t built;
+    const int rc = camp_boundary_image(o, img, ax, &built);
+    if (rc > 0) continue; /* periodic: the run reads the image itself */
+    if (rc < 0) return -1;
+    char path[CAMP_PATH];
+    if (o->boundary_of_axis[ax] == CAMP_BOUNDARY_RESERVOIR)
       camp_padded_image_path(o, ax, path, sizeof path);
-      const double held = (double)mdp_image_count(img) + (any ? (double)mdp_image_count(base) : 0);
-      if ((rc = check_reservoir(o, base, ax, held))) {
-        /* refused, the message printed */
-      } else if ((w[2 * ax + 1] = camp_reservoir_voxels(o)),
-                 (rc = pore < 0 || mdp_image_pad(base, w, (uint8_t)pore, &padded, err)))
-        fprintf(stderr, "mdpore permeability: %s: --drive pressure: %s\n", o->input,
-                pore < 0 ? "the image has no pore label for the reservoir" : err);
-      else {
-        rc = write_image(&padded, path);
-        mdp_image_free(&padded);
-      }
-    } else {
+    else
       camp_mirror_image_path(o, ax, path, sizeof path);
-      rc = write_image(base, path);
-    }
-    if (any) mdp_image_free(&mirrored);
-    if (rc) return -1;
+    const int written = write_image(&built, path);
+    mdp_image_free(&built);
+    if (written) return -1;
   }
   return 0;
 }

@@ -246,6 +246,12 @@ int camp_read_manifest_runs(const char *workdir, campaign *c, int one_run_per_gr
   int seen_line[sizeof manifest_keys / sizeof manifest_keys[0]] = {0};
   while (!rc && fgets(line, sizeof line, f)) {
     ln++;
+    if (!strchr(line, '\n') && !feof(f)) { /* the rest would be read as a line of its own */
+      fprintf(stderr, "mdpore permeability: %s:%d: a line longer than %d characters\n", path, ln,
+              (int)sizeof line - 2);
+      rc = -1;
+      break;
+    }
     line[strcspn(line, "\n")] = 0;
     if (ln == 1) {
       head = !strcmp(line, MANIFEST_HEAD);

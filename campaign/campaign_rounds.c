@@ -79,9 +79,22 @@ static void evaluate(const camp_opts *o, campaign *c, int axis, axis_state *st) 
   if (st->L.accepted) st->rel_err = st->L.k_err / fabs(st->L.k);
 }
 
-/* The recorded rounds: rep->step[r][i] for every recorded round r (a run a round does not list
- * keeps its step of the round before). 0, or -1 with a message naming the line. */
-static int read_ledger(const char *workdir, const campaign *c, camp_rounds_report *rep) {
+/* One ledger line "round R STEP RUN": 0 with R, STEP >= 1 and the offset of RUN, else -1 (strtol,
+ * not sscanf: a number beyond its type is refused, not clamped). */
+static int parse_ledger_line(const char *line, long *round, long long *step, int *run_at) {
+  if (strncmp(line, "round ", 6)) return -1;
+  char *end;
+  errno = 0;
+  *round = strtol(line + 6, &end, 10);
+  if (errno || end == line + 6 || *end != ' ') return -1;
+  const char *s = end;
+  *step = strtoll(s, &end, 10);
+  if (errno || end == s || *end != ' ' || *step < 1) return -1;
+  *run_at = (int)(end - line) + (int)strspn(end, " ");
+  return line[*run_at] ? 0 : -1;
+}
+
+int camp_rounds_read_ledger(const char *workdir, const campaign *c, camp_rounds_report *rep) {
   char path[CAMP_PATH + 32], line[CAMP_PATH + 128];
   snprintf(path, sizeof path, "%s/%s", workdir, LEDGER_NAME);
   FILE *f = fopen(path, "r");
@@ -90,12 +103,21 @@ static int read_ledger(const char *workdir, const campaign *c, camp_rounds_repor
   int ln = 0, rc = 0;
   while (fgets(line, sizeof line, f) && !rc) {
     ln++;
+    if (!strchr(line, '\n') && !feof(f)) { /* the rest would be read as a line of its own */
+      fprintf(stderr,
+              "mdpore permeability: %s:%d: a line longer than %d characters: expected 'round R "
+              "STEP RUN' lines\n",
+              path, ln, (int)sizeof line - 2);
+      rc = -1;
+      break;
+    }
     if (line[0] == '#' || line[0] == '\n') continue;
-    int round = 0, off = 0;
-    long long step = 0;
     line[strcspn(line, "\n")] = 0;
-    if (sscanf(line, "round %d %lld %n", &round, &step, &off) != 2 || !line[off] || round < 1 ||
-        round > CAMP_MAX_ROUNDS || round > rep->n_rounds + 1 || step < 1) {
+    long round = 0;
+    long long step = 0;
+    int off = 0;
+    if (parse_ledger_line(line, &round, &step, &off) || round < 1 || round > CAMP_MAX_ROUNDS ||
+        round > rep->n_rounds + 1) {
       fprintf(stderr,
               "mdpore permeability: %s:%d: expected 'round R STEP RUN' (R from 1, one more than "
               "the last at most, up to %d; STEP >= 1), got '%.200s'\n",
@@ -362,7 +384,7 @@ int camp_rounds(const camp_opts *o, campaign *c) {
             budget, c->n_runs, o->round_steps, (long long)c->n_runs * o->round_steps);
     return CAMP_ROUNDS_REFUSED;
   }
-  if (read_ledger(o->workdir, c, rep)) return -1;
+  if (camp_rounds_read_ledger(o->workdir, c, rep)) return -1;
   int recorded = rep->n_rounds;
   if (recorded == 0) rep->n_rounds = 1;
   for (int i = 0; i < c->n_runs; i++) /* round 1: every run (one added since: now) */

@@ -151,6 +151,34 @@ static int parse_list(const char *v, rp_opts *o) {
   return 0;
 }
 
+/* 1 when opt is an option that takes a value (the others are refused before their value is
+ * looked for, so an unknown one at the end is named as unknown). */
+static int takes_value(const char *opt) {
+  static const char *const with_value[] = {"--axis",
+                                           "--saturations",
+                                           "--mode",
+                                           "--phase-images",
+                                           "--nw-label",
+                                           "--force",
+                                           "--wetting",
+                                           "--viscosity-ratio",
+                                           "--cross-attraction",
+                                           "--template",
+                                           "--rc-per-voxel",
+                                           "--min-throat",
+                                           "--boundary",
+                                           "--steps",
+                                           "--target-error",
+                                           "--seed",
+                                           "--jobs",
+                                           "--emit-scenes",
+                                           "--collect",
+                                           NULL};
+  for (int i = 0; with_value[i]; i++)
+    if (!strcmp(opt, with_value[i])) return 1;
+  return 0;
+}
+
 int rp_parse_args(int argc, char **argv, rp_opts *o) {
   memset(o, 0, sizeof *o);
   camp_opts *co = &o->co;
@@ -199,6 +227,10 @@ int rp_parse_args(int argc, char **argv, rp_opts *o) {
       }
       pos[n_pos++] = s;
       continue;
+    }
+    if (!takes_value(s)) {
+      fprintf(stderr, "mdpore relperm: unexpected option '%s'\n", s);
+      return -1;
     }
     if (i + 1 >= argc) {
       fprintf(stderr, "mdpore relperm: %s: expected a value after it\n", s);

@@ -2,6 +2,7 @@
 #include "image_internal.h"
 #include "mdpore_image_cli.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,22 +49,25 @@ static int parse_int(const char *s, int *v) {
   return 0;
 }
 
+/* A crop bound: a voxel index 0 .. INT_MAX (a negative one or one beyond an int would otherwise be
+ * read as "to the end" or wrapped). 0, or 1 when it is not one. */
+static int crop_bound(const char **s, int *v) {
+  char *end;
+  errno = 0;
+  const long long x = strtoll(*s, &end, 10);
+  if (end == *s || errno || x < 0 || x > INT_MAX) return 1;
+  *v = (int)x;
+  *s = end;
+  return 0;
+}
+
 static int parse_crop(const char *text, mdp_image_cli_t *c) {
   const char *s = text;
   for (int a = 0; a < 3; a++) {
-    char *end;
     c->crop_lo[a] = 0, c->crop_hi[a] = -1; /* -1 = to the end */
-    if (*s != ':') {
-      c->crop_lo[a] = (int)strtol(s, &end, 10);
-      if (end == s) return 1;
-      s = end;
-    }
+    if (*s != ':' && crop_bound(&s, &c->crop_lo[a])) return 1;
     if (*s++ != ':') return 1;
-    if (*s && *s != ',') {
-      c->crop_hi[a] = (int)strtol(s, &end, 10);
-      if (end == s) return 1;
-      s = end;
-    }
+    if (*s && *s != ',' && crop_bound(&s, &c->crop_hi[a])) return 1;
     if (a < 2 && *s++ != ',') return 1;
   }
   c->crop = 1;
@@ -168,16 +172,17 @@ int mdp_image_cli_parse(int argc, char **argv, int *i, mdp_image_cli_t *c, char 
         bad = *p != ',' || p == v || !p[1] || p[-1] == ',';
   }
   if (bad) {
-    const char *expected = !strcmp(opt, "--pad")
-                               ? "[AXIS=]W[:LABEL], W from 0 to 2147483647 layers, LABEL 0-255"
-                           : !strcmp(opt, "--crop")       ? "X0:X1,Y0:Y1,Z0:Z1 (a part may be ':')"
-                           : !strcmp(opt, "--downsample") ? "an integer factor >= 1"
-                           : !strcmp(opt, "--mirror")     ? "axes x, y, z separated by commas"
-                           : !strcmp(opt, "--type") ? "uint8, int8, uint16, int16, uint32 or int32"
-                           : !strcmp(opt, "--byte-order") ? "little or big"
-                           : !strcmp(opt, "--order")      ? "a permutation of xyz, e.g. zyx"
-                           : !strcmp(opt, "--format")     ? "raw, hdf5 or tiff"
-                                                          : "a valid value (see --help)";
+    const char *expected =
+        !strcmp(opt, "--pad")    ? "[AXIS=]W[:LABEL], W from 0 to 2147483647 layers, LABEL 0-255"
+        : !strcmp(opt, "--crop") ? "X0:X1,Y0:Y1,Z0:Z1 of voxel indices 0 to 2147483647 (a bound "
+                                   "may be left out: ':' keeps an axis)"
+        : !strcmp(opt, "--downsample") ? "an integer factor >= 1"
+        : !strcmp(opt, "--mirror")     ? "axes x, y, z separated by commas"
+        : !strcmp(opt, "--type")       ? "uint8, int8, uint16, int16, uint32 or int32"
+        : !strcmp(opt, "--byte-order") ? "little or big"
+        : !strcmp(opt, "--order")      ? "a permutation of xyz, e.g. zyx"
+        : !strcmp(opt, "--format")     ? "raw, hdf5 or tiff"
+                                       : "a valid value (see --help)";
     snprintf(err, MDP_IMAGE_ERR_LEN, "option %s: bad value '%s' (expected %s)", opt, v, expected);
     return -1;
   }

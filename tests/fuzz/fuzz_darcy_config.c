@@ -14,7 +14,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   fuzz_capture_begin();
   const int rc = upscale ? darcy_config_read_upscale(path, &c, 0) : darcy_config_read(path, &c, 0);
   const char *msg = fuzz_capture_end();
-  if (rc == 0) darcy_problem_free(&c.problem);
+  if (rc == 0) {
+    darcy_problem_free(&c.problem);
+    twophase_config_free(&c.twophase); /* output_times, a relperm table */
+  }
   fuzz_outcome(rc, msg, path);
   return 0;
 }

@@ -47,6 +47,28 @@ void fuzz_write(const char *path, const void *data, size_t size) {
   }
 }
 
+__attribute__((weak)) void fuzz_target_init(void) {}
+
+int fuzz_argv(const uint8_t *data, size_t size, const char *argv0, char **argv, int max) {
+  static char *text = NULL;
+  free(text);
+  text = malloc(size + 1);
+  if (!text) abort();
+  memcpy(text, data, size);
+  text[size] = 0;
+  int argc = 0;
+  argv[argc++] = (char *)argv0;
+  size_t start = 0;
+  for (size_t i = 0; i <= size && argc < max - 1; i++)
+    if (i == size || text[i] == '\n' || text[i] == 0) {
+      text[i] = 0;
+      if (i < size || i > start) argv[argc++] = text + start;
+      start = i + 1;
+    }
+  argv[argc] = NULL;
+  return argc;
+}
+
 int LLVMFuzzerInitialize(int *argc, char ***argv) {
   (void)argc, (void)argv;
   /* Large allocations are refused above this (the readers' memory estimate, docs/fuzzing.md), so a
@@ -54,6 +76,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
    * limit. */
   setenv("MDPORE_MEMORY_LIMIT", "33554432", 0);
   fuzz_dir();
+  fuzz_target_init();
   return 0;
 }
 

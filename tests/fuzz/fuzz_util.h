@@ -13,10 +13,19 @@
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+/* Called once by LLVMFuzzerInitialize, before any input: an entry that needs a process-wide start
+ * (MPI) defines it; the default does nothing. */
+void fuzz_target_init(void);
+
 /* The private folder (created on first use, removed at exit) and a file in it holding bytes. */
 const char *fuzz_dir(void);
 void fuzz_path(const char *name, char *out, size_t len);
 void fuzz_write(const char *path, const void *data, size_t size);
+
+/* Split the input into argv tokens, one a line (a NUL ends a token too; a last token without a
+ * newline counts), after argv[0] = argv0: at most max - 1 entries (the rest of the input is
+ * ignored), argv[argc] = NULL. The tokens live in a buffer kept until the next call. Returns argc. */
+int fuzz_argv(const uint8_t *data, size_t size, const char *argv0, char **argv, int max);
 
 /* Capture what the reader prints on stderr between begin and end (end returns the text, kept until
  * the next begin). */

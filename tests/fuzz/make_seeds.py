@@ -243,5 +243,169 @@ put("relperm_manifest", "bad_too_many_runs", rp_camp + "%%\n" + rp_runs + "rp: t
 put("relperm_manifest", "bad_long_line", rp_camp + "%%\n" + rp_runs.replace("g: 0.02", "g: 0.0" + "0" * 3000 + "2"))
 put("relperm_manifest", "bad_no_campaign", rp_runs)
 
+# ---- mdpore permeability / relperm command lines: argv tokens, one a line (the parser only)
+img = "/dev/null"  # any readable file stands for the IMAGE (the parser checks only that)
+for name, args in (("axis_x", ["IMG", "--axis", "x"]),
+                   ("all_options", ["IMG", "--axis", "all", "--gradients", "0.05,0.1,0.2", "--dt", "0.005",
+                                    "--np", "2", "--jobs", "auto", "--rc-per-voxel", "0.5", "--min-throat", "3",
+                                    "--voxel-size", "1e-9", "--viscosity", "5", "--wall-density", "4",
+                                    "--wall-adsorption", "0", "--rng", "fast", "--temperature", "300",
+                                    "--seed", "7", "--flux-every", "20", "--models", "darcy,power",
+                                    "--sample", "s", "--boundary", "mirror", "--sides", "mirror",
+                                    "--density-tolerance", "0.1", "--require-target", "--force"]),
+                   ("target_error_k", ["IMG", "--axis", "y", "--target-error-k", "0.1", "--max-steps", "4000",
+                                       "--round-steps", "1000", "--budget-steps", "20000"]),
+                   ("pressure", ["IMG", "--axis", "z", "--drive", "pressure", "--reservoir", "6",
+                                 "--n-gradients", "7", "--velocity-range", "0.01,0.1", "--accuracy", "fast"]),
+                   ("collect", ["--collect", "somewhere", "--models", "darcy"]),
+                   ("help", ["--help"])):
+    put("campaign_args", "ok_" + name, "\n".join(img if a == "IMG" else a for a in args) + "\n")
+for name, args in (("relperm", ["IMG", "--axis", "x", "--saturations", "0.3,0.6", "--mode", "imbibition",
+                                "--no-trapping", "--wetting", "oil", "--viscosity-ratio", "2", "--steps", "100",
+                                "--jobs", "2", "--boundary", "mirror", "WORK"]),
+                   ("relperm_collect", ["--collect", "somewhere"])):
+    put("campaign_args", "ok_" + name, "relperm\n" + "\n".join(img if a == "IMG" else a for a in args) + "\n")
+for name, args in (("no_axis", ["IMG"]), ("no_input", ["--axis", "x"]), ("axis_w", ["IMG", "--axis", "w"]),
+                   ("unknown", ["IMG", "--axis", "x", "--colour", "red"]),
+                   ("no_value", ["IMG", "--axis"]), ("missing_file", ["/nonexistent/rock.raw", "--axis", "x"]),
+                   ("gradients_nan", ["IMG", "--axis", "x", "--gradients", "0.1,nan"]),
+                   ("gradients_zero", ["IMG", "--axis", "x", "--gradients", "0,0.1"]),
+                   ("n_gradients_huge", ["IMG", "--axis", "x", "--n-gradients", "99999999999999999999"]),
+                   ("np_overflow", ["IMG", "--axis", "x", "--np", "4294967297"]),
+                   ("jobs_65", ["IMG", "--axis", "x", "--jobs", "65"]),
+                   ("dt_inf", ["IMG", "--axis", "x", "--dt", "inf"]),
+                   ("velocity_reversed", ["IMG", "--axis", "x", "--velocity-range", "0.2,0.1"]),
+                   ("models_typo", ["IMG", "--axis", "x", "--models", "darcy,forchheimr"]),
+                   ("round_steps_alone", ["IMG", "--axis", "x", "--round-steps", "100"]),
+                   ("round_steps_above_max", ["IMG", "--axis", "x", "--target-error-k", "0.1", "--max-steps",
+                                              "100", "--round-steps", "1000"]),
+                   ("k_with_pressure", ["IMG", "--axis", "x", "--target-error-k", "0.1", "--drive", "pressure"]),
+                   ("pressure_periodic", ["IMG", "--axis", "x", "--drive", "pressure", "--boundary", "periodic"]),
+                   ("reservoir_2", ["IMG", "--axis", "x", "--reservoir", "2"]),
+                   ("accuracy_sloppy", ["IMG", "--axis", "x", "--accuracy", "sloppy"]),
+                   ("collect_and_input", ["IMG", "--collect", "somewhere"]),
+                   ("two_inputs", ["IMG", "IMG", "--axis", "x"])):
+    put("campaign_args", "bad_" + name, "\n".join(img if a == "IMG" else a for a in args) + "\n")
+for name, args in (("no_workdir", ["IMG", "--axis", "x"]),
+                   ("saturation_1", ["IMG", "--axis", "x", "--saturations", "0.5,1", "W"]),
+                   ("ratio_3", ["IMG", "--axis", "x", "--viscosity-ratio", "3", "W"]),
+                   ("nw_label_256", ["IMG", "--axis", "x", "--nw-label", "256", "W"]),
+                   ("scene_input", ["case.yaml", "--axis", "x", "W"]),
+                   ("ok_boundary_reservoir", ["IMG", "--axis", "x", "--boundary", "reservoir", "W"])):
+    put("campaign_args", "bad_relperm_" + name,
+        "relperm\n" + "\n".join(img if a == "IMG" else a for a in args) + "\n")
+
+# ---- a campaign folder read back: campaign.txt, a line %%, rounds.txt, a line %%, summary.json
+camp = ("# mdpore permeability campaign v1\nsample: s\ninput: /none/s.raw\nimage: \nporosity: 0.5\n"
+        "rc_per_voxel: 0.5\nh_hydraulic: 4\npercolates: 1 1 1\nfluid_density: 6.2\nviscosity: 5\n"
+        "viscosity_source: --viscosity\nlength_unit_m: 8.2e-10\nlength_source: the mDPD water mapping\n"
+        "temperature_K: 298.15\ntarget_error: 0.05\nnp: 1\nkT: 1\ndrive: body\nreservoir: 0\n"
+        "boundary: periodic none none\nsides: periodic\nseam_continuity: 1 nan nan\n"
+        "run: x 0.016 runs/x-00\nrun: x 0.032 runs/x-01\nrun: x 0.048 runs/x-02\n")
+rounds = ("# mdpore permeability rounds: round R STEP RUN (the step each run reaches in round R)\n"
+          "round 1 600 runs/x-00\nround 1 600 runs/x-01\nround 1 600 runs/x-02\n"
+          "round 2 1200 runs/x-00\nround 3 2400 runs/x-02\n")
+summary = ('{"thermo": {"T": {"mean": 1.004, "err": 0.001}}, "pore_core_density": {"mean": 6.03, "err": 0.01}, '
+           '"flux": {"axis": "x", "q": 0.064, "q_err": 0.00064, "G": 0.4, "relative_error": 0.01, '
+           '"fluid_fraction": 0.48, "steady_from_step": 500, "steady": true, "plateau": true, '
+           '"target_error": 0.05, "reached": true, "pressure_drop": {"dp_over_force_per_area": 1.01}}, '
+           '"timing": {"loop_seconds": 1.0, "steps": 8000, "particles": 1000}, "last_step": 8000}\n')
+put("campaign_folder", "ok_three_parts", camp + "%%\n" + rounds + "%%\n" + summary)
+put("campaign_folder", "ok_manifest_only", camp)
+put("campaign_folder", "ok_no_rounds", camp + "%%\n%%\n" + summary)
+for name, old, new in (("head", "campaign v1", "campaign v0"), ("np_0", "np: 1", "np: 0"),
+                       ("viscosity_nan", "viscosity: 5", "viscosity: nan"),
+                       ("g_inf", "x 0.016", "x 1e400"), ("axis_w", "run: x 0.032", "run: w 0.032"),
+                       ("run_twice", "runs/x-01", "runs/x-00"), ("g_twice", "x 0.032", "x 0.016"),
+                       ("key_twice", "kT: 1\n", "kT: 1\nkT: 2\n"), ("unknown_key", "kT: 1", "colour: red"),
+                       ("no_runs", "run: x 0.016 runs/x-00\nrun: x 0.032 runs/x-01\nrun: x 0.048 runs/x-02\n", ""),
+                       ("long_line", "sample: s", "sample: " + "s" * 13000)):
+    put("campaign_folder", "bad_manifest_" + name, camp.replace(old, new, 1) + "%%\n" + rounds)
+put("campaign_folder", "bad_manifest_too_many_runs",
+    camp + "".join("run: y %d runs/y-%d\n" % (i + 1, i) for i in range(300)))
+for name, old, new in (("round_0", "round 1 600 runs/x-00", "round 0 600 runs/x-00"),
+                       ("round_skipped", "round 3 2400", "round 4 2400"),
+                       ("step_0", "round 2 1200", "round 2 0"),
+                       ("no_run", "round 2 1200 runs/x-00", "round 2 1200"),
+                       ("step_huge", "round 2 1200", "round 2 99999999999999999999"),
+                       ("round_65", "round 3 2400", "round 65 2400"),
+                       ("long_line", "runs/x-02\nround 2", "runs/x-02" + "2" * 9000 + "\nround 2")):
+    put("campaign_folder", "bad_rounds_" + name, camp + "%%\n" + rounds.replace(old, new, 1) + "%%\n" + summary)
+put("campaign_folder", "bad_rounds_65_rounds",
+    camp + "%%\n" + "".join("round %d %d runs/x-00\n" % (r + 1, 100 * (r + 1)) for r in range(65)))
+for name, old, new in (("q_nan", '"q": 0.064', '"q": .nan'), ("q_err_0", '"q_err": 0.00064', '"q_err": 0'),
+                       ("no_flux", '"flux"', '"flow"'), ("flux_list", '"flux": {', '"flux": [{'),
+                       ("G_huge", '"G": 0.4', '"G": 1e400'), ("not_json", '{"thermo"', '{{"thermo"')):
+    put("campaign_folder", "bad_summary_" + name, camp + "%%\n" + rounds + "%%\n" + summary.replace(old, new, 1))
+
+# ---- image operations whose numbers are sizes, over the entry's fixed 6x5x4 image (argv tokens)
+for name, args in (("none", ["image"]), ("crop", ["image", "--crop", "1:5,:,1:3"]),
+                   ("crop_open", ["image", "--crop", "2:,:3,:"]),
+                   ("downsample", ["image", "--downsample", "2"]),
+                   ("crop_downsample_pad", ["image", "--crop", "0:6,1:5,:", "--downsample", "2",
+                                             "--pad", "x=3", "--pad", "z=1:2"]),
+                   ("pad_all", ["image", "--pad", "2"]), ("mirror", ["image", "--mirror", "x,z"]),
+                   ("everything", ["image", "--crop", ":,:,1:4", "--downsample", "3", "--pad", "y=2:1",
+                                   "--mirror", "x,y,z"]),
+                   ("pad_large", ["image", "--pad", "x=100000"])):
+    put("image_ops", "ok_" + name, "\n".join(args) + "\n")
+for name, args in (("crop_outside", ["image", "--crop", "0:7,:,:"]),
+                   ("crop_empty", ["image", "--crop", "3:3,:,:"]),
+                   ("crop_reversed", ["image", "--crop", "4:2,:,:"]),
+                   ("crop_negative_end", ["image", "--crop", "0:-2,:,:"]),
+                   ("crop_wraps_int", ["image", "--crop", "4294967297:4294967299,:,:"]),
+                   ("downsample_0", ["image", "--downsample", "0"]),
+                   ("downsample_above_dims", ["image", "--downsample", "5"]),
+                   ("pad_negative", ["image", "--pad", "-1"]),
+                   ("pad_int_overflow", ["image", "--pad", "x=2147483647"]),
+                   ("pad_memory", ["image", "--pad", "100000"]),
+                   ("pad_label_unknown", ["image", "--pad", "1:9"]),
+                   ("mirror_w", ["image", "--mirror", "w"]),
+                   ("mirror_memory", ["image", "--pad", "x=1000000", "--mirror", "x,y,z"])):
+    put("image_ops", "bad_" + name, "\n".join(args) + "\n")
+for name, args in (("ok_stack_x", ["stack", "x", "+", "--crop", "0:2,:,:", "+", "--pad", "x=3"]),
+                   ("bad_stack_mismatch", ["stack", "y", "+", "--crop", "0:2,:,:"]),
+                   ("bad_stack_voxel_size", ["stack", "z", "--downsample", "2", "+", "--downsample", "1"]),
+                   ("bad_stack_overflow", ["stack", "x", "--pad", "x=1073741823", "+", "--pad", "x=1073741823"]),
+                   ("ok_boundary_mirror", ["permeability", "--axis", "all", "--boundary", "mirror"]),
+                   ("ok_boundary_sides", ["permeability", "--axis", "y", "--boundary", "mirror", "--sides", "mirror"]),
+                   ("ok_boundary_reservoir", ["permeability", "--axis", "x", "--drive", "pressure",
+                                           "--reservoir", "7", "--rc-per-voxel", "0.25"]),
+                   ("bad_boundary_reservoir_huge", ["permeability", "--axis", "z", "--boundary", "reservoir",
+                                                "--reservoir", "999999", "--rc-per-voxel", "1e-300"]),
+                   ("bad_boundary_reservoir_memory", ["permeability", "--axis", "y", "--drive", "pressure",
+                                                  "--reservoir", "900000", "--sides", "mirror"])):
+    put("image_ops", name, "\n".join(args) + "\n")
+
+# ---- geometry: scenes built against the entry's slit_8x6x4.raw (the geometry test scenes' image)
+geo_bad = os.path.join(ROOT, "tests/engine/bad_scenes/geometry")
+for f in sorted(os.listdir(geo_bad)):
+    if f.endswith(".yaml"):
+        copy("geometry", "bad_" + f, os.path.join("tests/engine/bad_scenes/geometry", f))
+geo = ("box: {lo: [0, 0, 0], hi: [4, 3, 2]}\nspecies:\n  - {name: liquid}\n  - {name: quartz, frozen: true}\n"
+       "pairs:\n  default: {A: -40, B: 25, gamma: 4.5, rc: 1.0, rd: 0.75}\n"
+       "effects: {mdpd_attraction: {}, mdpd_repulsion: {}, dpd_thermostat: {}}\n"
+       "geometry:\n  image: slit_8x6x4.raw\n  flow_axis: x\n  rc_per_voxel: 0.5\n"
+       "  species: {fluid: liquid, inorganic: quartz}\n"
+       "initial: {temperature: 1.0}\nrun: {dt: 0.01, steps: 10}\n")
+put("geometry", "ok_slit.yaml", geo)
+for name, old, new in (("axis_map", "hi: [4, 3, 2]", "hi: [3, 4, 2]"),
+                       ("thickness", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  wall_thickness: 1.5"),
+                       ("densities", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  wall_density: 4\n"
+                        "  fluid_density: 7\n  min_wall_distance: 0.1\n  isolated_pores: fill"),
+                       ("voxels_per_rc", "rc_per_voxel: 0.5", "voxels_per_rc: 2"),
+                       ("patch_seed", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  patches: {seed: 9}"),
+                       ("no_min_distance", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  min_wall_distance: 0")):
+    text = geo.replace(old, new, 1)
+    if name == "axis_map":
+        text = text.replace("flow_axis: x", "flow_axis: y\n  axis_map: [y, x, z]")
+    put("geometry", "ok_" + name + ".yaml", text)
+for name, old, new in (("fluid_density_huge", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  fluid_density: 1e9"),
+                       ("wall_density_above_patches", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  wall_density: 31"),
+                       ("voxel_below_patches", "rc_per_voxel: 0.5", "rc_per_voxel: 0.01"),
+                       ("thickness_below_voxel", "rc_per_voxel: 0.5", "rc_per_voxel: 0.5\n  wall_thickness: 0.2"),
+                       ("image_is_scene", "image: slit_8x6x4.raw", "image: scene.yaml")):
+    put("geometry", "bad_" + name + ".yaml", geo.replace(old, new, 1))
+
 total = sum(os.path.getsize(os.path.join(dp, f)) for dp, _, fs in os.walk(CORPUS) for f in fs)
 print("corpus: %d bytes" % total)
