@@ -74,7 +74,7 @@ static int put(const uint8_t *data, size_t size, int k, const char *path) {
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  char dir[300], manifest[340], ledger[340], summary[360];
+  char dir[300], manifest[340], ledger[340], summary[sizeof run.dir + 16];
   fuzz_path("camp", dir, sizeof dir);
   snprintf(manifest, sizeof manifest, "%s/campaign.txt", dir);
   snprintf(ledger, sizeof ledger, "%s/rounds.txt", dir);
